@@ -1,1 +1,55 @@
-fn main() {}
+//! `ilmrc`: the ILMR toolchain's command line.
+
+mod check;
+mod inputs;
+
+use std::process::ExitCode;
+
+use clap::{Parser, Subcommand};
+
+#[derive(Parser)]
+#[command(name = "ilmrc", version, about = "Check, build and run ILMR robot tasks")]
+struct Cli {
+    #[command(subcommand)]
+    command: Cmd,
+}
+
+#[derive(Subcommand)]
+enum Cmd {
+    /// Check task and skill files against a robot model (replaces `check`/`checkend`).
+    Check(check::CheckArgs),
+    /// Print the syntax tree of a file, one node per line.
+    Parse {
+        /// The file to parse.
+        file: std::path::PathBuf,
+    },
+}
+
+/// Exit codes: 0 clean (warnings allowed), 1 errors in the input, 2 usage or I/O errors.
+pub const EXIT_ERRORS: u8 = 1;
+pub const EXIT_USAGE: u8 = 2;
+
+fn main() -> ExitCode {
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(e) => {
+            let code = if e.use_stderr() { EXIT_USAGE } else { 0 };
+            let _ = e.print();
+            return ExitCode::from(code);
+        }
+    };
+    match cli.command {
+        Cmd::Check(args) => check::run(args),
+        Cmd::Parse { file } => match inputs::read_source(&file) {
+            Ok(source) => {
+                let parsed = ilmr_compiler::parser::parse(&source.text, ilmr_compiler::FileId(0));
+                print!("{}", ilmr_compiler::tree::render(&parsed.file));
+                ExitCode::SUCCESS
+            }
+            Err(message) => {
+                eprintln!("error: {message}");
+                ExitCode::from(EXIT_USAGE)
+            }
+        },
+    }
+}

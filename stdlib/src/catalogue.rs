@@ -245,7 +245,7 @@ pub static CATALOGUE: [CommandSpec; Command::COUNT] = [
                     setting(
                         "rc",
                         Unit::Metres,
-                        Range::Magnitude {
+                        Range::UpTo {
                             param: "max_clearance",
                             limit: Limit::Refuse,
                         },

@@ -172,8 +172,10 @@ pub enum Range {
     NonNegative,
     /// `-param ..= param` of the robot model.
     Symmetric { param: &'static str, limit: Limit },
-    /// `0 < v <= param` in magnitude: the sign is free, the magnitude bounded.
+    /// `|v| <= param`: the sign is free (a turn's curvature), the magnitude bounded.
     Magnitude { param: &'static str, limit: Limit },
+    /// `0 ..= param` of the robot model (road clearance).
+    UpTo { param: &'static str, limit: Limit },
     /// The `min ..= max` of the device named by the command's device argument.
     DeviceRange,
     /// `0 .. readings` of the device named by the command's device argument.

@@ -1,0 +1,228 @@
+//! The syntax tree. It borrows names from the source (no allocation per name) and every
+//! node has its span. A tree is always produced, however broken the input: lines that do
+//! not parse become `StmtKind::Error`, unclosed blocks run to the end of the file.
+
+use crate::span::Span;
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum FileKind {
+    /// A task: top-level blocks that start together.
+    Task,
+    /// One or more skills, each opened by a `NAME:` header (Figure 56).
+    Skills,
+}
+
+#[derive(Debug, Clone)]
+pub struct SourceFile<'s> {
+    pub kind: FileKind,
+    /// The task's top-level blocks (for a skill file: statements before the first header,
+    /// which the checker reports).
+    pub blocks: Vec<Block<'s>>,
+    pub skills: Vec<Skill<'s>>,
+    pub comments: Vec<Span>,
+    pub span: Span,
+}
+
+#[derive(Debug, Clone)]
+pub struct Skill<'s> {
+    pub name: Name<'s>,
+    /// The header line `NAME:`.
+    pub header: Span,
+    pub blocks: Vec<Block<'s>>,
+    pub span: Span,
+}
+
+/// Statements on one level not separated by an empty line (section 4.3).
+#[derive(Debug, Clone)]
+pub struct Block<'s> {
+    pub stmts: Vec<Stmt<'s>>,
+    pub span: Span,
+}
+
+#[derive(Debug, Clone)]
+pub struct Stmt<'s> {
+    pub kind: StmtKind<'s>,
+    /// The statement's own line, without a trailing comment. For `if` and `while` the
+    /// opening line only: `break(pattern)` matches this text.
+    pub span: Span,
+}
+
+#[derive(Debug, Clone)]
+pub enum StmtKind<'s> {
+    /// `name(args)` or bare `name`, optionally bound: `v = name(args)`. A bare name may be
+    /// a skill call; which it is, the checker decides.
+    Call {
+        bind: Option<Name<'s>>,
+        call: Call<'s>,
+    },
+    /// `v = expression`.
+    Assign { target: Name<'s>, value: Expr<'s> },
+    If(Conditional<'s>),
+    While {
+        bind: Option<Name<'s>>,
+        body: Conditional<'s>,
+    },
+    /// `check` ... `checkend`: validated, never run.
+    Check {
+        body: Vec<Block<'s>>,
+        end: Option<Span>,
+    },
+    /// `break`, or `break(pattern)` with the raw pattern text.
+    Break { pattern: Option<Pattern<'s>> },
+    /// `priority = highest`.
+    Priority,
+    /// A line that does not parse; its diagnostic says why.
+    Error,
+}
+
+#[derive(Debug, Clone)]
+pub struct Conditional<'s> {
+    pub keyword: Span,
+    pub cond: Expr<'s>,
+    pub body: Vec<Block<'s>>,
+    /// The `endif`/`endwhile` line, `None` when missing.
+    pub end: Option<Span>,
+}
+
+#[derive(Debug, Clone, Copy)]
+pub struct Pattern<'s> {
+    pub text: &'s str,
+    pub span: Span,
+    pub closed: bool,
+}
+
+#[derive(Debug, Clone, Copy)]
+pub struct Name<'s> {
+    /// As written; lookups ignore case.
+    pub text: &'s str,
+    pub span: Span,
+}
+
+impl<'s> Name<'s> {
+    pub fn is(&self, word: &str) -> bool {
+        self.text.eq_ignore_ascii_case(word)
+    }
+}
+
+#[derive(Debug, Clone)]
+pub struct Call<'s> {
+    pub name: Name<'s>,
+    /// `None` when written bare (`stop`, `Takebox`).
+    pub args: Option<Args<'s>>,
+}
+
+#[derive(Debug, Clone)]
+pub struct Args<'s> {
+    pub items: Vec<Arg<'s>>,
+    /// From `(` to `)` (or to the end of the line when unclosed).
+    pub span: Span,
+    pub closed: bool,
+}
+
+#[derive(Debug, Clone)]
+pub enum Arg<'s> {
+    Positional(Expr<'s>),
+    /// `key = value`, as in `turn(d=90,c=0.5)`.
+    Setting { key: Name<'s>, value: Expr<'s> },
+}
+
+impl Arg<'_> {
+    pub fn span(&self) -> Span {
+        match self {
+            Arg::Positional(e) => e.span,
+            Arg::Setting { key, value } => key.span.to(value.span),
+        }
+    }
+}
+
+#[derive(Debug, Clone)]
+pub struct Expr<'s> {
+    pub kind: ExprKind<'s>,
+    pub span: Span,
+}
+
+#[derive(Debug, Clone)]
+pub enum ExprKind<'s> {
+    Number(f64),
+    /// A variable, a model name or a keyword; the checker resolves which.
+    Name(Name<'s>),
+    Neg(Box<Expr<'s>>),
+    Binary {
+        op: BinOp,
+        lhs: Box<Expr<'s>>,
+        rhs: Box<Expr<'s>>,
+    },
+    Compare {
+        op: CmpOp,
+        op_span: Span,
+        lhs: Box<Expr<'s>>,
+        rhs: Box<Expr<'s>>,
+    },
+    /// A part of an expression that did not parse.
+    Error,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum BinOp {
+    Add,
+    Sub,
+    Mul,
+    Div,
+}
+
+impl BinOp {
+    pub fn symbol(self) -> &'static str {
+        match self {
+            BinOp::Add => "+",
+            BinOp::Sub => "-",
+            BinOp::Mul => "*",
+            BinOp::Div => "/",
+        }
+    }
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum CmpOp {
+    Lt,
+    Le,
+    Eq,
+    Ne,
+    Gt,
+    Ge,
+}
+
+impl CmpOp {
+    /// The canonical spelling (the formatter writes `==` for `=` and `>=` for `=>`).
+    pub fn symbol(self) -> &'static str {
+        match self {
+            CmpOp::Lt => "<",
+            CmpOp::Le => "<=",
+            CmpOp::Eq => "==",
+            CmpOp::Ne => "!=",
+            CmpOp::Gt => ">",
+            CmpOp::Ge => ">=",
+        }
+    }
+}
+
+impl<'s> SourceFile<'s> {
+    /// Every block of the file at every depth, in source order, with the blocks of skills.
+    pub fn for_each_stmt(&self, f: &mut impl FnMut(&Stmt<'s>)) {
+        fn walk<'a, 's>(blocks: &'a [Block<'s>], f: &mut impl FnMut(&'a Stmt<'s>)) {
+            for block in blocks {
+                for stmt in &block.stmts {
+                    f(stmt);
+                    match &stmt.kind {
+                        StmtKind::If(c) | StmtKind::While { body: c, .. } => walk(&c.body, f),
+                        StmtKind::Check { body, .. } => walk(body, f),
+                        _ => {}
+                    }
+                }
+            }
+        }
+        walk(&self.blocks, f);
+        for skill in &self.skills {
+            walk(&skill.blocks, f);
+        }
+    }
+}

@@ -1,0 +1,102 @@
+//! `break(pattern)` matches statements by their text (section 4.5.5). The checker warns
+//! when a pattern can end nothing, or more than one statement.
+
+use crate::ast::{Pattern, Stmt, StmtKind};
+use crate::check::FileEntry;
+use crate::check::skills::Skills;
+use crate::diagnostic::{Code, Diagnostic, FileId};
+use crate::span::Span;
+
+/// The text a pattern is searched for. The dissertation's own examples, `break(turn(d=))`
+/// and `break(while(c))`, only match the statements they mean (`turn(d=90,c=0.5)`,
+/// `while(cnt<5)`) when the pattern ends at its first `)`, which is how the original
+/// interpreter read it; this toolchain does the same.
+pub fn needle<'s>(pattern: &Pattern<'s>) -> &'s str {
+    let text = pattern.text;
+    text.find(')').map_or(text, |i| &text[..i]).trim()
+}
+
+/// Whether a statement's text contains the needle, ignoring case.
+pub fn matches(statement: &str, needle: &str) -> bool {
+    if needle.is_empty() {
+        return false;
+    }
+    let hay = statement.as_bytes();
+    let pat = needle.as_bytes();
+    hay.windows(pat.len()).any(|w| w.eq_ignore_ascii_case(pat))
+        || (!statement.is_ascii() && statement.to_lowercase().contains(&needle.to_lowercase()))
+}
+
+pub fn check_patterns(files: &[FileEntry<'_>], skills: &Skills, diags: &mut Vec<Diagnostic>) {
+    let mut statements: Vec<(FileId, Span, &str)> = Vec::new();
+    let mut patterns: Vec<(FileId, Pattern<'_>)> = Vec::new();
+    for (i, entry) in files.iter().enumerate() {
+        let file = FileId(i as u32);
+        if entry.builtin {
+            let called = skills
+                .iter()
+                .any(|(id, s)| s.file == file && skills.is_called(id));
+            if !called {
+                continue;
+            }
+        }
+        entry.tree.for_each_stmt(&mut |stmt: &Stmt<'_>| match &stmt.kind {
+            StmtKind::Break { pattern: Some(p) } => patterns.push((file, *p)),
+            StmtKind::Break { pattern: None } | StmtKind::Error => {}
+            _ => statements.push((file, stmt.span, stmt.span.slice(entry.text))),
+        });
+    }
+    for (file, pattern) in patterns {
+        let needle = needle(&pattern);
+        let hits: Vec<&(FileId, Span, &str)> = statements
+            .iter()
+            .filter(|(_, _, text)| matches(text, needle))
+            .collect();
+        match hits.len() {
+            0 => diags.push(
+                Diagnostic::new(
+                    Code::PatternMatchesNothing,
+                    file,
+                    pattern.span,
+                    format!("no statement contains `{needle}`"),
+                )
+                .with_label("this break can end nothing"),
+            ),
+            1 => {}
+            n => {
+                let mut d = Diagnostic::new(
+                    Code::PatternMatchesSeveral,
+                    file,
+                    pattern.span,
+                    format!("`{needle}` is found in {n} statements; the break ends every one that is running"),
+                )
+                .with_label("matches several statements");
+                for (f, span, _) in hits.iter().take(5) {
+                    d = d.with_secondary(*f, *span, "matches");
+                }
+                diags.push(d);
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn patterns_end_at_their_first_closing_parenthesis() {
+        let p = |text| Pattern {
+            text,
+            span: Span::default(),
+            closed: true,
+        };
+        assert_eq!(needle(&p("turn(d=)")), "turn(d=");
+        assert_eq!(needle(&p("while(c)")), "while(c");
+        assert_eq!(needle(&p("followw")), "followw");
+        assert!(matches("Turn(d=90,c=0.5)", "turn(d="));
+        assert!(matches("while(cnt<5)", "while(c"));
+        assert!(!matches("while(claps<2)", "while(cn"));
+        assert!(matches("käännös=turn(left)", "KÄÄNNÖS"));
+    }
+}

@@ -1,0 +1,463 @@
+//! Checks a program (task files, skill files and the built-in skills) against the robot
+//! model. Checking never stops at the first problem: every statement is checked and the
+//! problems accumulate as diagnostics, next to what was resolved (for the lowering and
+//! the language server).
+
+mod args;
+mod breaks;
+mod expr;
+mod scope;
+mod skills;
+pub mod suggest;
+
+use std::collections::HashMap;
+
+use ilmr_model::RobotModel;
+use ilmr_stdlib::{Command, Syntax, VarKind};
+
+use crate::ast::{Block, Call, ExprKind, FileKind, Name, SourceFile, Stmt, StmtKind};
+use crate::diagnostic::{Code, Diagnostic, FileId};
+use crate::parser;
+use crate::span::Span;
+
+pub use scope::{Var, VarId, Vars};
+pub use skills::SkillId;
+
+/// One file of a program.
+#[derive(Debug, Clone)]
+pub struct Source {
+    pub path: String,
+    pub text: String,
+}
+
+impl Source {
+    pub fn new(path: impl Into<String>, text: impl Into<String>) -> Source {
+        Source {
+            path: path.into(),
+            text: text.into(),
+        }
+    }
+}
+
+/// What a name in the program turned out to be.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Resolved {
+    Variable(VarId),
+    Model,
+    Keyword,
+    Path,
+    Command(Command),
+    Skill(SkillId),
+}
+
+/// What a call statement (or `v = name`) runs.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Target {
+    /// A command and the index of the form its arguments matched.
+    Command { command: Command, form: usize },
+    Skill(SkillId),
+    /// `v = w` copies the record of another variable.
+    Copy(VarId),
+}
+
+#[derive(Debug)]
+pub struct FileEntry<'s> {
+    pub path: &'s str,
+    pub text: &'s str,
+    pub tree: SourceFile<'s>,
+    pub builtin: bool,
+}
+
+/// A task file or a skill, checked with its own view of the variables.
+#[derive(Debug)]
+pub struct Unit {
+    pub file: FileId,
+    pub skill: Option<SkillId>,
+    pub vars: Vars,
+    pub refs: Vec<(Span, Resolved)>,
+    pub targets: HashMap<Span, Target>,
+}
+
+#[derive(Debug)]
+pub struct Analysis<'s> {
+    pub files: Vec<FileEntry<'s>>,
+    pub skills: skills::Skills,
+    pub units: Vec<Unit>,
+    /// Sorted by file and position.
+    pub diagnostics: Vec<Diagnostic>,
+}
+
+impl Analysis<'_> {
+    pub fn has_errors(&self) -> bool {
+        self.diagnostics.iter().any(Diagnostic::is_error)
+    }
+}
+
+/// Problems and resolutions found while checking one piece of a statement; kept apart
+/// until the argument matcher knows which form they belong to.
+#[derive(Debug, Default)]
+pub struct Findings {
+    pub diags: Vec<Diagnostic>,
+    pub uses: Vec<(VarId, Span)>,
+    pub refs: Vec<(Span, Resolved)>,
+}
+
+/// The checking context of one unit.
+pub struct Cx<'m, 'v> {
+    pub model: &'m RobotModel,
+    pub vars: &'v mut Vars,
+    pub file: FileId,
+}
+
+pub fn analyze<'s>(sources: &'s [Source], model: &RobotModel) -> Analysis<'s> {
+    let mut diagnostics = Vec::new();
+    let mut files: Vec<FileEntry<'s>> = Vec::with_capacity(sources.len() + 1);
+    let builtins = ilmr_stdlib::skills::BUILTIN_SKILL_FILES
+        .iter()
+        .map(|b| (b.path, b.source, true));
+    let user = sources.iter().map(|s| (s.path.as_str(), s.text.as_str(), false));
+    for (i, (path, text, builtin)) in user.chain(builtins).enumerate() {
+        let parsed = parser::parse(text, FileId(i as u32));
+        if !builtin {
+            diagnostics.extend(parsed.diagnostics);
+        }
+        files.push(FileEntry {
+            path,
+            text,
+            tree: parsed.file,
+            builtin,
+        });
+    }
+
+    let skills = skills::Skills::collect(&files, model, &mut diagnostics);
+    let mut units = Vec::new();
+    let mut globals: Vec<(String, VarKind)> = skills.all_binds();
+
+    for (i, entry) in files.iter().enumerate() {
+        if entry.tree.kind != FileKind::Task || entry.builtin {
+            continue;
+        }
+        let mut unit = Unit {
+            file: FileId(i as u32),
+            skill: None,
+            vars: Vars::default(),
+            refs: Vec::new(),
+            targets: HashMap::new(),
+        };
+        Walker::new(model, &skills, &mut unit, &mut diagnostics).blocks(&entry.tree.blocks);
+        globals.extend(unit.vars.iter().map(|(_, v)| (v.spelling.clone(), v.kind)));
+        units.push(unit);
+    }
+
+    for (id, skill) in skills.iter() {
+        let entry = &files[skill.file.0 as usize];
+        if entry.builtin && !skills.is_called(id) {
+            continue;
+        }
+        let mut vars = Vars::default();
+        for (name, kind) in &globals {
+            vars.bind(name, *kind, skill.file, Span::default());
+        }
+        vars.bind_all();
+        let mut unit = Unit {
+            file: skill.file,
+            skill: Some(id),
+            vars,
+            refs: Vec::new(),
+            targets: HashMap::new(),
+        };
+        let blocks = &entry.tree.skills[skill.index].blocks;
+        Walker::new(model, &skills, &mut unit, &mut diagnostics).blocks(blocks);
+        units.push(unit);
+    }
+
+    breaks::check_patterns(&files, &skills, &mut diagnostics);
+    unused_variables(&files, &units, &mut diagnostics);
+
+    diagnostics.sort_by_key(|d| (d.file, d.span.start, d.code));
+    diagnostics.dedup();
+    Analysis {
+        files,
+        skills,
+        units,
+        diagnostics,
+    }
+}
+
+/// W0502: a task variable that nothing reads, in the task or in any skill.
+fn unused_variables(files: &[FileEntry<'_>], units: &[Unit], diagnostics: &mut Vec<Diagnostic>) {
+    let skill_reads: Vec<String> = units
+        .iter()
+        .filter(|u| u.skill.is_some())
+        .flat_map(|u| u.vars.iter().filter(|(_, v)| !v.uses.is_empty()))
+        .map(|(_, v)| v.spelling.to_lowercase())
+        .collect();
+    for unit in units.iter().filter(|u| u.skill.is_none()) {
+        for (_, var) in unit.vars.iter() {
+            if var.uses.is_empty() && !skill_reads.contains(&var.spelling.to_lowercase()) {
+                let (file, span) = var.defs[0];
+                if files[file.0 as usize].builtin {
+                    continue;
+                }
+                diagnostics.push(
+                    Diagnostic::new(
+                        Code::UnusedVariable,
+                        file,
+                        span,
+                        format!("`{}` is bound but never used", var.spelling),
+                    )
+                    .with_label("nothing reads this variable"),
+                );
+            }
+        }
+    }
+}
+
+/// Walks the statements of one unit in text order.
+struct Walker<'a, 'm> {
+    model: &'m RobotModel,
+    skills: &'a skills::Skills,
+    unit: &'a mut Unit,
+    diagnostics: &'a mut Vec<Diagnostic>,
+}
+
+impl<'a, 'm> Walker<'a, 'm> {
+    fn new(
+        model: &'m RobotModel,
+        skills: &'a skills::Skills,
+        unit: &'a mut Unit,
+        diagnostics: &'a mut Vec<Diagnostic>,
+    ) -> Self {
+        Walker {
+            model,
+            skills,
+            unit,
+            diagnostics,
+        }
+    }
+
+    fn cx(&mut self) -> Cx<'m, '_> {
+        Cx {
+            model: self.model,
+            vars: &mut self.unit.vars,
+            file: self.unit.file,
+        }
+    }
+
+    fn absorb(&mut self, f: Findings) {
+        let file = self.unit.file;
+        for (id, span) in f.uses {
+            self.unit.vars.use_at(id, file, span);
+        }
+        self.unit.refs.extend(f.refs);
+        self.diagnostics.extend(f.diags);
+    }
+
+    fn blocks(&mut self, blocks: &[Block<'_>]) {
+        for block in blocks {
+            for (i, stmt) in block.stmts.iter().enumerate() {
+                if matches!(stmt.kind, StmtKind::Priority) && i != 0 {
+                    self.diagnostics.push(
+                        Diagnostic::new(
+                            Code::MisplacedPriority,
+                            self.unit.file,
+                            stmt.span,
+                            "`priority = highest` must be the first statement of its block",
+                        )
+                        .with_label("not first in its block")
+                        .with_secondary(self.unit.file, block.stmts[0].span, "the block starts here")
+                        .with_help("separate it from the statements above with an empty line"),
+                    );
+                }
+                self.stmt(stmt);
+            }
+        }
+    }
+
+    fn stmt(&mut self, stmt: &Stmt<'_>) {
+        match &stmt.kind {
+            StmtKind::Call { bind, call } => {
+                let kind = self.call(call, stmt.span);
+                if let (Some(bind), Some(kind)) = (bind, kind) {
+                    self.bind(bind, kind);
+                }
+            }
+            StmtKind::Assign { target, value } => {
+                let kind = match &value.kind {
+                    ExprKind::Name(name) => self.assign_name(name, stmt.span),
+                    _ => {
+                        let mut f = Findings::default();
+                        self.cx().value(&mut f, value);
+                        self.absorb(f);
+                        Some(VarKind::Number)
+                    }
+                };
+                if let Some(kind) = kind {
+                    self.bind(target, kind);
+                }
+            }
+            StmtKind::If(c) => {
+                let mut f = Findings::default();
+                self.cx().condition(&mut f, &c.cond);
+                self.absorb(f);
+                self.blocks(&c.body);
+            }
+            StmtKind::While { bind, body } => {
+                let mut f = Findings::default();
+                self.cx().condition(&mut f, &body.cond);
+                self.absorb(f);
+                if let Some(bind) = bind {
+                    self.bind(bind, VarKind::Status);
+                }
+                self.blocks(&body.body);
+            }
+            StmtKind::Check { body, .. } => {
+                let before = self.unit.vars.snapshot();
+                self.blocks(body);
+                self.unit.vars.restore(before);
+            }
+            StmtKind::Break { .. } | StmtKind::Priority | StmtKind::Error => {}
+        }
+    }
+
+    /// `v = name`: a skill call, a bare command, a copy of a variable or a model constant.
+    fn assign_name(&mut self, name: &Name<'_>, stmt: Span) -> Option<VarKind> {
+        if self.unit.vars.bound(name.text).is_none() && self.model_constant(name.text).is_none() {
+            let call = Call { name: *name, args: None };
+            if self.skills.find(name.text).is_some() || Command::from_name(name.text).is_some() {
+                return self.call(&call, stmt);
+            }
+        }
+        let mut f = Findings::default();
+        let copied = self.unit.vars.bound(name.text);
+        self.cx().value(&mut f, &crate::ast::Expr {
+            kind: ExprKind::Name(*name),
+            span: name.span,
+        });
+        // A position copied keeps being a position; `value` reports it as a misuse only
+        // where a number is needed, so take the copy before that check.
+        let kind = copied.map(|id| self.unit.vars.get(id).kind);
+        f.diags.retain(|d| d.code != Code::WrongVariableKind);
+        self.absorb(f);
+        if let Some(id) = copied {
+            self.unit.targets.insert(stmt, Target::Copy(id));
+        }
+        Some(kind.unwrap_or(VarKind::Number))
+    }
+
+    fn model_constant(&self, name: &str) -> Option<f64> {
+        Cx {
+            model: self.model,
+            vars: &mut Vars::default(),
+            file: self.unit.file,
+        }
+        .model_constant(name)
+    }
+
+    /// Checks a call and returns what a variable bound to it would hold.
+    fn call(&mut self, call: &Call<'_>, stmt: Span) -> Option<VarKind> {
+        let file = self.unit.file;
+        if let Some(command) = Command::from_name(call.name.text) {
+            let spec = command.spec();
+            if spec.syntax == Syntax::Structural {
+                self.diagnostics.push(
+                    Diagnostic::new(
+                        Code::Syntax,
+                        file,
+                        call.name.span,
+                        format!("`{}` cannot be used this way", spec.name),
+                    )
+                    .with_label(format!("the grammar is: {}", spec.grammar)),
+                );
+                return None;
+            }
+            self.unit
+                .refs
+                .push((call.name.span, Resolved::Command(command)));
+            let at = call.args.as_ref().map_or(call.name.span, |a| a.span);
+            let m = self.cx().match_forms(spec, call.args.as_ref(), at);
+            let kind = args::produced(spec, m.form);
+            self.absorb(m.findings);
+            if let Some(name) = m.binds_position {
+                self.bind(&name, VarKind::Position);
+            }
+            self.unit.targets.insert(
+                stmt,
+                Target::Command {
+                    command,
+                    form: m.form,
+                },
+            );
+            return Some(kind);
+        }
+        if let Some(id) = self.skills.find(call.name.text) {
+            self.unit.refs.push((call.name.span, Resolved::Skill(id)));
+            if let Some(args) = &call.args {
+                self.diagnostics.push(
+                    Diagnostic::new(
+                        Code::ArgumentCount,
+                        file,
+                        args.span,
+                        format!("skill `{}` takes no arguments", call.name.text),
+                    )
+                    .with_label("skills are called by name alone"),
+                );
+            }
+            for (name, kind) in self.skills.transitive_binds(id) {
+                self.unit.vars.bind(&name, kind, file, call.name.span);
+            }
+            self.unit.targets.insert(stmt, Target::Skill(id));
+            return Some(VarKind::Status);
+        }
+        let candidates = Command::all()
+            .filter(|c| c.spec().syntax == Syntax::Call)
+            .map(|c| c.name())
+            .chain(self.skills.names());
+        let d = Diagnostic::new(
+            Code::UnknownCommand,
+            file,
+            call.name.span,
+            format!("`{}` is neither a command nor a known skill", call.name.text),
+        );
+        self.diagnostics
+            .push(match suggest::closest(call.name.text, candidates) {
+                Some(s) => d
+                    .with_label(format!("did you mean `{s}`?"))
+                    .with_fix(format!("replace with `{s}`"), call.name.span, s),
+                None => d
+                    .with_label("unknown name")
+                    .with_help("skills are found in the task's skill files, in `--skills DIR` and among the built-in skills"),
+            });
+        None
+    }
+
+    fn bind(&mut self, name: &Name<'_>, kind: VarKind) {
+        let file = self.unit.file;
+        let reserved = if Command::from_name(name.text).is_some() {
+            Some("a command")
+        } else if self.skills.find(name.text).is_some() {
+            Some("a skill")
+        } else if self.model.parameter(name.text).is_some()
+            || self.model.identifier(name.text).is_some()
+            || self.model.color(name.text).is_some()
+        {
+            Some("a constant of the robot model")
+        } else {
+            None
+        };
+        if let Some(what) = reserved {
+            self.diagnostics.push(
+                Diagnostic::new(
+                    Code::ReservedName,
+                    file,
+                    name.span,
+                    format!("`{}` is {what} and cannot be a variable", name.text),
+                )
+                .with_label("choose another name"),
+            );
+            return;
+        }
+        let id = self.unit.vars.bind(name.text, kind, file, name.span);
+        self.unit.refs.push((name.span, Resolved::Variable(id)));
+    }
+}

@@ -1,0 +1,323 @@
+//! Skills of a program: where each is defined, which skills each calls (to reject
+//! recursion) and which variables each binds (so that a task sees the variables of the
+//! skills it has called).
+
+use std::collections::HashMap;
+
+use ilmr_model::RobotModel;
+use ilmr_stdlib::{Command, VarKind};
+
+use crate::ast::{Block, Call, ExprKind, FileKind, Name, StmtKind};
+use crate::check::FileEntry;
+use crate::diagnostic::{Code, Diagnostic, FileId};
+use crate::span::Span;
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct SkillId(pub u32);
+
+#[derive(Debug)]
+pub struct SkillInfo {
+    pub name: String,
+    pub file: FileId,
+    /// Index into the file's `skills`.
+    pub index: usize,
+    pub header: Span,
+    /// Skills called directly, with the call's span.
+    calls: Vec<(SkillId, Span)>,
+    /// Variables bound directly in the body.
+    binds: Vec<(String, VarKind)>,
+}
+
+#[derive(Debug, Default)]
+pub struct Skills {
+    list: Vec<SkillInfo>,
+    index: HashMap<String, SkillId>,
+    called: Vec<bool>,
+}
+
+impl Skills {
+    pub fn collect(files: &[FileEntry<'_>], model: &RobotModel, diags: &mut Vec<Diagnostic>) -> Skills {
+        let mut skills = Skills::default();
+        // User files first, so that a user's skill replaces a built-in of the same name.
+        let order = files
+            .iter()
+            .enumerate()
+            .filter(|(_, f)| !f.builtin)
+            .chain(files.iter().enumerate().filter(|(_, f)| f.builtin));
+        for (i, entry) in order {
+            if entry.tree.kind != FileKind::Skills {
+                continue;
+            }
+            for (index, skill) in entry.tree.skills.iter().enumerate() {
+                let key = skill.name.text.to_lowercase();
+                if let Some(&existing) = skills.index.get(&key) {
+                    if !entry.builtin {
+                        let first = &skills.list[existing.0 as usize];
+                        diags.push(
+                            Diagnostic::new(
+                                Code::DuplicateSkill,
+                                FileId(i as u32),
+                                skill.header,
+                                format!("skill `{}` is defined twice", skill.name.text),
+                            )
+                            .with_label("defined again here")
+                            .with_secondary(first.file, first.header, "first defined here"),
+                        );
+                    }
+                    continue;
+                }
+                if Command::from_name(skill.name.text).is_some() {
+                    diags.push(
+                        Diagnostic::new(
+                            Code::ReservedName,
+                            FileId(i as u32),
+                            skill.name.span,
+                            format!("`{}` is a command and cannot name a skill", skill.name.text),
+                        )
+                        .with_label("choose another name"),
+                    );
+                    continue;
+                }
+                let id = SkillId(skills.list.len() as u32);
+                skills.index.insert(key, id);
+                skills.list.push(SkillInfo {
+                    name: skill.name.text.to_string(),
+                    file: FileId(i as u32),
+                    index,
+                    header: skill.header,
+                    calls: Vec::new(),
+                    binds: Vec::new(),
+                });
+            }
+        }
+        skills.called = vec![false; skills.list.len()];
+        for i in 0..skills.list.len() {
+            let info = &skills.list[i];
+            let blocks = &files[info.file.0 as usize].tree.skills[info.index].blocks;
+            let mut calls = Vec::new();
+            let mut binds = Vec::new();
+            scan(blocks, &skills, model, &mut calls, &mut binds);
+            skills.list[i].calls = calls;
+            skills.list[i].binds = binds;
+        }
+        for entry in files.iter().filter(|f| !f.builtin) {
+            let mut calls = Vec::new();
+            let mut binds = Vec::new();
+            scan(&entry.tree.blocks, &skills, model, &mut calls, &mut binds);
+            for skill in &entry.tree.skills {
+                scan(&skill.blocks, &skills, model, &mut calls, &mut binds);
+            }
+            for (id, _) in calls {
+                skills.mark_called(id);
+            }
+        }
+        skills.report_recursion(diags);
+        skills
+    }
+
+    fn mark_called(&mut self, id: SkillId) {
+        if std::mem::replace(&mut self.called[id.0 as usize], true) {
+            return;
+        }
+        let callees: Vec<SkillId> = self.list[id.0 as usize].calls.iter().map(|c| c.0).collect();
+        for c in callees {
+            self.mark_called(c);
+        }
+    }
+
+    pub fn is_called(&self, id: SkillId) -> bool {
+        self.called[id.0 as usize]
+    }
+
+    pub fn find(&self, name: &str) -> Option<SkillId> {
+        if self.index.is_empty() {
+            return None;
+        }
+        self.index.get(&name.to_lowercase()).copied()
+    }
+
+    pub fn get(&self, id: SkillId) -> &SkillInfo {
+        &self.list[id.0 as usize]
+    }
+
+    pub fn iter(&self) -> impl Iterator<Item = (SkillId, &SkillInfo)> {
+        self.list.iter().enumerate().map(|(i, s)| (SkillId(i as u32), s))
+    }
+
+    pub fn names(&self) -> impl Iterator<Item = &str> {
+        self.list.iter().map(|s| s.name.as_str())
+    }
+
+    /// Every variable bound in any skill.
+    pub fn all_binds(&self) -> Vec<(String, VarKind)> {
+        self.list.iter().flat_map(|s| s.binds.iter().cloned()).collect()
+    }
+
+    /// The variables a call of this skill binds, through the skills it calls.
+    pub fn transitive_binds(&self, id: SkillId) -> Vec<(String, VarKind)> {
+        let mut seen = vec![false; self.list.len()];
+        let mut stack = vec![id];
+        let mut out = Vec::new();
+        while let Some(s) = stack.pop() {
+            if std::mem::replace(&mut seen[s.0 as usize], true) {
+                continue;
+            }
+            let info = &self.list[s.0 as usize];
+            out.extend(info.binds.iter().cloned());
+            stack.extend(info.calls.iter().map(|c| c.0));
+        }
+        out
+    }
+
+    /// E0601 once per cycle, at the call that closes it.
+    fn report_recursion(&self, diags: &mut Vec<Diagnostic>) {
+        #[derive(Clone, Copy, PartialEq)]
+        enum Mark {
+            New,
+            Active,
+            Done,
+        }
+        let mut marks = vec![Mark::New; self.list.len()];
+        let mut path: Vec<(SkillId, Span)> = Vec::new();
+        fn visit(
+            skills: &Skills,
+            id: SkillId,
+            marks: &mut [Mark],
+            path: &mut Vec<(SkillId, Span)>,
+            diags: &mut Vec<Diagnostic>,
+        ) {
+            marks[id.0 as usize] = Mark::Active;
+            for &(callee, span) in &skills.list[id.0 as usize].calls {
+                match marks[callee.0 as usize] {
+                    Mark::Active => {
+                        let caller = skills.get(id);
+                        let start = path.iter().position(|(s, _)| *s == callee).unwrap_or(path.len());
+                        let mut cycle: Vec<&str> =
+                            path[start..].iter().map(|(s, _)| skills.get(*s).name.as_str()).collect();
+                        cycle.push(caller.name.as_str());
+                        cycle.push(skills.get(callee).name.as_str());
+                        cycle.dedup();
+                        let mut d = Diagnostic::new(
+                            Code::RecursiveSkill,
+                            caller.file,
+                            span,
+                            format!("skill `{}` calls itself: {}", skills.get(callee).name, cycle.join(" -> ")),
+                        )
+                        .with_label("this call closes the cycle");
+                        for &(s, call) in &path[start..] {
+                            let info = skills.get(s);
+                            d = d.with_secondary(info.file, call, format!("called from `{}`", info.name));
+                        }
+                        diags.push(d);
+                    }
+                    Mark::New => {
+                        path.push((id, span));
+                        visit(skills, callee, marks, path, diags);
+                        path.pop();
+                    }
+                    Mark::Done => {}
+                }
+            }
+            marks[id.0 as usize] = Mark::Done;
+        }
+        for i in 0..self.list.len() {
+            if marks[i] == Mark::New {
+                visit(self, SkillId(i as u32), &mut marks, &mut path, diags);
+            }
+        }
+    }
+}
+
+/// A quick pass over a body: which skills it calls and which variables it binds, with
+/// the kind each binding will hold. It needs no variable scope, so it can run before
+/// anything is checked.
+fn scan(
+    blocks: &[Block<'_>],
+    skills: &Skills,
+    model: &RobotModel,
+    calls: &mut Vec<(SkillId, Span)>,
+    binds: &mut Vec<(String, VarKind)>,
+) {
+    for block in blocks {
+        for stmt in &block.stmts {
+            match &stmt.kind {
+                StmtKind::Call { bind, call } => {
+                    let kind = call_kind(call, skills, model, calls);
+                    if let (Some(b), Some(k)) = (bind, kind) {
+                        binds.push((b.text.to_string(), k));
+                    }
+                    if let Some(cmd) = Command::from_name(call.name.text) {
+                        if cmd == Command::SavePos {
+                            if let Some(name) = first_name(call) {
+                                binds.push((name.text.to_string(), VarKind::Position));
+                            }
+                        }
+                    }
+                }
+                StmtKind::Assign { target, value } => {
+                    let kind = match &value.kind {
+                        ExprKind::Name(n) if skills.find(n.text).is_some() => {
+                            let call = Call { name: *n, args: None };
+                            call_kind(&call, skills, model, calls)
+                        }
+                        _ => Some(VarKind::Number),
+                    };
+                    binds.push((target.text.to_string(), kind.unwrap_or(VarKind::Number)));
+                }
+                StmtKind::If(c) => scan(&c.body, skills, model, calls, binds),
+                StmtKind::While { bind, body } => {
+                    if let Some(b) = bind {
+                        binds.push((b.text.to_string(), VarKind::Status));
+                    }
+                    scan(&body.body, skills, model, calls, binds);
+                }
+                StmtKind::Check { .. } | StmtKind::Break { .. } | StmtKind::Priority | StmtKind::Error => {}
+            }
+        }
+    }
+}
+
+fn first_name<'s>(call: &Call<'s>) -> Option<Name<'s>> {
+    match call.args.as_ref()?.items.first()? {
+        crate::ast::Arg::Positional(e) => match e.kind {
+            ExprKind::Name(n) => Some(n),
+            _ => None,
+        },
+        crate::ast::Arg::Setting { .. } => None,
+    }
+}
+
+fn call_kind(
+    call: &Call<'_>,
+    skills: &Skills,
+    model: &RobotModel,
+    calls: &mut Vec<(SkillId, Span)>,
+) -> Option<VarKind> {
+    if let Some(cmd) = Command::from_name(call.name.text) {
+        let forms = cmd.spec().forms;
+        let first = forms.first()?.produces;
+        if forms.iter().all(|f| f.produces == first) {
+            return Some(first);
+        }
+        // Only sensor and locate have forms that bind different kinds; tell them apart
+        // by the shape of their arguments as the full check would.
+        let args = call.args.as_ref().map_or(0, |a| a.items.len());
+        return Some(match cmd {
+            Command::Sensor => {
+                let second = call.args.as_ref().and_then(|a| a.items.get(1));
+                match second {
+                    Some(crate::ast::Arg::Positional(e)) => match e.kind {
+                        ExprKind::Name(n) if model.object(n.text).is_some() => VarKind::Position,
+                        _ => VarKind::Reading,
+                    },
+                    _ => VarKind::Reading,
+                }
+            }
+            Command::Locate if args == 1 => VarKind::Reading,
+            _ => first,
+        });
+    }
+    let id = skills.find(call.name.text)?;
+    calls.push((id, call.name.span));
+    Some(VarKind::Status)
+}

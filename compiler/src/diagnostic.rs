@@ -1,0 +1,229 @@
+//! Diagnostics are values: a stable code, a severity, a message, a primary span and
+//! labelled secondary spans, and, where one exists, a fix an editor can apply.
+//! `docs/diagnostics.md` is generated from [`Code::ALL`] and a test keeps it fresh.
+
+use serde::Serialize;
+
+use crate::span::Span;
+
+/// Which file of a check a span points into (index into the check's file list).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize)]
+pub struct FileId(pub u32);
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Severity {
+    Error,
+    Warning,
+}
+
+macro_rules! codes {
+    ($($variant:ident = $code:literal, $sev:ident, $title:literal, $doc:literal;)*) => {
+        /// Stable diagnostic codes. Never renumber: tools match on them.
+        #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+        pub enum Code { $($variant,)* }
+
+        impl Code {
+            pub const ALL: &'static [Code] = &[$(Code::$variant,)*];
+
+            pub fn as_str(self) -> &'static str {
+                match self { $(Code::$variant => $code,)* }
+            }
+
+            pub fn severity(self) -> Severity {
+                match self { $(Code::$variant => Severity::$sev,)* }
+            }
+
+            /// A few words naming the problem.
+            pub fn title(self) -> &'static str {
+                match self { $(Code::$variant => $title,)* }
+            }
+
+            /// What it means and how to fix it, for the reference docs.
+            pub fn doc(self) -> &'static str {
+                match self { $(Code::$variant => $doc,)* }
+            }
+        }
+    };
+}
+
+codes! {
+    Syntax = "E0101", Error, "syntax error",
+        "The line does not follow ILMR's grammar. The rest of the file is still checked: each broken line gives one diagnostic.";
+    UnclosedArgs = "E0102", Error, "unclosed argument list",
+        "A command's argument list has no closing `)` before the end of the line.";
+    UnclosedPattern = "E0103", Error, "unclosed break pattern",
+        "`break(` has no closing `)` before the end of the line. The pattern is taken up to the end of the line.";
+    UnclosedIf = "E0201", Error, "`if` without `endif`",
+        "Every `if(...)` needs an `endif` on a line of its own at the same level.";
+    UnclosedWhile = "E0202", Error, "`while` without `endwhile`",
+        "Every `while(...)` needs an `endwhile` on a line of its own at the same level.";
+    UnclosedCheck = "E0203", Error, "`check` without `checkend`",
+        "A `check` block, which is only validated, must be closed by `checkend`.";
+    StrayEndIf = "E0204", Error, "`endif` without `if`",
+        "An `endif` that closes no open `if`.";
+    StrayEndWhile = "E0205", Error, "`endwhile` without `while`",
+        "An `endwhile` that closes no open `while`.";
+    StrayCheckend = "E0206", Error, "`checkend` without `check`",
+        "A `checkend` that closes no open `check`.";
+    MisplacedPriority = "E0207", Error, "`priority = highest` not first in its block",
+        "Section 4.3: a block that must run alone starts with `priority = highest`. Anywhere else it would have no defined meaning. Put it first, after an empty line.";
+    OutsideSkill = "E0208", Error, "statement outside any skill",
+        "In a skill file every statement belongs to the skill whose `NAME:` header precedes it; these lines come before the first header.";
+    NestedSkillHeader = "E0209", Error, "skill header inside a block",
+        "A `NAME:` header starts a new skill and cannot stand inside an `if`, `while` or `check` block, or in a task file.";
+    UnknownCommand = "E0301", Error, "unknown command or skill",
+        "The name is neither one of the 33 elementary commands nor a skill of the program (its own skill files, `--skills` and the built-in skills).";
+    ArgumentCount = "E0302", Error, "wrong number of arguments",
+        "The command takes a different number of arguments; the message shows its grammar.";
+    ArgumentKind = "E0303", Error, "wrong kind of argument",
+        "The argument is not what the command's grammar allows at that place, for example a number where a keyword is expected.";
+    UnknownKeyword = "E0304", Error, "unknown keyword",
+        "The word is not one of the keywords the command accepts at that place, and no variable or model name of that spelling exists.";
+    BadSetting = "E0305", Error, "unknown, repeated or missing setting",
+        "Named settings such as `d=` and `c=` of `turn`, or `r=`, `p=`, `rc=` of `bodypose`, must be the command's own, each given once, and the required ones present.";
+    UnknownDevice = "E0401", Error, "unknown sensor or actuator",
+        "The name or number is not in the `[SENSORSANDACTUATORS]` section of the robot model.";
+    UnknownObject = "E0402", Error, "unknown object",
+        "The name is not in the `[OBJECTS]` section of the robot model.";
+    UnsupportedMode = "E0403", Error, "mode not available on this robot",
+        "Movement and navigation modes must be defined in the `[IDENTIFIERS]` of the robot model: MoRo, for one, has no movement modes.";
+    OutOfRange = "E0404", Error, "value outside the robot's range",
+        "Requirement 9: a command that could harm the robot is rejected before it runs. The value exceeds a limit of the robot model (a speed beyond `max_speed`, a body pose beyond `max_roll`, an actuator value outside its range).";
+    BeyondCapability = "W0405", Warning, "value beyond what the robot can do",
+        "The robot can run the command but not as written: a curvature beyond its `max_curvature` is clipped by the position controller, so the path will be wider than asked.";
+    ReadingIndex = "E0406", Error, "sensor reading index out of range",
+        "A sensor's readings are numbered from 0 to one less than the count in the robot model.";
+    Unsupported = "E0407", Error, "command not available on this robot",
+        "The robot model lacks what the command needs (for example `bodypose` needs the body-pose limits `max_roll`, `max_pitch`, `max_clearance`).";
+    UnknownService = "E0408", Error, "unknown sensor or service",
+        "`init` takes sensors and services named in the robot model's `[SENSORSANDACTUATORS]` or `[IDENTIFIERS]`.";
+    UnboundVariable = "E0501", Error, "variable used before anything binds it",
+        "No statement before this one (in the task, its blocks or the skills that run before it) gives the variable a value.";
+    WrongVariableKind = "E0502", Error, "variable of the wrong kind",
+        "Each command knows which fields of a variable it uses (Table 8): `gotoxy(v)` needs a position, but a number or a plain status has none.";
+    ReservedName = "E0503", Error, "name cannot be a variable",
+        "Command names, reserved words and names of the robot model cannot be bound as variables.";
+    RecursiveSkill = "E0601", Error, "recursive skill",
+        "A skill calls itself, directly or through other skills. Skills are expanded as call frames; recursion would never end.";
+    DuplicateSkill = "E0602", Error, "skill defined twice",
+        "Two skills have the same name (names ignore case).";
+    PatternMatchesNothing = "W0701", Warning, "break pattern matches no statement",
+        "`break(pattern)` ends the live commands whose text contains the pattern. No statement of the program contains it, so the break can end nothing.";
+    PatternMatchesSeveral = "W0702", Warning, "break pattern matches several statements",
+        "The pattern is found in more than one statement; the break will end all of them that are live. Make it longer if one was meant.";
+    RobotModel = "W0801", Warning, "robot model problem",
+        "The robot model file is missing or has lines that could not be read; defaults are used in their place.";
+    UnusedVariable = "W0502", Warning, "variable never used",
+        "A variable is bound but nothing reads it. Its command still runs.";
+    CheckBlock = "W0901", Warning, "`check` block is validated only",
+        "Statements between `check` and `checkend` are checked but never run (section 4.5.5).";
+}
+
+/// A text edit that resolves a diagnostic (did-you-mean, a missing `endif`).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Fix {
+    pub title: String,
+    pub span: Span,
+    pub replacement: String,
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Label {
+    pub file: FileId,
+    pub span: Span,
+    pub message: String,
+}
+
+#[derive(Debug, Clone, PartialEq)]
+pub struct Diagnostic {
+    pub code: Code,
+    pub message: String,
+    pub file: FileId,
+    pub span: Span,
+    /// What the primary span shows; the message is used when empty.
+    pub label: String,
+    pub secondary: Vec<Label>,
+    pub help: Option<String>,
+    pub fix: Option<Fix>,
+}
+
+impl Diagnostic {
+    pub fn new(code: Code, file: FileId, span: Span, message: impl Into<String>) -> Diagnostic {
+        Diagnostic {
+            code,
+            message: message.into(),
+            file,
+            span,
+            label: String::new(),
+            secondary: Vec::new(),
+            help: None,
+            fix: None,
+        }
+    }
+
+    pub fn severity(&self) -> Severity {
+        self.code.severity()
+    }
+
+    pub fn is_error(&self) -> bool {
+        self.severity() == Severity::Error
+    }
+
+    pub fn with_label(mut self, label: impl Into<String>) -> Diagnostic {
+        self.label = label.into();
+        self
+    }
+
+    pub fn with_secondary(mut self, file: FileId, span: Span, message: impl Into<String>) -> Self {
+        self.secondary.push(Label {
+            file,
+            span,
+            message: message.into(),
+        });
+        self
+    }
+
+    pub fn with_help(mut self, help: impl Into<String>) -> Diagnostic {
+        self.help = Some(help.into());
+        self
+    }
+
+    pub fn with_fix(mut self, title: impl Into<String>, span: Span, replacement: impl Into<String>) -> Self {
+        self.fix = Some(Fix {
+            title: title.into(),
+            span,
+            replacement: replacement.into(),
+        });
+        self
+    }
+}
+
+impl Serialize for Code {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        s.serialize_str(self.as_str())
+    }
+}
+
+/// Renders the code table of `docs/diagnostics.md`.
+pub fn reference_markdown() -> String {
+    let mut out = String::from(
+        "# Diagnostic codes\n\n\
+         Generated from `compiler/src/diagnostic.rs` by `cargo test -p ilmr-compiler` \
+         (`UPDATE_DOCS=1` rewrites it). Codes are stable: tools may match on them.\n\n\
+         | code | severity | title |\n| --- | --- | --- |\n",
+    );
+    let mut codes = Code::ALL.to_vec();
+    codes.sort_by_key(|c| c.as_str());
+    for c in &codes {
+        let sev = match c.severity() {
+            Severity::Error => "error",
+            Severity::Warning => "warning",
+        };
+        out.push_str(&format!("| [{0}](#{1}) | {sev} | {2} |\n", c.as_str(), c.as_str().to_lowercase(), c.title()));
+    }
+    for c in &codes {
+        out.push_str(&format!("\n## {}\n\n**{}**\n\n{}\n", c.as_str(), c.title(), c.doc()));
+    }
+    out
+}

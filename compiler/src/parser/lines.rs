@@ -1,0 +1,301 @@
+//! The grammar of one line, in chumsky. ILMR is line-oriented (one statement per line,
+//! `endif` on its own line), so the parser reads a flat sequence of lines and recovers
+//! from an error by skipping to the end of the broken line; `blocks.rs` nests the lines.
+
+use chumsky::input::{Input, ValueInput};
+use chumsky::prelude::*;
+
+use crate::ast::{Arg, Args, BinOp, Call, CmpOp, Expr, ExprKind, Name, Pattern, StmtKind};
+use crate::lexer::Token;
+use crate::span::Span;
+
+pub type ParseError<'t, 's> = Rich<'t, Token<'s>, Span>;
+type Extra<'t, 's> = extra::Err<ParseError<'t, 's>>;
+
+/// What one line holds before lines are nested into blocks.
+#[derive(Debug, Clone)]
+pub enum Line<'s> {
+    Blank,
+    Stmt(StmtKind<'s>),
+    IfHead {
+        keyword: Span,
+        cond: Expr<'s>,
+    },
+    WhileHead {
+        bind: Option<Name<'s>>,
+        keyword: Span,
+        cond: Expr<'s>,
+    },
+    EndIf,
+    EndWhile,
+    Check,
+    Checkend,
+    SkillHeader(Name<'s>),
+}
+
+#[derive(Debug, Clone)]
+pub struct ParsedLine<'s> {
+    pub line: Line<'s>,
+    /// The line's content without the line break.
+    pub span: Span,
+}
+
+/// Parses a token stream that ends with a `Newline` (the lexer guarantees it).
+pub fn parse_lines<'t, 's: 't>(
+    tokens: &'t [(Token<'s>, Span)],
+    source: &'s str,
+) -> (Vec<ParsedLine<'s>>, Vec<ParseError<'t, 's>>) {
+    let eoi = Span::empty(source.len());
+    let (lines, errors) = file_parser(source)
+        .parse(tokens.map(eoi, |(t, s)| (t, s)))
+        .into_output_errors();
+    (lines.unwrap_or_default(), errors)
+}
+
+fn file_parser<'t, 's: 't, I>(
+    source: &'s str,
+) -> impl Parser<'t, I, Vec<ParsedLine<'s>>, Extra<'t, 's>>
+where
+    I: ValueInput<'t, Token = Token<'s>, Span = Span>,
+{
+    let content = line_content(source)
+        .or_not()
+        .map_with(|line, e| ParsedLine {
+            line: line.unwrap_or(Line::Blank),
+            span: e.span(),
+        });
+
+    // A line that does not parse is kept, as an error node spanning the line, so that the
+    // next lines are read as if nothing had happened.
+    let broken_line = any()
+        .filter(|t: &Token<'s>| *t != Token::Newline)
+        .repeated()
+        .map_with(|(), e| ParsedLine {
+            line: Line::Stmt(StmtKind::Error),
+            span: e.span(),
+        });
+
+    content
+        .then_ignore(just(Token::Newline))
+        .recover_with(via_parser(broken_line.then_ignore(just(Token::Newline))))
+        .repeated()
+        .collect()
+        .then_ignore(end())
+}
+
+fn name<'t, 's: 't, I>() -> impl Parser<'t, I, Name<'s>, Extra<'t, 's>> + Clone
+where
+    I: ValueInput<'t, Token = Token<'s>, Span = Span>,
+{
+    select! { Token::Ident(text) = e => Name { text, span: e.span() } }.labelled("name")
+}
+
+fn line_content<'t, 's: 't, I>(source: &'s str) -> impl Parser<'t, I, Line<'s>, Extra<'t, 's>>
+where
+    I: ValueInput<'t, Token = Token<'s>, Span = Span>,
+{
+    let expr = expression();
+    let condition = condition(expr.clone())
+        .delimited_by(just(Token::LParen), just(Token::RParen))
+        .labelled("condition in parentheses");
+
+    let if_head = just(Token::If)
+        .map_with(|_, e| e.span())
+        .then(condition.clone())
+        .map(|(keyword, cond)| Line::IfHead { keyword, cond });
+
+    let while_head = name()
+        .then_ignore(just(Token::Assign))
+        .or_not()
+        .then(just(Token::While).map_with(|_, e| e.span()))
+        .then(condition)
+        .map(|((bind, keyword), cond)| Line::WhileHead {
+            bind,
+            keyword,
+            cond,
+        });
+
+    let simple_keywords = select! {
+        Token::EndIf => Line::EndIf,
+        Token::EndWhile => Line::EndWhile,
+        Token::Check => Line::Check,
+        Token::Checkend => Line::Checkend,
+    };
+
+    let break_stmt = select! { Token::Break(p) => p }.map(move |p| {
+        Line::Stmt(StmtKind::Break {
+            pattern: p.inner.map(|span| Pattern {
+                text: span.slice(source),
+                span,
+                closed: p.closed,
+            }),
+        })
+    });
+
+    let priority = just(Token::Priority)
+        .then(just(Token::Assign))
+        .then(just(Token::Highest).labelled("`highest`"))
+        .to(Line::Stmt(StmtKind::Priority));
+
+    let skill_header = name().then_ignore(just(Token::Colon)).map(Line::SkillHeader);
+
+    let call = call(expr.clone());
+
+    let bound_call = name()
+        .then_ignore(just(Token::Assign))
+        .then(call.clone().filter(|c: &Call<'s>| c.args.is_some()))
+        .map(|(bind, call)| {
+            Line::Stmt(StmtKind::Call {
+                bind: Some(bind),
+                call,
+            })
+        });
+
+    let assign = name()
+        .then_ignore(just(Token::Assign))
+        .then(expr.labelled("expression"))
+        .map(|(target, value)| Line::Stmt(StmtKind::Assign { target, value }));
+
+    let plain_call = call.map(|call| Line::Stmt(StmtKind::Call { bind: None, call }));
+
+    choice((
+        if_head,
+        simple_keywords,
+        while_head,
+        break_stmt,
+        priority,
+        skill_header,
+        bound_call,
+        assign,
+        plain_call,
+    ))
+    .labelled("statement")
+}
+
+/// `name` or `name(args)`. An unclosed argument list is reported but still yields the call,
+/// so that an editor can complete inside it.
+fn call<'t, 's: 't, I>(
+    expr: impl Parser<'t, I, Expr<'s>, Extra<'t, 's>> + Clone,
+) -> impl Parser<'t, I, Call<'s>, Extra<'t, 's>> + Clone
+where
+    I: ValueInput<'t, Token = Token<'s>, Span = Span>,
+{
+    let setting = name()
+        .then_ignore(just(Token::Assign))
+        .then(expr.clone().labelled("value"))
+        .map(|(key, value)| Arg::Setting { key, value });
+    let arg = setting
+        .or(expr.map(Arg::Positional))
+        .labelled("argument");
+    let args = just(Token::LParen)
+        .ignore_then(arg.separated_by(just(Token::Comma)).collect::<Vec<_>>())
+        .then(just(Token::RParen).or_not())
+        .validate(|(items, close), e, emitter| {
+            let span: Span = e.span();
+            if close.is_none() {
+                emitter.emit(Rich::custom(
+                    Span::empty(span.end as usize),
+                    "this argument list has no closing `)`",
+                ));
+            }
+            Args {
+                items,
+                span,
+                closed: close.is_some(),
+            }
+        });
+    name()
+        .then(args.or_not())
+        .map(|(name, args)| Call { name, args })
+}
+
+fn condition<'t, 's: 't, I>(
+    expr: impl Parser<'t, I, Expr<'s>, Extra<'t, 's>> + Clone,
+) -> impl Parser<'t, I, Expr<'s>, Extra<'t, 's>> + Clone
+where
+    I: ValueInput<'t, Token = Token<'s>, Span = Span>,
+{
+    // Section 4.5.5 writes `=` and `=>` in conditions; inside a condition they can only
+    // mean comparison, so they are read as `==` and `>=`.
+    let op = select! {
+        Token::Lt => CmpOp::Lt,
+        Token::Le => CmpOp::Le,
+        Token::EqEq => CmpOp::Eq,
+        Token::Assign => CmpOp::Eq,
+        Token::NotEq => CmpOp::Ne,
+        Token::Gt => CmpOp::Gt,
+        Token::Ge => CmpOp::Ge,
+        Token::GeAlt => CmpOp::Ge,
+    }
+    .map_with(|op, e| (op, e.span()))
+    .labelled("comparison");
+    expr.clone()
+        .then(op.then(expr).or_not())
+        .map(|(lhs, cmp)| match cmp {
+            None => lhs,
+            Some(((op, op_span), rhs)) => Expr {
+                span: lhs.span.to(rhs.span),
+                kind: ExprKind::Compare {
+                    op,
+                    op_span,
+                    lhs: Box::new(lhs),
+                    rhs: Box::new(rhs),
+                },
+            },
+        })
+}
+
+/// Arithmetic: `+ - * /`, unary minus and parentheses over numbers and names.
+fn expression<'t, 's: 't, I>() -> impl Parser<'t, I, Expr<'s>, Extra<'t, 's>> + Clone
+where
+    I: ValueInput<'t, Token = Token<'s>, Span = Span>,
+{
+    recursive(|expr| {
+        let atom = select! {
+            Token::Number(n) => ExprKind::Number(n),
+            Token::Ident(text) = e => ExprKind::Name(Name { text, span: e.span() }),
+        }
+        .map_with(|kind, e| Expr {
+            kind,
+            span: e.span(),
+        })
+        .or(expr
+            .delimited_by(just(Token::LParen), just(Token::RParen))
+            .map_with(|inner: Expr<'s>, e| Expr {
+                kind: inner.kind,
+                span: e.span(),
+            }))
+        .labelled("number or name");
+
+        let unary = just(Token::Minus)
+            .map_with(|_, e| e.span())
+            .repeated()
+            .foldr(atom, |minus: Span, operand: Expr<'s>| Expr {
+                span: minus.to(operand.span),
+                kind: ExprKind::Neg(Box::new(operand)),
+            });
+
+        let binary = |op: BinOp, lhs: Expr<'s>, rhs: Expr<'s>| Expr {
+            span: lhs.span.to(rhs.span),
+            kind: ExprKind::Binary {
+                op,
+                lhs: Box::new(lhs),
+                rhs: Box::new(rhs),
+            },
+        };
+
+        let product_op = select! { Token::Star => BinOp::Mul, Token::Slash => BinOp::Div };
+        let product = unary
+            .clone()
+            .foldl(product_op.then(unary).repeated(), move |lhs, (op, rhs)| {
+                binary(op, lhs, rhs)
+            });
+
+        let sum_op = select! { Token::Plus => BinOp::Add, Token::Minus => BinOp::Sub };
+        product
+            .clone()
+            .foldl(sum_op.then(product).repeated(), move |lhs, (op, rhs)| {
+                binary(op, lhs, rhs)
+            })
+    })
+}

@@ -1,0 +1,91 @@
+//! Source text to syntax tree. Parsing never fails: it returns the tree and the
+//! diagnostics together, one diagnostic per broken line.
+
+mod blocks;
+mod lines;
+
+use chumsky::error::{RichPattern, RichReason};
+
+use crate::ast::SourceFile;
+use crate::diagnostic::{Code, Diagnostic, FileId};
+use crate::lexer::{self, Token};
+use crate::span::Span;
+
+pub struct Parsed<'s> {
+    pub file: SourceFile<'s>,
+    pub diagnostics: Vec<Diagnostic>,
+}
+
+pub fn parse(source: &str, file: FileId) -> Parsed<'_> {
+    let lexed = lexer::lex(source);
+    let mut tokens = lexed.tokens;
+    // The line grammar ends every line with a line break; give the last line one.
+    if tokens.last().is_none_or(|(t, _)| *t != Token::Newline) {
+        tokens.push((Token::Newline, Span::empty(source.len())));
+    }
+    let mut diagnostics = Vec::new();
+    for (token, span) in &tokens {
+        if let Token::Break(p) = token {
+            if !p.closed {
+                diagnostics.push(
+                    Diagnostic::new(
+                        Code::UnclosedPattern,
+                        file,
+                        *span,
+                        "`break(` has no closing `)`",
+                    )
+                    .with_label("the pattern runs to the end of the line"),
+                );
+            }
+        }
+    }
+    let (lines, errors) = lines::parse_lines(&tokens, source);
+    diagnostics.extend(errors.into_iter().map(|e| syntax_diagnostic(e, file)));
+    let tree = blocks::build(lines, source, lexed.comments, file, &mut diagnostics);
+    diagnostics.sort_by_key(|d| (d.span.start, d.code));
+    Parsed {
+        file: tree,
+        diagnostics,
+    }
+}
+
+fn syntax_diagnostic(error: lines::ParseError<'_, '_>, file: FileId) -> Diagnostic {
+    let span = *error.span();
+    match error.reason() {
+        RichReason::Custom(message) => {
+            Diagnostic::new(Code::UnclosedArgs, file, span, message.clone())
+                .with_label("`)` expected here")
+                .with_fix("insert `)`", span, ")")
+        }
+        RichReason::ExpectedFound { found, .. } => {
+            let found = found.as_deref().map_or("end of file".to_string(), describe);
+            let mut expected: Vec<String> = error
+                .expected()
+                .filter_map(|p| match p {
+                    RichPattern::Token(t) => Some(describe(t)),
+                    RichPattern::Label(l) => Some(l.to_string()),
+                    RichPattern::Identifier(i) => Some(format!("`{i}`")),
+                    RichPattern::EndOfInput => Some("end of file".into()),
+                    _ => None,
+                })
+                .collect();
+            expected.sort();
+            expected.dedup();
+            let message = format!("unexpected {found}");
+            let label = match expected.as_slice() {
+                [] => format!("{found} is not expected here"),
+                [one] => format!("expected {one}"),
+                [init @ .., last] => format!("expected {} or {last}", init.join(", ")),
+            };
+            Diagnostic::new(Code::Syntax, file, span, message).with_label(label)
+        }
+    }
+}
+
+fn describe(token: &Token<'_>) -> String {
+    match token {
+        Token::Ident(name) => format!("name `{name}`"),
+        Token::Number(n) => format!("number `{n}`"),
+        other => other.to_string(),
+    }
+}

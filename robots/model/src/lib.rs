@@ -1,0 +1,22 @@
+//! Robot models in the ROBO.INI format of the ILMR dissertation (Figure 39,
+//! sections 4.5 and 5.1.2): the sensors and actuators, recognisable objects,
+//! colours, identifiers and parameters that the compiler, VM, simulator and
+//! language server read.
+//!
+//! Reading a model never fails on its content: [`RobotModel::parse`] and
+//! [`RobotModel::load`] return a usable model together with warnings that
+//! say which line was wrong and what stood in for it. See
+//! `docs/robot-model.md` for the format and every parameter.
+
+mod docs;
+mod entry;
+mod load;
+mod model;
+mod names;
+mod params;
+mod parse;
+mod write;
+
+pub use docs::parameter_table_markdown;
+pub use model::{Device, ModelName, ModelWarning, NamedValue, Object, RobotModel};
+pub use params::{PARAMETER_SPECS, ParamDefault, ParamSpec, Valid, parameter_spec};
