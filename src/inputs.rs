@@ -24,7 +24,10 @@ pub fn read_skill_dir(dir: &Path) -> Result<Vec<Source>, String> {
         })
         .collect();
     paths.sort();
-    paths.iter().map(|p| read_source(p)).collect()
+    paths
+        .iter()
+        .map(|p| read_source(p).map(|s| Source::library(s.path, s.text)))
+        .collect()
 }
 
 /// A loaded robot model, with where it came from so that its warnings can point there.

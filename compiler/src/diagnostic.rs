@@ -116,8 +116,6 @@ codes! {
         "The robot model file is missing or has lines that could not be read; defaults are used in their place.";
     UnusedVariable = "W0502", Warning, "variable never used",
         "A variable is bound but nothing reads it. Its command still runs.";
-    CheckBlock = "W0901", Warning, "`check` block is validated only",
-        "Statements between `check` and `checkend` are checked but never run (section 4.5.5).";
 }
 
 /// A text edit that resolves a diagnostic (did-you-mean, a missing `endif`).

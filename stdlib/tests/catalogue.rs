@@ -67,3 +67,14 @@ fn keywords_are_collected_from_the_grammars() {
     assert!(Command::Turn.spec().has_keyword("LEFT"));
     assert!(!Command::Turn.spec().has_keyword("middle"));
 }
+
+#[test]
+fn command_reference_is_fresh() {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../docs/commands.md");
+    let expected = ilmr_stdlib::reference::reference_markdown();
+    if std::env::var_os("UPDATE_DOCS").is_some() {
+        std::fs::write(&path, &expected).unwrap();
+    }
+    let actual = std::fs::read_to_string(&path).unwrap_or_default();
+    assert!(actual == expected, "docs/commands.md is stale: run `UPDATE_DOCS=1 cargo test -p ilmr-stdlib`");
+}

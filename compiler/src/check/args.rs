@@ -79,7 +79,7 @@ impl<'m, 'v> Cx<'m, 'v> {
             match param.occurs {
                 Occurs::One => match positional.get(next) {
                     Some(e) => {
-                        self.accept(&mut m, spec, &param.kind, e, &mut device);
+                        self.accept(&mut m, spec, param.name, &param.kind, e, &mut device);
                         next += 1;
                     }
                     None => {
@@ -95,21 +95,21 @@ impl<'m, 'v> Cx<'m, 'v> {
                 Occurs::Optional => {
                     if let Some(e) = positional.get(next) {
                         if self.fits(spec, &param.kind, e) {
-                            self.accept(&mut m, spec, &param.kind, e, &mut device);
+                            self.accept(&mut m, spec, param.name, &param.kind, e, &mut device);
                             next += 1;
                         }
                     }
                 }
                 Occurs::Many => {
                     while let Some(e) = positional.get(next) {
-                        self.accept(&mut m, spec, &param.kind, e, &mut device);
+                        self.accept(&mut m, spec, param.name, &param.kind, e, &mut device);
                         next += 1;
                     }
                 }
                 Occurs::Pairs => {
                     let rest = &positional[next.min(positional.len())..];
                     for e in rest {
-                        self.accept(&mut m, spec, &param.kind, e, &mut device);
+                        self.accept(&mut m, spec, param.name, &param.kind, e, &mut device);
                     }
                     if rest.len() % 2 == 1 {
                         m.cost += COST_COUNT;
@@ -124,8 +124,8 @@ impl<'m, 'v> Cx<'m, 'v> {
                 }
             }
         }
-        for extra in positional.iter().skip(next) {
-            m.cost += COST_COUNT;
+        if let Some(extra) = positional.get(next) {
+            m.cost += COST_COUNT * (positional.len() - next) as u32;
             let d = self.extra_argument(spec, form, extra);
             m.findings.diags.push(d);
         }
@@ -155,7 +155,8 @@ impl<'m, 'v> Cx<'m, 'v> {
                 .iter()
                 .flat_map(|p| keyword_words(&p.kind))
                 .collect();
-            if let Some(s) = suggest::closest(name.text, words.iter().copied()) {
+            let misplaced = words.iter().any(|w| name.is(w));
+            if let Some(s) = suggest::closest(name.text, words.iter().copied()).filter(|_| !misplaced) {
                 return Diagnostic::new(
                     Code::UnknownKeyword,
                     self.file,
@@ -197,6 +198,7 @@ impl<'m, 'v> Cx<'m, 'v> {
         &mut self,
         m: &mut FormMatch<'s>,
         spec: &CommandSpec,
+        param: &str,
         kind: &ParamKind,
         e: &Expr<'s>,
         device: &mut Option<&'m Device>,
@@ -236,7 +238,7 @@ impl<'m, 'v> Cx<'m, 'v> {
             ParamKind::Value { range, .. } => {
                 let v = self.value(&mut m.findings, e);
                 if let Value::Const(v) = v {
-                    self.check_range(m, range, v, e.span, *device);
+                    self.check_range(m, spec, param, range, v, e.span, *device);
                 } else if v == Value::Invalid {
                     m.cost += COST_KIND;
                 }
@@ -255,13 +257,13 @@ impl<'m, 'v> Cx<'m, 'v> {
                 None => self.wrong_kind(m, e, "a name"),
             },
             ParamKind::OneOf { kinds } => {
-                // Take the first alternative the argument fits; if none, report against
-                // the first one it comes closest to.
-                let chosen = kinds
-                    .iter()
-                    .find(|k| self.fits(spec, k, e))
-                    .unwrap_or(&kinds[0]);
-                self.accept(m, spec, chosen, e, device);
+                match kinds.iter().find(|k| self.fits(spec, k, e)) {
+                    Some(chosen) => self.accept(m, spec, param, chosen, e, device),
+                    None => {
+                        let expected: Vec<String> = kinds.iter().map(describe).collect();
+                        self.wrong_kind(m, e, &expected.join(" or "));
+                    }
+                }
             }
         }
     }
@@ -304,7 +306,8 @@ impl<'m, 'v> Cx<'m, 'v> {
     }
 
     fn wrong_kind(&mut self, m: &mut FormMatch<'_>, e: &Expr<'_>, expected: &str) {
-        m.cost += COST_KIND;
+        // A number where a name belongs (or the reverse) says this form was not meant.
+        m.cost += COST_STRANGER;
         m.findings.diags.push(
             Diagnostic::new(
                 Code::ArgumentKind,
@@ -423,7 +426,7 @@ impl<'m, 'v> Cx<'m, 'v> {
                     None => d.with_label(format!("not in {section} of the robot model")),
                 });
             }
-            _ => self.wrong_kind(m, e, "a name from the robot model"),
+            _ => self.wrong_kind(m, e, &describe(&ParamKind::Model { names })),
         }
     }
 
@@ -493,7 +496,7 @@ impl<'m, 'v> Cx<'m, 'v> {
             seen.push((k, key.span));
             m.findings.refs.push((key.span, Resolved::Keyword));
             if let Value::Const(v) = self.value(&mut m.findings, value) {
-                self.check_range(m, range, v, value.span, None);
+                self.check_range(m, spec, k, range, v, value.span, None);
             }
         }
         for param in form.params {
@@ -515,9 +518,12 @@ impl<'m, 'v> Cx<'m, 'v> {
         }
     }
 
+    #[allow(clippy::too_many_arguments)]
     fn check_range(
         &mut self,
         m: &mut FormMatch<'_>,
+        spec: &CommandSpec,
+        param: &str,
         range: Range,
         v: f64,
         span: Span,
@@ -534,20 +540,20 @@ impl<'m, 'v> Cx<'m, 'v> {
             ),
             Range::Positive => (v > 0.0, Limit::Refuse, "greater than 0".into()),
             Range::NonNegative => (v >= 0.0, Limit::Refuse, "0 or more".into()),
-            Range::Symmetric { param, limit } | Range::Magnitude { param, limit } => {
-                let Some(p) = param_bound(param) else {
-                    return self.unsupported(m, param, span);
+            Range::Symmetric { param: bound, limit } | Range::Magnitude { param: bound, limit } => {
+                let Some(p) = param_bound(bound) else {
+                    return self.unsupported(m, bound, span);
                 };
-                (v.abs() <= p, limit, format!("within ±{p} (`{param}` of {})", model.name))
+                (v.abs() <= p, limit, format!("within ±{p} (`{bound}` of {})", model.name))
             }
-            Range::UpTo { param, limit } => {
-                let Some(p) = param_bound(param) else {
-                    return self.unsupported(m, param, span);
+            Range::UpTo { param: bound, limit } => {
+                let Some(p) = param_bound(bound) else {
+                    return self.unsupported(m, bound, span);
                 };
                 (
                     (0.0..=p).contains(&v),
                     limit,
-                    format!("between 0 and {p} (`{param}` of {})", model.name),
+                    format!("between 0 and {p} (`{bound}` of {})", model.name),
                 )
             }
             Range::DeviceRange => {
@@ -583,8 +589,14 @@ impl<'m, 'v> Cx<'m, 'v> {
             return;
         }
         let (code, message) = match limit {
-            Limit::Refuse => (Code::OutOfRange, format!("{v} is outside the robot's range")),
-            Limit::Warn => (Code::BeyondCapability, format!("{v} is beyond what {} can do", model.name)),
+            Limit::Refuse => (
+                Code::OutOfRange,
+                format!("{v} is out of range for the {param} of `{}`", spec.name),
+            ),
+            Limit::Warn => (
+                Code::BeyondCapability,
+                format!("{v} is beyond what {} can do as the {param} of `{}`", model.name, spec.name),
+            ),
         };
         if code == Code::OutOfRange {
             m.cost += COST_KIND;
@@ -609,6 +621,21 @@ impl<'m, 'v> Cx<'m, 'v> {
             )
             .with_label(format!("needs `{param}` in [PARAMETERS]")),
         );
+    }
+}
+
+/// What a parameter accepts, in words, for messages.
+fn describe(kind: &ParamKind) -> String {
+    match *kind {
+        ParamKind::Keyword { words } | ParamKind::Mode { words, .. } => suggest::one_of(words),
+        ParamKind::Value { .. } | ParamKind::Setting { .. } => "a number".into(),
+        ParamKind::Model { names: ModelNames::Device } => "a sensor or actuator of the robot model".into(),
+        ParamKind::Model { names: ModelNames::Object } => "an object of the robot model".into(),
+        ParamKind::Model { names: ModelNames::Service } => "a sensor or service of the robot model".into(),
+        ParamKind::Position => "a position variable".into(),
+        ParamKind::Variable => "a variable".into(),
+        ParamKind::Name { .. } => "a name".into(),
+        ParamKind::OneOf { kinds } => kinds.iter().map(describe).collect::<Vec<_>>().join(" or "),
     }
 }
 

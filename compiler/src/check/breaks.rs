@@ -32,7 +32,7 @@ pub fn check_patterns(files: &[FileEntry<'_>], skills: &Skills, diags: &mut Vec<
     let mut patterns: Vec<(FileId, Pattern<'_>)> = Vec::new();
     for (i, entry) in files.iter().enumerate() {
         let file = FileId(i as u32);
-        if entry.builtin {
+        if entry.library {
             let called = skills
                 .iter()
                 .any(|(id, s)| s.file == file && skills.is_called(id));
@@ -44,6 +44,16 @@ pub fn check_patterns(files: &[FileEntry<'_>], skills: &Skills, diags: &mut Vec<
             StmtKind::Break { pattern: Some(p) } => patterns.push((file, *p)),
             StmtKind::Break { pattern: None } | StmtKind::Error => {}
             _ => statements.push((file, stmt.span, stmt.span.slice(entry.text))),
+        });
+        // What stands between `check` and `checkend` never runs, so no break can end it.
+        let mut inside_check = Vec::new();
+        entry.tree.for_each_stmt(&mut |stmt: &Stmt<'_>| {
+            if let StmtKind::Check { body, .. } = &stmt.kind {
+                inside_check.extend(body.iter().map(|b| b.span));
+            }
+        });
+        statements.retain(|(f, span, _)| {
+            *f != file || !inside_check.iter().any(|b| b.start <= span.start && span.end <= b.end)
         });
     }
     for (file, pattern) in patterns {

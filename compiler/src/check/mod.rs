@@ -28,6 +28,9 @@ pub use skills::SkillId;
 pub struct Source {
     pub path: String,
     pub text: String,
+    /// A file of a skill library (`--skills DIR`): its skills are checked where a task
+    /// calls them, since a library may hold skills for other robots too.
+    pub library: bool,
 }
 
 impl Source {
@@ -35,6 +38,14 @@ impl Source {
         Source {
             path: path.into(),
             text: text.into(),
+            library: false,
+        }
+    }
+
+    pub fn library(path: impl Into<String>, text: impl Into<String>) -> Source {
+        Source {
+            library: true,
+            ..Source::new(path, text)
         }
     }
 }
@@ -65,7 +76,10 @@ pub struct FileEntry<'s> {
     pub path: &'s str,
     pub text: &'s str,
     pub tree: SourceFile<'s>,
+    /// Shipped with the toolchain (`<stdlib>/...`).
     pub builtin: bool,
+    /// Checked only where called: built-in skills and `--skills` libraries.
+    pub library: bool,
 }
 
 /// A task file or a skill, checked with its own view of the variables.
@@ -114,9 +128,11 @@ pub fn analyze<'s>(sources: &'s [Source], model: &RobotModel) -> Analysis<'s> {
     let mut files: Vec<FileEntry<'s>> = Vec::with_capacity(sources.len() + 1);
     let builtins = ilmr_stdlib::skills::BUILTIN_SKILL_FILES
         .iter()
-        .map(|b| (b.path, b.source, true));
-    let user = sources.iter().map(|s| (s.path.as_str(), s.text.as_str(), false));
-    for (i, (path, text, builtin)) in user.chain(builtins).enumerate() {
+        .map(|b| (b.path, b.source, true, true));
+    let user = sources
+        .iter()
+        .map(|s| (s.path.as_str(), s.text.as_str(), false, s.library));
+    for (i, (path, text, builtin, library)) in user.chain(builtins).enumerate() {
         let parsed = parser::parse(text, FileId(i as u32));
         if !builtin {
             diagnostics.extend(parsed.diagnostics);
@@ -126,6 +142,7 @@ pub fn analyze<'s>(sources: &'s [Source], model: &RobotModel) -> Analysis<'s> {
             text,
             tree: parsed.file,
             builtin,
+            library,
         });
     }
 
@@ -134,7 +151,7 @@ pub fn analyze<'s>(sources: &'s [Source], model: &RobotModel) -> Analysis<'s> {
     let mut globals: Vec<(String, VarKind)> = skills.all_binds();
 
     for (i, entry) in files.iter().enumerate() {
-        if entry.tree.kind != FileKind::Task || entry.builtin {
+        if entry.tree.kind != FileKind::Task || entry.library {
             continue;
         }
         let mut unit = Unit {
@@ -151,7 +168,7 @@ pub fn analyze<'s>(sources: &'s [Source], model: &RobotModel) -> Analysis<'s> {
 
     for (id, skill) in skills.iter() {
         let entry = &files[skill.file.0 as usize];
-        if entry.builtin && !skills.is_called(id) {
+        if entry.library && !skills.is_called(id) {
             continue;
         }
         let mut vars = Vars::default();

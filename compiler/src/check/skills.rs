@@ -100,7 +100,7 @@ impl Skills {
             skills.list[i].calls = calls;
             skills.list[i].binds = binds;
         }
-        for entry in files.iter().filter(|f| !f.builtin) {
+        for entry in files.iter().filter(|f| !f.library) {
             let mut calls = Vec::new();
             let mut binds = Vec::new();
             scan(&entry.tree.blocks, &skills, model, &mut calls, &mut binds);

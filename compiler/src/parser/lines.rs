@@ -66,12 +66,31 @@ where
         });
 
     // A line that does not parse is kept, as an error node spanning the line, so that the
-    // next lines are read as if nothing had happened.
-    let broken_line = any()
+    // next lines are read as if nothing had happened. A broken `if(` or `while(` line still
+    // opens its block, or its `endif` would be reported a second time as stray.
+    let rest = any()
         .filter(|t: &Token<'s>| *t != Token::Newline)
-        .repeated()
-        .map_with(|(), e| ParsedLine {
-            line: Line::Stmt(StmtKind::Error),
+        .repeated();
+    let broken_if = just(Token::If)
+        .map_with(|_, e| e.span())
+        .then_ignore(rest)
+        .map_with(|keyword: Span, e| Line::IfHead {
+            keyword,
+            cond: error_expr(e.span()),
+        });
+    let broken_while = name()
+        .then_ignore(just(Token::Assign))
+        .or_not()
+        .then(just(Token::While).map_with(|_, e| e.span()))
+        .then_ignore(rest)
+        .map_with(|(bind, keyword), e| Line::WhileHead {
+            bind,
+            keyword,
+            cond: error_expr(e.span()),
+        });
+    let broken_line = choice((broken_if, broken_while, rest.to(Line::Stmt(StmtKind::Error))))
+        .map_with(|line, e| ParsedLine {
+            line,
             span: e.span(),
         });
 
@@ -81,6 +100,13 @@ where
         .repeated()
         .collect()
         .then_ignore(end())
+}
+
+fn error_expr<'s>(span: Span) -> Expr<'s> {
+    Expr {
+        kind: ExprKind::Error,
+        span,
+    }
 }
 
 fn name<'t, 's: 't, I>() -> impl Parser<'t, I, Name<'s>, Extra<'t, 's>> + Clone

@@ -1,0 +1,116 @@
+//! Moving targets walk their waypoints at constant speed.
+
+use crate::geometry::Vec2;
+use crate::world::{PathMode, Target};
+
+#[derive(Debug, Clone, PartialEq)]
+pub struct Walker {
+    /// Start followed by the waypoints.
+    points: Vec<Vec2>,
+    pub position: Vec2,
+    next: usize,
+    forward: bool,
+    speed: f64,
+    mode: PathMode,
+    standing: bool,
+}
+
+impl Walker {
+    pub fn new(t: &Target) -> Self {
+        let mut points = vec![t.start];
+        points.extend(t.waypoints.iter().copied());
+        let length: f64 = points.windows(2).map(|w| w[0].distance(w[1])).sum();
+        Walker {
+            position: t.start,
+            next: 1,
+            forward: true,
+            speed: t.speed,
+            mode: t.path,
+            // A path of zero length would spin the walking loop forever.
+            standing: t.speed <= 0.0 || length <= 1e-9,
+            points,
+        }
+    }
+
+    pub fn step(&mut self, dt: f64) {
+        let mut left = self.speed * dt;
+        while left > 0.0 && !self.standing {
+            let goal = self.points[self.next];
+            let d = self.position.distance(goal);
+            if d > left {
+                self.position = self.position + (goal - self.position).scale(left / d);
+                return;
+            }
+            self.position = goal;
+            left -= d;
+            self.advance();
+        }
+    }
+
+    fn advance(&mut self) {
+        let n = self.points.len();
+        match self.mode {
+            PathMode::Once => {
+                if self.next + 1 >= n {
+                    self.standing = true;
+                } else {
+                    self.next += 1;
+                }
+            }
+            PathMode::Loop => self.next = (self.next + 1) % n,
+            PathMode::BackAndForth => {
+                if self.forward && self.next + 1 >= n {
+                    self.forward = false;
+                    self.next = n - 2;
+                } else if !self.forward && self.next == 0 {
+                    self.forward = true;
+                    self.next = 1;
+                } else if self.forward {
+                    self.next += 1;
+                } else {
+                    self.next -= 1;
+                }
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::world::Colour;
+
+    fn target(path: PathMode) -> Target {
+        Target {
+            name: "user".into(),
+            colour: Colour::Yellow,
+            start: Vec2::new(0.0, 0.0),
+            radius: 0.25,
+            speed: 1.0,
+            waypoints: vec![Vec2::new(2.0, 0.0), Vec2::new(2.0, 1.0)],
+            path,
+        }
+    }
+
+    #[test]
+    fn walks_once_loops_and_turns_back() {
+        let mut w = Walker::new(&target(PathMode::Once));
+        w.step(2.5);
+        assert!(w.position.distance(Vec2::new(2.0, 0.5)) < 1e-12);
+        w.step(10.0);
+        assert!(w.position.distance(Vec2::new(2.0, 1.0)) < 1e-12);
+
+        let mut w = Walker::new(&target(PathMode::Loop));
+        // 2 + 1 + sqrt(5) round; 0.5 m past the start.
+        w.step(3.0 + 5f64.sqrt() + 0.5);
+        assert!(w.position.distance(Vec2::new(0.5, 0.0)) < 1e-9);
+
+        let mut w = Walker::new(&target(PathMode::BackAndForth));
+        w.step(3.5);
+        assert!(w.position.distance(Vec2::new(2.0, 0.5)) < 1e-12);
+        w.step(2.5);
+        assert!(w.position.distance(Vec2::new(0.0, 0.0)) < 1e-12);
+        w.step(1.0);
+        assert!(w.position.distance(Vec2::new(1.0, 0.0)) < 1e-12);
+    }
+}

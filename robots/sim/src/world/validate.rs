@@ -1,0 +1,383 @@
+//! From TOML text to a [`World`]: parse with serde, then check every entry and
+//! report the first fault with its line and field.
+
+use super::error::{field_line, line_of};
+use super::format::{Point, WorldFile};
+use super::{Bounds, Charger, Door, PickupBox, Plate, Target, Wall, World, WorldError};
+use crate::geometry::{Circle, Obb, Pose, Shape, Vec2};
+
+const DEFAULT_WALL_THICKNESS: f64 = 0.15;
+const DEFAULT_TARGET_RADIUS: f64 = 0.25;
+const DEFAULT_CHARGER_RADIUS: f64 = 0.5;
+const DEFAULT_PLATE_RADIUS: f64 = 0.05;
+
+pub(super) fn parse(text: &str, source: &str) -> Result<World, WorldError> {
+    let file: WorldFile = toml::from_str(text).map_err(|e| WorldError {
+        source: source.to_string(),
+        line: e.span().map_or(1, |s| line_of(text, s.start)),
+        field: None,
+        message: e.message().trim().to_string(),
+    })?;
+    Checker { text, source }.world(file)
+}
+
+struct Checker<'a> {
+    text: &'a str,
+    source: &'a str,
+}
+
+/// Where an entry starts in the text, and how errors name it.
+#[derive(Clone, Copy)]
+struct Entry<'e> {
+    at: usize,
+    label: &'e str,
+}
+
+impl Checker<'_> {
+    fn err(&self, entry: Entry<'_>, key: &str, message: impl Into<String>) -> WorldError {
+        WorldError {
+            source: self.source.to_string(),
+            line: field_line(self.text, entry.at, key),
+            field: Some(format!("{} {key}", entry.label)),
+            message: message.into(),
+        }
+    }
+
+    fn point(&self, e: Entry<'_>, key: &str, p: Point) -> Result<Vec2, WorldError> {
+        if p.iter().all(|v| v.is_finite()) {
+            Ok(Vec2::new(p[0], p[1]))
+        } else {
+            Err(self.err(e, key, "coordinates must be finite numbers"))
+        }
+    }
+
+    fn inside(&self, e: Entry<'_>, key: &str, b: &Bounds, p: Point) -> Result<Vec2, WorldError> {
+        let v = self.point(e, key, p)?;
+        if b.contains(v) {
+            Ok(v)
+        } else {
+            Err(self.err(
+                e,
+                key,
+                format!(
+                    "({}, {}) lies outside the bounds ({}, {})..({}, {})",
+                    v.x, v.y, b.min.x, b.min.y, b.max.x, b.max.y
+                ),
+            ))
+        }
+    }
+
+    fn positive(&self, e: Entry<'_>, key: &str, v: f64) -> Result<f64, WorldError> {
+        if v.is_finite() && v > 0.0 {
+            Ok(v)
+        } else {
+            Err(self.err(e, key, format!("must be a positive number, got {v}")))
+        }
+    }
+
+    fn non_negative(&self, e: Entry<'_>, key: &str, v: f64) -> Result<f64, WorldError> {
+        if v.is_finite() && v >= 0.0 {
+            Ok(v)
+        } else {
+            Err(self.err(e, key, format!("must be zero or positive, got {v}")))
+        }
+    }
+
+    fn degrees(&self, e: Entry<'_>, key: &str, v: f64) -> Result<f64, WorldError> {
+        if v.is_finite() {
+            Ok(v.to_radians())
+        } else {
+            Err(self.err(e, key, "must be a finite angle in degrees"))
+        }
+    }
+
+    fn unique(&self, e: Entry<'_>, key: &str, id: &str, seen: &[String]) -> Result<(), WorldError> {
+        if id.is_empty() {
+            return Err(self.err(e, key, "must not be empty"));
+        }
+        if seen.iter().any(|s| s == id) {
+            return Err(self.err(e, key, format!("`{id}` is used twice")));
+        }
+        Ok(())
+    }
+
+    fn world(&self, f: WorldFile) -> Result<World, WorldError> {
+        let be = Entry {
+            at: f.bounds.span().start,
+            label: "bounds",
+        };
+        let min = self.point(be, "min", f.bounds.get_ref().min)?;
+        let max = self.point(be, "max", f.bounds.get_ref().max)?;
+        if max.x <= min.x || max.y <= min.y {
+            return Err(self.err(be, "max", "must be above and to the right of `min`"));
+        }
+        let bounds = Bounds { min, max };
+
+        let se = Entry {
+            at: f.start.span().start,
+            label: "start",
+        };
+        let s = f.start.get_ref();
+        let p = self.inside(se, "x", &bounds, [s.x, s.y])?;
+        let start = Pose::new(p.x, p.y, self.degrees(se, "heading", s.heading)?);
+
+        let mut walls = Vec::new();
+        let mut labels = Vec::new();
+        for (i, w) in f.wall.iter().enumerate() {
+            labels.push(format!("wall #{}", i + 1));
+            let e = Entry {
+                at: w.span().start,
+                label: &labels[i],
+            };
+            let d = w.get_ref();
+            let from = self.inside(e, "from", &bounds, d.from)?;
+            let to = self.inside(e, "to", &bounds, d.to)?;
+            if from.distance(to) < 1e-6 {
+                return Err(self.err(e, "to", "a wall needs two distinct ends"));
+            }
+            let thickness = self.positive(
+                e,
+                "thickness",
+                d.thickness.unwrap_or(DEFAULT_WALL_THICKNESS),
+            )?;
+            let id = d.id.clone().unwrap_or_else(|| format!("wall{}", i + 1));
+            let seen: Vec<String> = walls.iter().map(|w: &Wall| w.id.clone()).collect();
+            self.unique(e, "id", &id, &seen)?;
+            walls.push(Wall {
+                id,
+                from,
+                to,
+                thickness,
+                pieces: vec![(from, to)],
+            });
+        }
+
+        let doors = self.doors(&f, &mut walls)?;
+
+        let mut obstacles = Vec::new();
+        for (i, o) in f.obstacle.iter().enumerate() {
+            let label = format!("obstacle #{}", i + 1);
+            let e = Entry {
+                at: o.span().start,
+                label: &label,
+            };
+            let d = o.get_ref();
+            let center = self.inside(e, "center", &bounds, d.center)?;
+            let shape = match d.shape.as_str() {
+                "circle" => {
+                    if d.size.is_some() || d.heading.is_some() {
+                        return Err(self.err(
+                            e,
+                            "shape",
+                            "a circle takes `radius` only, not `size` or `heading`",
+                        ));
+                    }
+                    let r = d
+                        .radius
+                        .ok_or_else(|| self.err(e, "radius", "a circle needs `radius`"))?;
+                    Shape::Circle(Circle::new(center, self.positive(e, "radius", r)?))
+                }
+                "box" => {
+                    if d.radius.is_some() {
+                        return Err(self.err(
+                            e,
+                            "shape",
+                            "a box takes `size` and `heading`, not `radius`",
+                        ));
+                    }
+                    let size = d.size.ok_or_else(|| {
+                        self.err(e, "size", "a box needs `size = [length, width]`")
+                    })?;
+                    let l = self.positive(e, "size", size[0])?;
+                    let w = self.positive(e, "size", size[1])?;
+                    let h = self.degrees(e, "heading", d.heading.unwrap_or(0.0))?;
+                    Shape::Box(Obb::new(center, h, l, w))
+                }
+                other => {
+                    return Err(self.err(
+                        e,
+                        "shape",
+                        format!("unknown shape `{other}`, expected `circle` or `box`"),
+                    ));
+                }
+            };
+            obstacles.push(shape);
+        }
+
+        let mut pickup_boxes: Vec<PickupBox> = Vec::new();
+        for (i, b) in f.pickup_box.iter().enumerate() {
+            let label = format!("pickup_box #{}", i + 1);
+            let e = Entry {
+                at: b.span().start,
+                label: &label,
+            };
+            let d = b.get_ref();
+            let seen: Vec<String> = pickup_boxes.iter().map(|b| b.id.clone()).collect();
+            self.unique(e, "id", &d.id, &seen)?;
+            let center = self.inside(e, "center", &bounds, d.center)?;
+            let l = self.positive(e, "size", d.size[0])?;
+            let w = self.positive(e, "size", d.size[1])?;
+            let h = self.degrees(e, "heading", d.heading)?;
+            pickup_boxes.push(PickupBox {
+                id: d.id.clone(),
+                shape: Obb::new(center, h, l, w),
+                colour: d.colour,
+            });
+        }
+
+        let mut targets: Vec<Target> = Vec::new();
+        for (i, t) in f.target.iter().enumerate() {
+            let label = format!("target #{}", i + 1);
+            let e = Entry {
+                at: t.span().start,
+                label: &label,
+            };
+            let d = t.get_ref();
+            let seen: Vec<String> = targets.iter().map(|t| t.name.clone()).collect();
+            self.unique(e, "name", &d.name, &seen)?;
+            let start = self.inside(e, "position", &bounds, d.position)?;
+            let radius = self.positive(e, "radius", d.radius.unwrap_or(DEFAULT_TARGET_RADIUS))?;
+            let speed = self.non_negative(e, "speed", d.speed)?;
+            let waypoints = d
+                .waypoints
+                .iter()
+                .map(|&w| self.inside(e, "waypoints", &bounds, w))
+                .collect::<Result<Vec<_>, _>>()?;
+            if speed > 0.0 && waypoints.is_empty() {
+                return Err(self.err(
+                    e,
+                    "waypoints",
+                    "a target with a speed needs waypoints to walk",
+                ));
+            }
+            targets.push(Target {
+                name: d.name.clone(),
+                colour: d.colour,
+                start,
+                radius,
+                speed,
+                waypoints,
+                path: d.path,
+            });
+        }
+
+        let charger = match &f.charger {
+            None => None,
+            Some(c) => {
+                let e = Entry {
+                    at: c.span().start,
+                    label: "charger",
+                };
+                let d = c.get_ref();
+                Some(Charger {
+                    position: self.inside(e, "position", &bounds, d.position)?,
+                    heading: self.degrees(e, "heading", d.heading)?,
+                    radius: self.positive(
+                        e,
+                        "radius",
+                        d.radius.unwrap_or(DEFAULT_CHARGER_RADIUS),
+                    )?,
+                    colour: d.colour,
+                })
+            }
+        };
+
+        let mut plates = Vec::new();
+        for (i, p) in f.plate.iter().enumerate() {
+            let label = format!("plate #{}", i + 1);
+            let e = Entry {
+                at: p.span().start,
+                label: &label,
+            };
+            let d = p.get_ref();
+            plates.push(Plate {
+                position: self.inside(e, "position", &bounds, d.position)?,
+                radius: self.positive(e, "radius", d.radius.unwrap_or(DEFAULT_PLATE_RADIUS))?,
+            });
+        }
+
+        Ok(World {
+            name: f.name,
+            description: f.description,
+            bounds,
+            start,
+            walls,
+            doors,
+            obstacles,
+            pickup_boxes,
+            targets,
+            charger,
+            plates,
+        })
+    }
+
+    /// Checks the doors and cuts their openings out of the walls.
+    fn doors(&self, f: &WorldFile, walls: &mut [Wall]) -> Result<Vec<Door>, WorldError> {
+        let mut doors: Vec<Door> = Vec::new();
+        // Per wall: (start, end) of each opening along the wall, with its door index.
+        let mut cuts: Vec<Vec<(f64, f64, usize)>> = vec![Vec::new(); walls.len()];
+        for (i, d) in f.door.iter().enumerate() {
+            let label = format!("door #{}", i + 1);
+            let e = Entry {
+                at: d.span().start,
+                label: &label,
+            };
+            let def = d.get_ref();
+            let id = def.id.clone().unwrap_or_else(|| format!("door{}", i + 1));
+            let seen: Vec<String> = doors.iter().map(|d| d.id.clone()).collect();
+            self.unique(e, "id", &id, &seen)?;
+            let wi = walls
+                .iter()
+                .position(|w| w.id == def.wall)
+                .ok_or_else(|| self.err(e, "wall", format!("no wall has the id `{}`", def.wall)))?;
+            let wall = &walls[wi];
+            let width = self.positive(e, "width", def.width)?;
+            let len = wall.from.distance(wall.to);
+            if !def.at.is_finite() {
+                return Err(self.err(e, "at", "must be a finite distance"));
+            }
+            let (a, b) = (def.at - width / 2.0, def.at + width / 2.0);
+            if a < 0.0 || b > len {
+                return Err(self.err(
+                    e,
+                    "at",
+                    format!("the opening {a:.3}..{b:.3} m does not fit on wall `{}`, which is {len:.3} m long", wall.id),
+                ));
+            }
+            if let Some(&(_, _, other)) = cuts[wi].iter().find(|&&(s, t, _)| a < t && s < b) {
+                return Err(self.err(
+                    e,
+                    "at",
+                    format!("overlaps door `{}` on the same wall", doors[other].id),
+                ));
+            }
+            cuts[wi].push((a, b, i));
+            let dir = (wall.to - wall.from).scale(1.0 / len);
+            doors.push(Door {
+                id,
+                wall: wi,
+                width,
+                center: wall.from + dir.scale(def.at),
+                jambs: (wall.from + dir.scale(a), wall.from + dir.scale(b)),
+            });
+        }
+        for (w, c) in walls.iter_mut().zip(cuts.iter_mut()) {
+            c.sort_by(|x, y| x.0.total_cmp(&y.0));
+            let len = w.from.distance(w.to);
+            let dir = (w.to - w.from).scale(1.0 / len);
+            let mut pieces = Vec::new();
+            let mut s = 0.0;
+            for &(a, b, _) in c.iter() {
+                if a > s + 1e-9 {
+                    pieces.push((w.from + dir.scale(s), w.from + dir.scale(a)));
+                }
+                s = b;
+            }
+            if len > s + 1e-9 {
+                pieces.push((w.from + dir.scale(s), w.to));
+            }
+            w.pieces = pieces;
+        }
+        Ok(doors)
+    }
+}

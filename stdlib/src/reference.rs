@@ -1,0 +1,95 @@
+//! The command reference (`docs/commands.md`), generated from the catalogue so that the
+//! docs cannot drift from what the checker accepts.
+
+use std::fmt::Write;
+
+use crate::spec::{Limit, ModelNames, Occurs, ParamKind, Range};
+use crate::{CATALOGUE, Category};
+
+pub fn reference_markdown() -> String {
+    let mut out = String::from(
+        "# Command reference\n\n\
+         Generated from the catalogue in `stdlib/src/catalogue.rs` \
+         (`UPDATE_DOCS=1 cargo test -p ilmr-stdlib` rewrites it). Commands and keywords \
+         may be written in any letter case.\n",
+    );
+    for category in Category::ALL {
+        let _ = write!(out, "\n## {}\n", category.title());
+        for spec in CATALOGUE.iter().filter(|s| s.category == category) {
+            let _ = write!(out, "\n### {}\n\n{}\n\n", spec.title, spec.summary);
+            if !spec.doc.is_empty() {
+                let _ = write!(out, "{}\n\n", spec.doc);
+            }
+            let _ = write!(out, "```bnf\n{}\n```\n\n", spec.grammar);
+            let mut facts = vec![format!("section {}", spec.section)];
+            if spec.movement {
+                facts.push("movement command: takes the movement reservation".into());
+            }
+            if spec.holds_block {
+                facts.push("holds the rest of its block until it ends".into());
+            }
+            let _ = writeln!(out, "*{}*\n", facts.join("; "));
+            for form in spec.forms {
+                let _ = writeln!(
+                    out,
+                    "- **{}** — a bound variable holds {}",
+                    form.label,
+                    form.produces.describe()
+                );
+                for p in form.params {
+                    let occurs = match p.occurs {
+                        Occurs::One => "",
+                        Occurs::Optional => " (optional)",
+                        Occurs::Many => " (any number)",
+                        Occurs::Pairs => " (pairs)",
+                    };
+                    let _ = writeln!(out, "  - `{}`{occurs}: {} — {}", p.name, kind_text(&p.kind), p.doc);
+                }
+            }
+            let examples: Vec<String> = spec.examples.iter().map(|e| format!("`{}`", e.replace('\n', "` / `"))).collect();
+            let _ = writeln!(out, "\nExamples: {}", examples.join(", "));
+        }
+    }
+    out
+}
+
+fn kind_text(kind: &ParamKind) -> String {
+    match *kind {
+        ParamKind::Keyword { words } => words.join(" \\| "),
+        ParamKind::Mode { words, what } => format!("{what}: {} (as the model defines)", words.join(" \\| ")),
+        ParamKind::Value { unit, range } => format!("number{}{}", unit_text(unit.symbol()), range_text(range)),
+        ParamKind::Setting { key, unit, range } => format!("`{key}=` number{}{}", unit_text(unit.symbol()), range_text(range)),
+        ParamKind::Model { names } => match names {
+            ModelNames::Device => "sensor or actuator of the model (name or number)".into(),
+            ModelNames::Object => "object of the model".into(),
+            ModelNames::Service => "sensor or service of the model".into(),
+        },
+        ParamKind::Position => "position variable".into(),
+        ParamKind::Variable => "variable".into(),
+        ParamKind::Name { .. } => "name".into(),
+        ParamKind::OneOf { kinds } => kinds.iter().map(kind_text).collect::<Vec<_>>().join(" or "),
+    }
+}
+
+fn unit_text(symbol: &str) -> String {
+    if symbol.is_empty() { String::new() } else { format!(" [{symbol}]") }
+}
+
+fn range_text(range: Range) -> String {
+    let limit = |l: Limit| match l {
+        Limit::Refuse => "refused outside",
+        Limit::Warn => "warned outside",
+    };
+    match range {
+        Range::Any => String::new(),
+        Range::Between { min, max, limit: l } => format!(", {} {min} ... {max}", limit(l)),
+        Range::Positive => ", greater than 0".into(),
+        Range::NonNegative => ", 0 or more".into(),
+        Range::Symmetric { param, limit: l } | Range::Magnitude { param, limit: l } => {
+            format!(", {} -{param} ... {param}", limit(l))
+        }
+        Range::UpTo { param, limit: l } => format!(", {} 0 ... {param}", limit(l)),
+        Range::DeviceRange => ", within the actuator's range in the model".into(),
+        Range::ReadingIndex => ", 0 ... readings - 1 of the sensor".into(),
+    }
+}

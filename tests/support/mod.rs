@@ -1,0 +1,66 @@
+//! Shared by the test drivers: load fixtures, check them, render what a person sees.
+
+#![allow(dead_code)]
+
+use std::path::{Path, PathBuf};
+
+use ilmr_compiler::check::{Analysis, Source, analyze};
+use ilmr_compiler::render::{self, RenderFile, Style};
+use ilmr_model::RobotModel;
+
+pub const ROBOTS: [&str; 2] = ["moro", "workpartner"];
+
+pub fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+/// The robot a fixture was written for, from its `// robot: NAME` line.
+pub fn intended_robot(text: &str) -> &str {
+    text.lines()
+        .find_map(|l| l.trim().strip_prefix("// robot:"))
+        .map(str::trim)
+        .expect("fixtures name their robot with `// robot: NAME`")
+}
+
+pub fn model(name: &str) -> RobotModel {
+    RobotModel::builtin(name).expect("shipped model")
+}
+
+/// The file itself, plus the example skill library.
+pub fn program(path: &Path) -> Vec<Source> {
+    let text = std::fs::read_to_string(path).unwrap();
+    let display = path.strip_prefix(root()).unwrap().display().to_string();
+    let mut sources = vec![Source::new(display, text)];
+    let mut skills: Vec<PathBuf> = std::fs::read_dir(root().join("examples/skills"))
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .collect();
+    skills.sort();
+    for p in skills {
+        let display = p.strip_prefix(root()).unwrap().display().to_string();
+        sources.push(Source::library(display, std::fs::read_to_string(&p).unwrap()));
+    }
+    sources
+}
+
+pub fn render_files<'a>(analysis: &'a Analysis<'_>) -> Vec<RenderFile<'a>> {
+    analysis
+        .files
+        .iter()
+        .map(|f| RenderFile {
+            path: f.path,
+            text: f.text,
+        })
+        .collect()
+}
+
+pub fn human(analysis: &Analysis<'_>) -> String {
+    let out = render::human(&analysis.diagnostics, &render_files(analysis), Style::PLAIN);
+    if out.is_empty() { "(no diagnostics)\n".into() } else { out }
+}
+
+pub fn check<'s>(sources: &'s [Source], robot: &str) -> (Analysis<'s>, RobotModel) {
+    let m = model(robot);
+    let analysis = analyze(sources, &m);
+    (analysis, m)
+}
