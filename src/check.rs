@@ -74,10 +74,9 @@ pub fn check(args: &CheckArgs) -> Result<Report, String> {
     let mut diagnostics: Vec<Diagnostic> = analysis.diagnostics.clone();
     if !robot.warnings.is_empty() {
         let model_file = FileId(files.len() as u32);
-        let (path, text) = robot
-            .file
-            .as_ref()
-            .map_or((args.robot.as_str(), ""), |f| (f.path.as_str(), f.text.as_str()));
+        let (path, text) = robot.file.as_ref().map_or((args.robot.as_str(), ""), |f| {
+            (f.path.as_str(), f.text.as_str())
+        });
         files.push(RenderFile { path, text });
         let index = LineIndex::new(text);
         for w in &robot.warnings {
@@ -89,7 +88,12 @@ pub fn check(args: &CheckArgs) -> Result<Report, String> {
                 }
                 _ => Span::empty(0),
             };
-            diagnostics.push(Diagnostic::new(Code::RobotModel, model_file, span, w.message.clone()));
+            diagnostics.push(Diagnostic::new(
+                Code::RobotModel,
+                model_file,
+                span,
+                w.message.clone(),
+            ));
         }
     }
     let errors = diagnostics.iter().any(Diagnostic::is_error);

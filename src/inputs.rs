@@ -55,8 +55,8 @@ pub fn load_robot(spec: &str) -> Result<Robot, String> {
             RobotModel::builtin_names().join(", ")
         ));
     }
-    let (model, warnings) = RobotModel::load(path)
-        .map_err(|e| format!("cannot read robot model `{spec}`: {e}"))?;
+    let (model, warnings) =
+        RobotModel::load(path).map_err(|e| format!("cannot read robot model `{spec}`: {e}"))?;
     let text = std::fs::read_to_string(path).unwrap_or_default();
     Ok(Robot {
         model,

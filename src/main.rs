@@ -1,6 +1,7 @@
 //! `ilmrc`: the ILMR toolchain's command line.
 
 mod check;
+mod fmt;
 mod inputs;
 
 use std::process::ExitCode;
@@ -8,7 +9,11 @@ use std::process::ExitCode;
 use clap::{Parser, Subcommand};
 
 #[derive(Parser)]
-#[command(name = "ilmrc", version, about = "Check, build and run ILMR robot tasks")]
+#[command(
+    name = "ilmrc",
+    version,
+    about = "Check, build and run ILMR robot tasks"
+)]
 struct Cli {
     #[command(subcommand)]
     command: Cmd,
@@ -18,6 +23,8 @@ struct Cli {
 enum Cmd {
     /// Check task and skill files against a robot model (replaces `check`/`checkend`).
     Check(check::CheckArgs),
+    /// Rewrite files in canonical form (lower-case commands, `==` and `>=`, indented blocks).
+    Fmt(fmt::FmtArgs),
     /// Print the syntax tree of a file, one node per line.
     Parse {
         /// The file to parse.
@@ -40,6 +47,7 @@ fn main() -> ExitCode {
     };
     match cli.command {
         Cmd::Check(args) => check::run(args),
+        Cmd::Fmt(args) => fmt::run(args),
         Cmd::Parse { file } => match inputs::read_source(&file) {
             Ok(source) => {
                 let parsed = ilmr_compiler::parser::parse(&source.text, ilmr_compiler::FileId(0));

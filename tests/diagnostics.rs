@@ -31,7 +31,11 @@ fn broken_programs_render_for_people_and_tools() {
         let sources = load(&path);
         let robot = intended_robot(&sources[0].text).to_string();
         let (analysis, _) = check(&sources, &robot);
-        let name = path.file_name().unwrap().to_string_lossy().replace('.', "_");
+        let name = path
+            .file_name()
+            .unwrap()
+            .to_string_lossy()
+            .replace('.', "_");
         insta::assert_snapshot!(format!("human_{name}"), human(&analysis));
         let json = render::json(&analysis.diagnostics, &render_files(&analysis));
         insta::assert_snapshot!(
@@ -69,13 +73,22 @@ fn several_independent_mistakes_give_one_diagnostic_each() {
         .diagnostics
         .iter()
         .filter(|d| d.is_error())
-        .map(|d| ilmr_compiler::LineIndex::new(&sources[0].text).line_col(&sources[0].text, d.span.start as usize).0)
+        .map(|d| {
+            ilmr_compiler::LineIndex::new(&sources[0].text)
+                .line_col(&sources[0].text, d.span.start as usize)
+                .0
+        })
         .collect();
     let errors = analysis.diagnostics.iter().filter(|d| d.is_error()).count();
     assert_eq!(lines.len(), errors, "one error per broken line");
     assert_eq!(errors, 6);
     // The last line is still read and checked.
-    assert!(analysis.files[0].tree.blocks[0].stmts.iter().any(|s| s.span.slice(&sources[0].text) == "goahead(1)"));
+    assert!(
+        analysis.files[0].tree.blocks[0]
+            .stmts
+            .iter()
+            .any(|s| s.span.slice(&sources[0].text) == "goahead(1)")
+    );
 }
 
 #[test]
@@ -86,7 +99,10 @@ fn diagnostics_reference_is_fresh() {
         std::fs::write(&path, &expected).unwrap();
     }
     let actual = std::fs::read_to_string(&path).unwrap_or_default();
-    assert!(actual == expected, "docs/diagnostics.md is stale: run `UPDATE_DOCS=1 cargo test --test diagnostics`");
+    assert!(
+        actual == expected,
+        "docs/diagnostics.md is stale: run `UPDATE_DOCS=1 cargo test --test diagnostics`"
+    );
 }
 
 #[test]

@@ -19,7 +19,10 @@ fn fixtures() -> Vec<std::path::PathBuf> {
         }
     }
     files.sort();
-    assert!(files.len() >= 9, "the figures and the BNF examples are all there");
+    assert!(
+        files.len() >= 9,
+        "the figures and the BNF examples are all there"
+    );
     files
 }
 
@@ -79,5 +82,34 @@ fn skill_files_parse_into_their_skills() {
     let text = std::fs::read_to_string(root().join("examples/skills/turns.ilms")).unwrap();
     let parsed = ilmr_compiler::parser::parse(&text, ilmr_compiler::FileId(0));
     assert!(parsed.diagnostics.is_empty());
-    insta::assert_snapshot!("tree_skills_turns", ilmr_compiler::tree::render(&parsed.file));
+    insta::assert_snapshot!(
+        "tree_skills_turns",
+        ilmr_compiler::tree::render(&parsed.file)
+    );
+}
+
+#[test]
+fn formatting_the_dissertation_programs_is_stable_and_keeps_their_meaning() {
+    for path in fixtures() {
+        let text = std::fs::read_to_string(&path).unwrap();
+        let m = model(intended_robot(&text));
+        let once = ilmr_compiler::format::format(&text, &m).unwrap();
+        assert_eq!(
+            ilmr_compiler::format::format(&once, &m).unwrap(),
+            once,
+            "{}",
+            path.display()
+        );
+        let before = ilmr_compiler::parser::parse(&text, ilmr_compiler::FileId(0));
+        let after = ilmr_compiler::parser::parse(&once, ilmr_compiler::FileId(0));
+        assert_eq!(
+            before.file.blocks.len(),
+            after.file.blocks.len(),
+            "{}",
+            path.display()
+        );
+        if path.ends_with("fetch_boxes.ilmr") {
+            insta::assert_snapshot!("fmt_fetch_boxes", once);
+        }
+    }
 }

@@ -56,7 +56,10 @@ pub enum StmtKind<'s> {
         call: Call<'s>,
     },
     /// `v = expression`.
-    Assign { target: Name<'s>, value: Expr<'s> },
+    Assign {
+        target: Name<'s>,
+        value: Expr<'s>,
+    },
     If(Conditional<'s>),
     While {
         bind: Option<Name<'s>>,
@@ -68,7 +71,9 @@ pub enum StmtKind<'s> {
         end: Option<Span>,
     },
     /// `break`, or `break(pattern)` with the raw pattern text.
-    Break { pattern: Option<Pattern<'s>> },
+    Break {
+        pattern: Option<Pattern<'s>>,
+    },
     /// `priority = highest`.
     Priority,
     /// A line that does not parse; its diagnostic says why.
@@ -123,7 +128,10 @@ pub struct Args<'s> {
 pub enum Arg<'s> {
     Positional(Expr<'s>),
     /// `key = value`, as in `turn(d=90,c=0.5)`.
-    Setting { key: Name<'s>, value: Expr<'s> },
+    Setting {
+        key: Name<'s>,
+        value: Expr<'s>,
+    },
 }
 
 impl Arg<'_> {

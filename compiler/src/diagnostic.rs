@@ -187,7 +187,12 @@ impl Diagnostic {
         self
     }
 
-    pub fn with_fix(mut self, title: impl Into<String>, span: Span, replacement: impl Into<String>) -> Self {
+    pub fn with_fix(
+        mut self,
+        title: impl Into<String>,
+        span: Span,
+        replacement: impl Into<String>,
+    ) -> Self {
         self.fix = Some(Fix {
             title: title.into(),
             span,
@@ -218,10 +223,20 @@ pub fn reference_markdown() -> String {
             Severity::Error => "error",
             Severity::Warning => "warning",
         };
-        out.push_str(&format!("| [{0}](#{1}) | {sev} | {2} |\n", c.as_str(), c.as_str().to_lowercase(), c.title()));
+        out.push_str(&format!(
+            "| [{0}](#{1}) | {sev} | {2} |\n",
+            c.as_str(),
+            c.as_str().to_lowercase(),
+            c.title()
+        ));
     }
     for c in &codes {
-        out.push_str(&format!("\n## {}\n\n**{}**\n\n{}\n", c.as_str(), c.title(), c.doc()));
+        out.push_str(&format!(
+            "\n## {}\n\n**{}**\n\n{}\n",
+            c.as_str(),
+            c.title(),
+            c.doc()
+        ));
     }
     out
 }

@@ -239,7 +239,10 @@ mod tests {
 
     #[test]
     fn bare_break_and_names_that_start_with_break() {
-        assert!(matches!(kinds("break")[0], Token::Break(BreakPattern { inner: None, .. })));
+        assert!(matches!(
+            kinds("break")[0],
+            Token::Break(BreakPattern { inner: None, .. })
+        ));
         assert_eq!(kinds("breakfast")[0], Token::Ident("breakfast"));
     }
 

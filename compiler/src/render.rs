@@ -49,7 +49,11 @@ pub fn human(diagnostics: &[Diagnostic], files: &[RenderFile<'_>], style: Style)
             Severity::Error => (ReportKind::Error, Color::Red),
             Severity::Warning => (ReportKind::Warning, Color::Yellow),
         };
-        let label = if d.label.is_empty() { &d.message } else { &d.label };
+        let label = if d.label.is_empty() {
+            &d.message
+        } else {
+            &d.label
+        };
         let mut report = Report::build(kind, (path(d.file), d.span.range()))
             .with_config(config)
             .with_code(d.code.as_str())
@@ -116,7 +120,10 @@ pub struct JsonFix<'a> {
 }
 
 /// Diagnostics as JSON values with 1-based lines and character columns.
-pub fn json<'a>(diagnostics: &'a [Diagnostic], files: &[RenderFile<'a>]) -> Vec<JsonDiagnostic<'a>> {
+pub fn json<'a>(
+    diagnostics: &'a [Diagnostic],
+    files: &[RenderFile<'a>],
+) -> Vec<JsonDiagnostic<'a>> {
     let indexes: Vec<LineIndex> = files.iter().map(|f| LineIndex::new(f.text)).collect();
     let pos = |file: crate::FileId, offset: u32| {
         let i = file.0 as usize;

@@ -44,7 +44,11 @@ fn blocks(out: &mut String, depth: usize, list: &[Block<'_>]) {
             match &stmt.kind {
                 StmtKind::Call { bind, call: c } => {
                     let bind = bind.map_or(String::new(), |b| format!("{} = ", b.text));
-                    line(out, depth + 1, format_args!("Call {bind}{} {at}", c.name.text));
+                    line(
+                        out,
+                        depth + 1,
+                        format_args!("Call {bind}{} {at}", c.name.text),
+                    );
                     call_args(out, depth + 2, c);
                 }
                 StmtKind::Assign { target, value } => {
@@ -95,7 +99,11 @@ fn call_args(out: &mut String, depth: usize, call: &Call<'_>) {
         match arg {
             Arg::Positional(e) => expr(out, depth, e),
             Arg::Setting { key, value } => {
-                line(out, depth, format_args!("Setting {} {}", key.text, span(key.span)));
+                line(
+                    out,
+                    depth,
+                    format_args!("Setting {} {}", key.text, span(key.span)),
+                );
                 expr(out, depth + 1, value);
             }
         }

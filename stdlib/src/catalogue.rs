@@ -4,8 +4,8 @@
 use crate::Command;
 use crate::spec::{
     Category::{self, *},
-    CommandSpec, Form, Limit, ModelNames, NameSpace, Occurs, Param, ParamKind, Range, Syntax,
-    Unit, VarKind,
+    CommandSpec, Form, Limit, ModelNames, NameSpace, Occurs, Param, ParamKind, Range, Syntax, Unit,
+    VarKind,
 };
 
 const fn param(name: &'static str, kind: ParamKind, occurs: Occurs, doc: &'static str) -> Param {
@@ -639,7 +639,12 @@ pub static CATALOGUE: [CommandSpec; Command::COUNT] = [
         "followtarget ::= \"followtarget\" \"(\" target \",\" distance \")\"",
         &[form(
             &[
-                param("target", OBJECT, Occurs::One, "an object of the robot model"),
+                param(
+                    "target",
+                    OBJECT,
+                    Occurs::One,
+                    "an object of the robot model",
+                ),
                 param(
                     "distance",
                     value(Unit::Metres, Range::Positive),
@@ -669,7 +674,12 @@ pub static CATALOGUE: [CommandSpec; Command::COUNT] = [
                 &[
                     param("x", METRES, Occurs::One, "x in metres"),
                     param("y", METRES, Occurs::One, "y in metres"),
-                    param("h", HEADING, Occurs::Optional, "heading at the goal in degrees"),
+                    param(
+                        "h",
+                        HEADING,
+                        Occurs::Optional,
+                        "heading at the goal in degrees",
+                    ),
                     param(
                         "r",
                         keyword(&["r"]),
@@ -808,9 +818,24 @@ pub static CATALOGUE: [CommandSpec; Command::COUNT] = [
         &[
             form(
                 &[
-                    param("sensor", DEVICE, Occurs::One, "a sensor of the model, by name or number"),
-                    param("object", OBJECT, Occurs::One, "an object of the model to look for"),
-                    param("side", DIRECTION, Occurs::Optional, "look only on this side"),
+                    param(
+                        "sensor",
+                        DEVICE,
+                        Occurs::One,
+                        "a sensor of the model, by name or number",
+                    ),
+                    param(
+                        "object",
+                        OBJECT,
+                        Occurs::One,
+                        "an object of the model to look for",
+                    ),
+                    param(
+                        "side",
+                        DIRECTION,
+                        Occurs::Optional,
+                        "look only on this side",
+                    ),
                     param(
                         "forever",
                         keyword(&["forever"]),
@@ -824,7 +849,12 @@ pub static CATALOGUE: [CommandSpec; Command::COUNT] = [
             ),
             form(
                 &[
-                    param("sensor", DEVICE, Occurs::One, "a sensor of the model, by name or number"),
+                    param(
+                        "sensor",
+                        DEVICE,
+                        Occurs::One,
+                        "a sensor of the model, by name or number",
+                    ),
                     param(
                         "which",
                         ParamKind::OneOf {
@@ -868,7 +898,12 @@ pub static CATALOGUE: [CommandSpec; Command::COUNT] = [
         "findtarget ::= \"findtarget\" \"(\" sensorID \",\" object \")\"",
         &[form(
             &[
-                param("sensor", DEVICE, Occurs::One, "a camera or scanner of the model"),
+                param(
+                    "sensor",
+                    DEVICE,
+                    Occurs::One,
+                    "a camera or scanner of the model",
+                ),
                 param("object", OBJECT, Occurs::One, "an object of the model"),
             ],
             2,
@@ -890,11 +925,19 @@ pub static CATALOGUE: [CommandSpec; Command::COUNT] = [
         "actuator ::= \"actuator\" \"(\" actuatorID \",\" value \")\"\nactuatorID ::= name | number\nvalue ::= on | off | number",
         &[form(
             &[
-                param("actuator", DEVICE, Occurs::One, "an actuator of the model, by name or number"),
+                param(
+                    "actuator",
+                    DEVICE,
+                    Occurs::One,
+                    "an actuator of the model, by name or number",
+                ),
                 param(
                     "value",
                     ParamKind::OneOf {
-                        kinds: &[keyword(&["on", "off"]), value(Unit::None, Range::DeviceRange)],
+                        kinds: &[
+                            keyword(&["on", "off"]),
+                            value(Unit::None, Range::DeviceRange),
+                        ],
                     },
                     Occurs::One,
                     "on, off, or a reference value within the actuator's range",
@@ -984,7 +1027,9 @@ pub static CATALOGUE: [CommandSpec; Command::COUNT] = [
         "Repeats its block while its condition holds.",
         "False ends it; true starts the body; when every command started by that iteration has \
          ended, the condition is evaluated again. `v = while(..)` binds its status.",
-        &["loop=while(cnt<5)\n    door = sensor(scanner,door,left)\n    if(door)\n        cnt = cnt + 1\n    endif\nendwhile"],
+        &[
+            "loop=while(cnt<5)\n    door = sensor(scanner,door,left)\n    if(door)\n        cnt = cnt + 1\n    endif\nendwhile",
+        ],
         "4.5.5",
     )),
     structural(spec(

@@ -43,10 +43,20 @@ pub fn reference_markdown() -> String {
                         Occurs::Many => " (any number)",
                         Occurs::Pairs => " (pairs)",
                     };
-                    let _ = writeln!(out, "  - `{}`{occurs}: {} — {}", p.name, kind_text(&p.kind), p.doc);
+                    let _ = writeln!(
+                        out,
+                        "  - `{}`{occurs}: {} — {}",
+                        p.name,
+                        kind_text(&p.kind),
+                        p.doc
+                    );
                 }
             }
-            let examples: Vec<String> = spec.examples.iter().map(|e| format!("`{}`", e.replace('\n', "` / `"))).collect();
+            let examples: Vec<String> = spec
+                .examples
+                .iter()
+                .map(|e| format!("`{}`", e.replace('\n', "` / `")))
+                .collect();
             let _ = writeln!(out, "\nExamples: {}", examples.join(", "));
         }
     }
@@ -56,9 +66,17 @@ pub fn reference_markdown() -> String {
 fn kind_text(kind: &ParamKind) -> String {
     match *kind {
         ParamKind::Keyword { words } => words.join(" \\| "),
-        ParamKind::Mode { words, what } => format!("{what}: {} (as the model defines)", words.join(" \\| ")),
-        ParamKind::Value { unit, range } => format!("number{}{}", unit_text(unit.symbol()), range_text(range)),
-        ParamKind::Setting { key, unit, range } => format!("`{key}=` number{}{}", unit_text(unit.symbol()), range_text(range)),
+        ParamKind::Mode { words, what } => {
+            format!("{what}: {} (as the model defines)", words.join(" \\| "))
+        }
+        ParamKind::Value { unit, range } => {
+            format!("number{}{}", unit_text(unit.symbol()), range_text(range))
+        }
+        ParamKind::Setting { key, unit, range } => format!(
+            "`{key}=` number{}{}",
+            unit_text(unit.symbol()),
+            range_text(range)
+        ),
         ParamKind::Model { names } => match names {
             ModelNames::Device => "sensor or actuator of the model (name or number)".into(),
             ModelNames::Object => "object of the model".into(),
@@ -72,7 +90,11 @@ fn kind_text(kind: &ParamKind) -> String {
 }
 
 fn unit_text(symbol: &str) -> String {
-    if symbol.is_empty() { String::new() } else { format!(" [{symbol}]") }
+    if symbol.is_empty() {
+        String::new()
+    } else {
+        format!(" [{symbol}]")
+    }
 }
 
 fn range_text(range: Range) -> String {

@@ -165,17 +165,30 @@ pub enum Limit {
 pub enum Range {
     Any,
     /// Inclusive bounds.
-    Between { min: f64, max: f64, limit: Limit },
+    Between {
+        min: f64,
+        max: f64,
+        limit: Limit,
+    },
     /// Greater than zero.
     Positive,
     /// Zero or more.
     NonNegative,
     /// `-param ..= param` of the robot model.
-    Symmetric { param: &'static str, limit: Limit },
+    Symmetric {
+        param: &'static str,
+        limit: Limit,
+    },
     /// `|v| <= param`: the sign is free (a turn's curvature), the magnitude bounded.
-    Magnitude { param: &'static str, limit: Limit },
+    Magnitude {
+        param: &'static str,
+        limit: Limit,
+    },
     /// `0 ..= param` of the robot model (road clearance).
-    UpTo { param: &'static str, limit: Limit },
+    UpTo {
+        param: &'static str,
+        limit: Limit,
+    },
     /// The `min ..= max` of the device named by the command's device argument.
     DeviceRange,
     /// `0 .. readings` of the device named by the command's device argument.
@@ -201,11 +214,18 @@ pub enum ParamKind {
     /// Exactly one of these words.
     Keyword { words: &'static [&'static str] },
     /// One of these words, each of which the robot model must define in `[IDENTIFIERS]`.
-    Mode { words: &'static [&'static str], what: &'static str },
+    Mode {
+        words: &'static [&'static str],
+        what: &'static str,
+    },
     /// A number: a literal, a model constant, a variable's value or arithmetic of these.
     Value { unit: Unit, range: Range },
     /// `key = value`, in any order among the other settings.
-    Setting { key: &'static str, unit: Unit, range: Range },
+    Setting {
+        key: &'static str,
+        unit: Unit,
+        range: Range,
+    },
     /// A name from the robot model.
     Model { names: ModelNames },
     /// A variable that holds a position (found object, saved position, movement end pose).

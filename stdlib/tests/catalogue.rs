@@ -21,7 +21,12 @@ fn table_7_has_33_commands_in_four_categories() {
 #[test]
 fn exactly_the_movement_category_takes_the_movement_reservation() {
     for spec in &CATALOGUE {
-        assert_eq!(spec.movement, spec.category == Category::Movement, "{}", spec.name);
+        assert_eq!(
+            spec.movement,
+            spec.category == Category::Movement,
+            "{}",
+            spec.name
+        );
     }
 }
 
@@ -29,7 +34,10 @@ fn exactly_the_movement_category_takes_the_movement_reservation() {
 fn names_are_lowercase_and_found_in_any_case() {
     for spec in &CATALOGUE {
         assert_eq!(spec.name, spec.name.to_ascii_lowercase());
-        assert_eq!(Command::from_name(&spec.name.to_ascii_uppercase()), Some(spec.command));
+        assert_eq!(
+            Command::from_name(&spec.name.to_ascii_uppercase()),
+            Some(spec.command)
+        );
         assert_eq!(Command::from_name(spec.title), Some(spec.command));
     }
     assert_eq!(Command::from_name("goaheadx"), None);
@@ -51,9 +59,29 @@ fn call_commands_have_forms_and_structural_ones_do_not() {
 fn min_args_never_exceeds_the_parameters_of_its_form() {
     for spec in &CATALOGUE {
         for form in spec.forms {
-            let required = form.params.iter().filter(|p| p.occurs == Occurs::One).count();
-            assert!(form.min_args as usize >= required || form.params.iter().all(|p| matches!(p.kind, ParamKind::Setting { .. })), "{}", spec.name);
-            assert!(form.min_args as usize <= form.params.len().max(1) || form.params.iter().any(|p| matches!(p.occurs, Occurs::Many | Occurs::Pairs)), "{}", spec.name);
+            let required = form
+                .params
+                .iter()
+                .filter(|p| p.occurs == Occurs::One)
+                .count();
+            assert!(
+                form.min_args as usize >= required
+                    || form
+                        .params
+                        .iter()
+                        .all(|p| matches!(p.kind, ParamKind::Setting { .. })),
+                "{}",
+                spec.name
+            );
+            assert!(
+                form.min_args as usize <= form.params.len().max(1)
+                    || form
+                        .params
+                        .iter()
+                        .any(|p| matches!(p.occurs, Occurs::Many | Occurs::Pairs)),
+                "{}",
+                spec.name
+            );
         }
     }
 }
@@ -61,7 +89,20 @@ fn min_args_never_exceeds_the_parameters_of_its_form() {
 #[test]
 fn keywords_are_collected_from_the_grammars() {
     let words = ilmr_stdlib::all_keywords();
-    for w in ["left", "right", "middle", "forever", "backwards", "reverse", "w", "r", "on", "off", "goalpos", "take"] {
+    for w in [
+        "left",
+        "right",
+        "middle",
+        "forever",
+        "backwards",
+        "reverse",
+        "w",
+        "r",
+        "on",
+        "off",
+        "goalpos",
+        "take",
+    ] {
         assert!(words.contains(&w), "{w}");
     }
     assert!(Command::Turn.spec().has_keyword("LEFT"));
@@ -76,5 +117,8 @@ fn command_reference_is_fresh() {
         std::fs::write(&path, &expected).unwrap();
     }
     let actual = std::fs::read_to_string(&path).unwrap_or_default();
-    assert!(actual == expected, "docs/commands.md is stale: run `UPDATE_DOCS=1 cargo test -p ilmr-stdlib`");
+    assert!(
+        actual == expected,
+        "docs/commands.md is stale: run `UPDATE_DOCS=1 cargo test -p ilmr-stdlib`"
+    );
 }

@@ -38,7 +38,10 @@ pub fn program(path: &Path) -> Vec<Source> {
     skills.sort();
     for p in skills {
         let display = p.strip_prefix(root()).unwrap().display().to_string();
-        sources.push(Source::library(display, std::fs::read_to_string(&p).unwrap()));
+        sources.push(Source::library(
+            display,
+            std::fs::read_to_string(&p).unwrap(),
+        ));
     }
     sources
 }
@@ -56,7 +59,11 @@ pub fn render_files<'a>(analysis: &'a Analysis<'_>) -> Vec<RenderFile<'a>> {
 
 pub fn human(analysis: &Analysis<'_>) -> String {
     let out = render::human(&analysis.diagnostics, &render_files(analysis), Style::PLAIN);
-    if out.is_empty() { "(no diagnostics)\n".into() } else { out }
+    if out.is_empty() {
+        "(no diagnostics)\n".into()
+    } else {
+        out
+    }
 }
 
 pub fn check<'s>(sources: &'s [Source], robot: &str) -> (Analysis<'s>, RobotModel) {

@@ -3,7 +3,9 @@
 //! reported, so `turn(lft)` says "did you mean `left`?" rather than listing every form.
 
 use ilmr_model::Device;
-use ilmr_stdlib::{CommandSpec, Form, Limit, ModelNames, NameSpace, Occurs, ParamKind, Range, VarKind};
+use ilmr_stdlib::{
+    CommandSpec, Form, Limit, ModelNames, NameSpace, Occurs, ParamKind, Range, VarKind,
+};
 
 use crate::ast::{Arg, Args, Expr, ExprKind, Name};
 use crate::check::expr::Value;
@@ -84,7 +86,9 @@ impl<'m, 'v> Cx<'m, 'v> {
                     }
                     None => {
                         m.cost += COST_COUNT;
-                        let span = positional.last().map_or(at, |e| Span::empty(e.span.end as usize));
+                        let span = positional
+                            .last()
+                            .map_or(at, |e| Span::empty(e.span.end as usize));
                         m.findings.diags.push(self.count_error(
                             spec,
                             span,
@@ -135,7 +139,10 @@ impl<'m, 'v> Cx<'m, 'v> {
             m.findings.diags.push(self.count_error(
                 spec,
                 at,
-                format!("`{}` needs at least {} argument(s)", spec.name, form.min_args),
+                format!(
+                    "`{}` needs at least {} argument(s)",
+                    spec.name, form.min_args
+                ),
             ));
         }
         m
@@ -156,7 +163,9 @@ impl<'m, 'v> Cx<'m, 'v> {
                 .flat_map(|p| keyword_words(&p.kind))
                 .collect();
             let misplaced = words.iter().any(|w| name.is(w));
-            if let Some(s) = suggest::closest(name.text, words.iter().copied()).filter(|_| !misplaced) {
+            if let Some(s) =
+                suggest::closest(name.text, words.iter().copied()).filter(|_| !misplaced)
+            {
                 return Diagnostic::new(
                     Code::UnknownKeyword,
                     self.file,
@@ -188,7 +197,9 @@ impl<'m, 'v> Cx<'m, 'v> {
             ParamKind::OneOf { kinds } => kinds.iter().any(|k| self.fits(spec, k, e)),
             ParamKind::Model {
                 names: ModelNames::Device,
-            } => matches!(e.kind, ExprKind::Number(_)) || name.is_some_and(|n| !spec.has_keyword(n)),
+            } => {
+                matches!(e.kind, ExprKind::Number(_)) || name.is_some_and(|n| !spec.has_keyword(n))
+            }
             ParamKind::Value { .. } => name.is_none_or(|n| !spec.has_keyword(n)),
             _ => name.is_some_and(|n| !spec.has_keyword(n)),
         }
@@ -224,12 +235,12 @@ impl<'m, 'v> Cx<'m, 'v> {
                                 Code::UnsupportedMode,
                                 self.file,
                                 n.span,
-                                format!(
-                                    "robot `{}` has no {what} `{}`",
-                                    self.model.name, n.text
-                                ),
+                                format!("robot `{}` has no {what} `{}`", self.model.name, n.text),
                             )
-                            .with_label(format!("not among the [IDENTIFIERS] of {}", self.model.name)),
+                            .with_label(format!(
+                                "not among the [IDENTIFIERS] of {}",
+                                self.model.name
+                            )),
                         );
                     }
                 }
@@ -256,19 +267,23 @@ impl<'m, 'v> Cx<'m, 'v> {
                 }
                 None => self.wrong_kind(m, e, "a name"),
             },
-            ParamKind::OneOf { kinds } => {
-                match kinds.iter().find(|k| self.fits(spec, k, e)) {
-                    Some(chosen) => self.accept(m, spec, param, chosen, e, device),
-                    None => {
-                        let expected: Vec<String> = kinds.iter().map(describe).collect();
-                        self.wrong_kind(m, e, &expected.join(" or "));
-                    }
+            ParamKind::OneOf { kinds } => match kinds.iter().find(|k| self.fits(spec, k, e)) {
+                Some(chosen) => self.accept(m, spec, param, chosen, e, device),
+                None => {
+                    let expected: Vec<String> = kinds.iter().map(describe).collect();
+                    self.wrong_kind(m, e, &expected.join(" or "));
                 }
-            }
+            },
         }
     }
 
-    fn not_a_keyword(&mut self, m: &mut FormMatch<'_>, spec: &CommandSpec, words: &[&str], e: &Expr<'_>) {
+    fn not_a_keyword(
+        &mut self,
+        m: &mut FormMatch<'_>,
+        spec: &CommandSpec,
+        words: &[&str],
+        e: &Expr<'_>,
+    ) {
         let ExprKind::Name(n) = &e.kind else {
             m.cost += COST_KIND;
             m.findings.diags.push(
@@ -291,10 +306,13 @@ impl<'m, 'v> Cx<'m, 'v> {
         match suggest::closest(n.text, words.iter().copied()) {
             Some(s) => {
                 m.cost += COST_KIND;
-                m.findings.diags.push(
-                    d.with_label(format!("did you mean `{s}`?"))
-                        .with_fix(format!("replace with `{s}`"), n.span, s),
-                );
+                m.findings
+                    .diags
+                    .push(d.with_label(format!("did you mean `{s}`?")).with_fix(
+                        format!("replace with `{s}`"),
+                        n.span,
+                        s,
+                    ));
             }
             None => {
                 m.cost += COST_STRANGER;
@@ -321,7 +339,15 @@ impl<'m, 'v> Cx<'m, 'v> {
 
     fn variable(&mut self, m: &mut FormMatch<'_>, e: &Expr<'_>, position: bool) {
         let ExprKind::Name(n) = &e.kind else {
-            return self.wrong_kind(m, e, if position { "a position variable" } else { "a variable" });
+            return self.wrong_kind(
+                m,
+                e,
+                if position {
+                    "a position variable"
+                } else {
+                    "a variable"
+                },
+            );
         };
         let Some(id) = self.vars.bound(n.text) else {
             m.cost += COST_KIND;
@@ -368,7 +394,10 @@ impl<'m, 'v> Cx<'m, 'v> {
                                 Code::UnknownDevice,
                                 self.file,
                                 e.span,
-                                format!("robot `{}` has no sensor or actuator number {n}", model.name),
+                                format!(
+                                    "robot `{}` has no sensor or actuator number {n}",
+                                    model.name
+                                ),
                             )
                             .with_label("not in [SENSORSANDACTUATORS]"),
                         );
@@ -377,7 +406,10 @@ impl<'m, 'v> Cx<'m, 'v> {
             }
             (ExprKind::Name(n), _) => {
                 let found = match names {
-                    ModelNames::Device => model.device(n.text).inspect(|d| *device = Some(d)).is_some(),
+                    ModelNames::Device => model
+                        .device(n.text)
+                        .inspect(|d| *device = Some(d))
+                        .is_some(),
                     ModelNames::Object => model.object(n.text).is_some(),
                     ModelNames::Service => {
                         model.device(n.text).is_some() || model.identifier(n.text).is_some()
@@ -419,12 +451,16 @@ impl<'m, 'v> Cx<'m, 'v> {
                     n.span,
                     format!("robot `{}` has no {what} `{}`", model.name, n.text),
                 );
-                m.findings.diags.push(match suggest::closest(n.text, candidates) {
-                    Some(s) => d
-                        .with_label(format!("did you mean `{s}`?"))
-                        .with_fix(format!("replace with `{s}`"), n.span, s),
-                    None => d.with_label(format!("not in {section} of the robot model")),
-                });
+                m.findings
+                    .diags
+                    .push(match suggest::closest(n.text, candidates) {
+                        Some(s) => d.with_label(format!("did you mean `{s}`?")).with_fix(
+                            format!("replace with `{s}`"),
+                            n.span,
+                            s,
+                        ),
+                        None => d.with_label(format!("not in {section} of the robot model")),
+                    });
             }
             _ => self.wrong_kind(m, e, &describe(&ParamKind::Model { names })),
         }
@@ -467,13 +503,19 @@ impl<'m, 'v> Cx<'m, 'v> {
                         format!("`{}` has no setting `{}`", spec.name, key.text)
                     },
                 );
-                m.findings.diags.push(match suggest::closest(key.text, keys.iter().copied()) {
-                    Some(s) => d
-                        .with_label(format!("did you mean `{s}=`?"))
-                        .with_fix(format!("replace with `{s}`"), key.span, s),
-                    None if keys.is_empty() => d.with_label("not a setting of this form"),
-                    None => d.with_label(format!("its settings are {}", suggest::one_of(&keys))),
-                });
+                m.findings
+                    .diags
+                    .push(match suggest::closest(key.text, keys.iter().copied()) {
+                        Some(s) => d.with_label(format!("did you mean `{s}=`?")).with_fix(
+                            format!("replace with `{s}`"),
+                            key.span,
+                            s,
+                        ),
+                        None if keys.is_empty() => d.with_label("not a setting of this form"),
+                        None => {
+                            d.with_label(format!("its settings are {}", suggest::one_of(&keys)))
+                        }
+                    });
                 self.value(&mut m.findings, value);
                 continue;
             };
@@ -540,13 +582,27 @@ impl<'m, 'v> Cx<'m, 'v> {
             ),
             Range::Positive => (v > 0.0, Limit::Refuse, "greater than 0".into()),
             Range::NonNegative => (v >= 0.0, Limit::Refuse, "0 or more".into()),
-            Range::Symmetric { param: bound, limit } | Range::Magnitude { param: bound, limit } => {
+            Range::Symmetric {
+                param: bound,
+                limit,
+            }
+            | Range::Magnitude {
+                param: bound,
+                limit,
+            } => {
                 let Some(p) = param_bound(bound) else {
                     return self.unsupported(m, bound, span);
                 };
-                (v.abs() <= p, limit, format!("within ±{p} (`{bound}` of {})", model.name))
+                (
+                    v.abs() <= p,
+                    limit,
+                    format!("within ±{p} (`{bound}` of {})", model.name),
+                )
             }
-            Range::UpTo { param: bound, limit } => {
+            Range::UpTo {
+                param: bound,
+                limit,
+            } => {
                 let Some(p) = param_bound(bound) else {
                     return self.unsupported(m, bound, span);
                 };
@@ -561,7 +617,10 @@ impl<'m, 'v> Cx<'m, 'v> {
                 (
                     (d.min..=d.max).contains(&v),
                     Limit::Refuse,
-                    format!("between {} and {} (the range of `{}`)", d.min, d.max, d.name),
+                    format!(
+                        "between {} and {} (the range of `{}`)",
+                        d.min, d.max, d.name
+                    ),
                 )
             }
             Range::ReadingIndex => {
@@ -595,15 +654,17 @@ impl<'m, 'v> Cx<'m, 'v> {
             ),
             Limit::Warn => (
                 Code::BeyondCapability,
-                format!("{v} is beyond what {} can do as the {param} of `{}`", model.name, spec.name),
+                format!(
+                    "{v} is beyond what {} can do as the {param} of `{}`",
+                    model.name, spec.name
+                ),
             ),
         };
         if code == Code::OutOfRange {
             m.cost += COST_KIND;
         }
         m.findings.diags.push(
-            Diagnostic::new(code, self.file, span, message)
-                .with_label(format!("must be {bound}")),
+            Diagnostic::new(code, self.file, span, message).with_label(format!("must be {bound}")),
         );
     }
 
@@ -629,9 +690,15 @@ fn describe(kind: &ParamKind) -> String {
     match *kind {
         ParamKind::Keyword { words } | ParamKind::Mode { words, .. } => suggest::one_of(words),
         ParamKind::Value { .. } | ParamKind::Setting { .. } => "a number".into(),
-        ParamKind::Model { names: ModelNames::Device } => "a sensor or actuator of the robot model".into(),
-        ParamKind::Model { names: ModelNames::Object } => "an object of the robot model".into(),
-        ParamKind::Model { names: ModelNames::Service } => "a sensor or service of the robot model".into(),
+        ParamKind::Model {
+            names: ModelNames::Device,
+        } => "a sensor or actuator of the robot model".into(),
+        ParamKind::Model {
+            names: ModelNames::Object,
+        } => "an object of the robot model".into(),
+        ParamKind::Model {
+            names: ModelNames::Service,
+        } => "a sensor or service of the robot model".into(),
         ParamKind::Position => "a position variable".into(),
         ParamKind::Variable => "a variable".into(),
         ParamKind::Name { .. } => "a name".into(),

@@ -40,11 +40,13 @@ pub fn check_patterns(files: &[FileEntry<'_>], skills: &Skills, diags: &mut Vec<
                 continue;
             }
         }
-        entry.tree.for_each_stmt(&mut |stmt: &Stmt<'_>| match &stmt.kind {
-            StmtKind::Break { pattern: Some(p) } => patterns.push((file, *p)),
-            StmtKind::Break { pattern: None } | StmtKind::Error => {}
-            _ => statements.push((file, stmt.span, stmt.span.slice(entry.text))),
-        });
+        entry
+            .tree
+            .for_each_stmt(&mut |stmt: &Stmt<'_>| match &stmt.kind {
+                StmtKind::Break { pattern: Some(p) } => patterns.push((file, *p)),
+                StmtKind::Break { pattern: None } | StmtKind::Error => {}
+                _ => statements.push((file, stmt.span, stmt.span.slice(entry.text))),
+            });
         // What stands between `check` and `checkend` never runs, so no break can end it.
         let mut inside_check = Vec::new();
         entry.tree.for_each_stmt(&mut |stmt: &Stmt<'_>| {
@@ -53,7 +55,10 @@ pub fn check_patterns(files: &[FileEntry<'_>], skills: &Skills, diags: &mut Vec<
             }
         });
         statements.retain(|(f, span, _)| {
-            *f != file || !inside_check.iter().any(|b| b.start <= span.start && span.end <= b.end)
+            *f != file
+                || !inside_check
+                    .iter()
+                    .any(|b| b.start <= span.start && span.end <= b.end)
         });
     }
     for (file, pattern) in patterns {

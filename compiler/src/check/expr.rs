@@ -109,9 +109,11 @@ impl Cx<'_, '_> {
         )
         .with_label("no variable or model constant of this name yet");
         match suggest::closest(name.text, candidates.iter().map(String::as_str)) {
-            Some(s) => d
-                .with_help(format!("did you mean `{s}`?"))
-                .with_fix(format!("replace with `{s}`"), name.span, s),
+            Some(s) => d.with_help(format!("did you mean `{s}`?")).with_fix(
+                format!("replace with `{s}`"),
+                name.span,
+                s,
+            ),
             None => d.with_help(
                 "bind it first, e.g. `v = sensor(...)` or `v = 0`, in a statement above this one",
             ),

@@ -65,7 +65,10 @@ pub enum Resolved {
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Target {
     /// A command and the index of the form its arguments matched.
-    Command { command: Command, form: usize },
+    Command {
+        command: Command,
+        form: usize,
+    },
     Skill(SkillId),
     /// `v = w` copies the record of another variable.
     Copy(VarId),
@@ -282,7 +285,11 @@ impl<'a, 'm> Walker<'a, 'm> {
                             "`priority = highest` must be the first statement of its block",
                         )
                         .with_label("not first in its block")
-                        .with_secondary(self.unit.file, block.stmts[0].span, "the block starts here")
+                        .with_secondary(
+                            self.unit.file,
+                            block.stmts[0].span,
+                            "the block starts here",
+                        )
                         .with_help("separate it from the statements above with an empty line"),
                     );
                 }
@@ -340,17 +347,23 @@ impl<'a, 'm> Walker<'a, 'm> {
     /// `v = name`: a skill call, a bare command, a copy of a variable or a model constant.
     fn assign_name(&mut self, name: &Name<'_>, stmt: Span) -> Option<VarKind> {
         if self.unit.vars.bound(name.text).is_none() && self.model_constant(name.text).is_none() {
-            let call = Call { name: *name, args: None };
+            let call = Call {
+                name: *name,
+                args: None,
+            };
             if self.skills.find(name.text).is_some() || Command::from_name(name.text).is_some() {
                 return self.call(&call, stmt);
             }
         }
         let mut f = Findings::default();
         let copied = self.unit.vars.bound(name.text);
-        self.cx().value(&mut f, &crate::ast::Expr {
-            kind: ExprKind::Name(*name),
-            span: name.span,
-        });
+        self.cx().value(
+            &mut f,
+            &crate::ast::Expr {
+                kind: ExprKind::Name(*name),
+                span: name.span,
+            },
+        );
         // A position copied keeps being a position; `value` reports it as a misuse only
         // where a number is needed, so take the copy before that check.
         let kind = copied.map(|id| self.unit.vars.get(id).kind);
@@ -434,7 +447,10 @@ impl<'a, 'm> Walker<'a, 'm> {
             Code::UnknownCommand,
             file,
             call.name.span,
-            format!("`{}` is neither a command nor a known skill", call.name.text),
+            format!(
+                "`{}` is neither a command nor a known skill",
+                call.name.text
+            ),
         );
         self.diagnostics
             .push(match suggest::closest(call.name.text, candidates) {

@@ -36,7 +36,11 @@ pub struct Skills {
 }
 
 impl Skills {
-    pub fn collect(files: &[FileEntry<'_>], model: &RobotModel, diags: &mut Vec<Diagnostic>) -> Skills {
+    pub fn collect(
+        files: &[FileEntry<'_>],
+        model: &RobotModel,
+        diags: &mut Vec<Diagnostic>,
+    ) -> Skills {
         let mut skills = Skills::default();
         // User files first, so that a user's skill replaces a built-in of the same name.
         let order = files
@@ -61,7 +65,11 @@ impl Skills {
                                 format!("skill `{}` is defined twice", skill.name.text),
                             )
                             .with_label("defined again here")
-                            .with_secondary(first.file, first.header, "first defined here"),
+                            .with_secondary(
+                                first.file,
+                                first.header,
+                                "first defined here",
+                            ),
                         );
                     }
                     continue;
@@ -141,7 +149,10 @@ impl Skills {
     }
 
     pub fn iter(&self) -> impl Iterator<Item = (SkillId, &SkillInfo)> {
-        self.list.iter().enumerate().map(|(i, s)| (SkillId(i as u32), s))
+        self.list
+            .iter()
+            .enumerate()
+            .map(|(i, s)| (SkillId(i as u32), s))
     }
 
     pub fn names(&self) -> impl Iterator<Item = &str> {
@@ -150,7 +161,10 @@ impl Skills {
 
     /// Every variable bound in any skill.
     pub fn all_binds(&self) -> Vec<(String, VarKind)> {
-        self.list.iter().flat_map(|s| s.binds.iter().cloned()).collect()
+        self.list
+            .iter()
+            .flat_map(|s| s.binds.iter().cloned())
+            .collect()
     }
 
     /// The variables a call of this skill binds, through the skills it calls.
@@ -191,9 +205,14 @@ impl Skills {
                 match marks[callee.0 as usize] {
                     Mark::Active => {
                         let caller = skills.get(id);
-                        let start = path.iter().position(|(s, _)| *s == callee).unwrap_or(path.len());
-                        let mut cycle: Vec<&str> =
-                            path[start..].iter().map(|(s, _)| skills.get(*s).name.as_str()).collect();
+                        let start = path
+                            .iter()
+                            .position(|(s, _)| *s == callee)
+                            .unwrap_or(path.len());
+                        let mut cycle: Vec<&str> = path[start..]
+                            .iter()
+                            .map(|(s, _)| skills.get(*s).name.as_str())
+                            .collect();
                         cycle.push(caller.name.as_str());
                         cycle.push(skills.get(callee).name.as_str());
                         cycle.dedup();
@@ -201,12 +220,20 @@ impl Skills {
                             Code::RecursiveSkill,
                             caller.file,
                             span,
-                            format!("skill `{}` calls itself: {}", skills.get(callee).name, cycle.join(" -> ")),
+                            format!(
+                                "skill `{}` calls itself: {}",
+                                skills.get(callee).name,
+                                cycle.join(" -> ")
+                            ),
                         )
                         .with_label("this call closes the cycle");
                         for &(s, call) in &path[start..] {
                             let info = skills.get(s);
-                            d = d.with_secondary(info.file, call, format!("called from `{}`", info.name));
+                            d = d.with_secondary(
+                                info.file,
+                                call,
+                                format!("called from `{}`", info.name),
+                            );
                         }
                         diags.push(d);
                     }
@@ -257,7 +284,10 @@ fn scan(
                 StmtKind::Assign { target, value } => {
                     let kind = match &value.kind {
                         ExprKind::Name(n) if skills.find(n.text).is_some() => {
-                            let call = Call { name: *n, args: None };
+                            let call = Call {
+                                name: *n,
+                                args: None,
+                            };
                             call_kind(&call, skills, model, calls)
                         }
                         _ => Some(VarKind::Number),
@@ -271,7 +301,10 @@ fn scan(
                     }
                     scan(&body.body, skills, model, calls, binds);
                 }
-                StmtKind::Check { .. } | StmtKind::Break { .. } | StmtKind::Priority | StmtKind::Error => {}
+                StmtKind::Check { .. }
+                | StmtKind::Break { .. }
+                | StmtKind::Priority
+                | StmtKind::Error => {}
             }
         }
     }

@@ -115,7 +115,9 @@ pub fn build<'s>(
 
 impl<'s> Builder<'s, '_> {
     fn top(&mut self) -> &mut Frame<'s> {
-        self.stack.last_mut().expect("the root frame is never popped")
+        self.stack
+            .last_mut()
+            .expect("the root frame is never popped")
     }
 
     fn line(&mut self, parsed: ParsedLine<'s>) {
@@ -123,16 +125,21 @@ impl<'s> Builder<'s, '_> {
         match parsed.line {
             Line::Blank => self.top().flush(),
             Line::Stmt(kind) => self.top().current.push(Stmt { kind, span }),
-            Line::IfHead { keyword, cond } => {
-                self.stack.push(Frame::new(Opener::If { keyword, cond }, span))
-            }
+            Line::IfHead { keyword, cond } => self
+                .stack
+                .push(Frame::new(Opener::If { keyword, cond }, span)),
             Line::WhileHead {
                 bind,
                 keyword,
                 cond,
-            } => self
-                .stack
-                .push(Frame::new(Opener::While { bind, keyword, cond }, span)),
+            } => self.stack.push(Frame::new(
+                Opener::While {
+                    bind,
+                    keyword,
+                    cond,
+                },
+                span,
+            )),
             Line::Check => self.stack.push(Frame::new(Opener::Check, span)),
             Line::EndIf => self.close(Closer::EndIf, span),
             Line::EndWhile => self.close(Closer::EndWhile, span),

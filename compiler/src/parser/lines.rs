@@ -88,11 +88,15 @@ where
             keyword,
             cond: error_expr(e.span()),
         });
-    let broken_line = choice((broken_if, broken_while, rest.to(Line::Stmt(StmtKind::Error))))
-        .map_with(|line, e| ParsedLine {
-            line,
-            span: e.span(),
-        });
+    let broken_line = choice((
+        broken_if,
+        broken_while,
+        rest.to(Line::Stmt(StmtKind::Error)),
+    ))
+    .map_with(|line, e| ParsedLine {
+        line,
+        span: e.span(),
+    });
 
     content
         .then_ignore(just(Token::Newline))
@@ -163,7 +167,9 @@ where
         .then(just(Token::Highest).labelled("`highest`"))
         .to(Line::Stmt(StmtKind::Priority));
 
-    let skill_header = name().then_ignore(just(Token::Colon)).map(Line::SkillHeader);
+    let skill_header = name()
+        .then_ignore(just(Token::Colon))
+        .map(Line::SkillHeader);
 
     let call = call(expr.clone());
 
@@ -210,9 +216,7 @@ where
         .then_ignore(just(Token::Assign))
         .then(expr.clone().labelled("value"))
         .map(|(key, value)| Arg::Setting { key, value });
-    let arg = setting
-        .or(expr.map(Arg::Positional))
-        .labelled("argument");
+    let arg = setting.or(expr.map(Arg::Positional)).labelled("argument");
     let args = just(Token::LParen)
         .ignore_then(arg.separated_by(just(Token::Comma)).collect::<Vec<_>>())
         .then(just(Token::RParen).or_not())
