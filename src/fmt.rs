@@ -39,7 +39,7 @@ pub fn run(args: FmtArgs) -> ExitCode {
         };
         match ilmr_compiler::format::format(&source.text, &robot.model) {
             Ok(formatted) if formatted == source.text => {}
-            Ok(formatted) if args.check => {
+            Ok(_) if args.check => {
                 println!("would reformat {}", path.display());
                 failed = true;
             }
