@@ -1,0 +1,35 @@
+use crate::types::{AsyncOp, BodyPose, HalError, OpId, OpStatus, Pose, Snapshot};
+
+/// What the VM needs from a robot. The VM calls [`Hal::update`] once at the start of
+/// every tick with the logical time, then [`Hal::snapshot`], then whatever setpoints and
+/// requests the tick's commands produce. A real robot's implementation reads and writes
+/// its shared memory; a simulated one advances its world to `t`.
+///
+/// Every call may fail; the VM turns failures into trace events and variable states.
+pub trait Hal {
+    /// Brings the robot side up to logical time `t` in seconds (monotonic).
+    fn update(&mut self, t: f64) -> Result<(), HalError>;
+
+    /// Fills `out` with the latest sensor data. Implementations should reuse `out`'s
+    /// buffers (`clone_from`) so that a steady run does not allocate.
+    fn snapshot(&mut self, out: &mut Snapshot) -> Result<(), HalError>;
+
+    /// Speed (m/s, negative backwards) and steering curvature (1/m) setpoints.
+    fn set_motion(&mut self, speed: f64, curvature: f64) -> Result<(), HalError>;
+
+    /// A reference value for a named actuator (`on` is 1, `off` is 0).
+    fn actuator(&mut self, id: &str, value: f64) -> Result<(), HalError>;
+
+    /// The navigation mode (`automatic`, `scanner`, `gps`, `odo`).
+    fn locmode(&mut self, mode: &str) -> Result<(), HalError>;
+
+    fn bodypose(&mut self, pose: BodyPose) -> Result<(), HalError>;
+
+    /// Resets dead reckoning to `pose`.
+    fn locate(&mut self, pose: Pose) -> Result<(), HalError>;
+
+    /// Starts an operation that takes time; its outcome is read with [`Hal::poll`].
+    fn start(&mut self, op: &AsyncOp) -> Result<OpId, HalError>;
+
+    fn poll(&mut self, op: OpId) -> Result<OpStatus, HalError>;
+}

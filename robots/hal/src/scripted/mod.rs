@@ -1,0 +1,398 @@
+//! [`ScriptedRobot`]: a deterministic robot for tests. It integrates speed and curvature
+//! setpoints with rate limits and replays a script of timed sensor events.
+
+mod kinematics;
+mod script;
+
+pub use kinematics::Limits;
+pub use script::{OpMatch, OpOutcome};
+
+use kinematics::{Kinematics, wrap};
+use script::{OpRule, Script, Sighting, TimedReading, TimedScan};
+
+use crate::hal::Hal;
+use crate::types::{
+    AsyncOp, BodyPose, Detection, DeviceReading, HalError, OpId, OpStatus, Pose, Scan, Snapshot,
+};
+
+/// Largest integration step; `update` subdivides longer intervals.
+const MAX_STEP: f64 = 0.01;
+
+#[derive(Debug, Clone, PartialEq)]
+struct RunningOp {
+    op: AsyncOp,
+    due_tick: u64,
+    outcome: OpOutcome,
+}
+
+#[derive(Debug, Clone)]
+pub struct ScriptedRobot {
+    limits: Limits,
+    kin: Kinematics,
+    /// Dead reckoning offset applied by `locate`: estimated = true + offset.
+    offset: Pose,
+    t: f64,
+    ticks: u64,
+    script: Script,
+    next_reading: usize,
+    devices: Vec<DeviceReading>,
+    ops: Vec<RunningOp>,
+    actuator_log: Vec<(String, f64)>,
+    locmode: Option<String>,
+    bodypose: BodyPose,
+}
+
+impl ScriptedRobot {
+    pub fn new(limits: Limits) -> ScriptedRobot {
+        ScriptedRobot {
+            limits,
+            kin: Kinematics::default(),
+            offset: Pose::default(),
+            t: 0.0,
+            ticks: 0,
+            script: Script::default(),
+            next_reading: 0,
+            devices: Vec::new(),
+            ops: Vec::new(),
+            actuator_log: Vec::new(),
+            locmode: None,
+            bodypose: BodyPose::default(),
+        }
+    }
+
+    /// Starts the robot at `pose` (true and estimated).
+    pub fn at(mut self, pose: Pose) -> ScriptedRobot {
+        self.kin.pose = pose;
+        self
+    }
+
+    /// From time `t` the device reads `value` (`None`: it gives no data).
+    pub fn reading(mut self, t: f64, device: &str, value: Option<f64>) -> ScriptedRobot {
+        self.script.readings.push(TimedReading {
+            t,
+            device: device.to_string(),
+            value,
+        });
+        // Stable: readings at the same time keep the order they were scripted in.
+        self.script.readings.sort_by(|a, b| a.t.total_cmp(&b.t));
+        self
+    }
+
+    pub fn battery(self, t: f64, volts: f64) -> ScriptedRobot {
+        self.reading(t, "battery", Some(volts))
+    }
+
+    /// The detection is in view from `from` to `until` seconds.
+    pub fn sighting(mut self, from: f64, until: f64, detection: Detection) -> ScriptedRobot {
+        self.script.sightings.push(Sighting {
+            from,
+            until,
+            detection,
+        });
+        self
+    }
+
+    /// From time `scan.t` this is the latest scan.
+    pub fn scan(mut self, scan: Scan) -> ScriptedRobot {
+        self.script.scans.push(TimedScan { t: scan.t, scan });
+        self.script.scans.sort_by(|a, b| a.t.total_cmp(&b.t));
+        self
+    }
+
+    /// Operations matching `matcher` end with `outcome` `ticks` updates after they start.
+    pub fn op(mut self, matcher: OpMatch, ticks: u32, outcome: OpOutcome) -> ScriptedRobot {
+        self.script.op_rules.push(OpRule {
+            matcher,
+            ticks,
+            outcome,
+        });
+        self
+    }
+
+    pub fn refuse_actuator(mut self, actuator: &str, reason: &str) -> ScriptedRobot {
+        self.script
+            .refused_actuators
+            .push((actuator.to_string(), reason.to_string()));
+        self
+    }
+
+    /// Restricts the navigation modes the robot accepts.
+    pub fn locmodes(mut self, modes: &[&str]) -> ScriptedRobot {
+        self.script.locmodes = modes.iter().map(|m| m.to_string()).collect();
+        self
+    }
+
+    pub fn true_pose(&self) -> Pose {
+        self.kin.pose
+    }
+
+    pub fn speed(&self) -> f64 {
+        self.kin.speed
+    }
+
+    /// Every accepted actuator call, in order.
+    pub fn actuator_log(&self) -> &[(String, f64)] {
+        &self.actuator_log
+    }
+
+    pub fn current_locmode(&self) -> Option<&str> {
+        self.locmode.as_deref()
+    }
+
+    pub fn current_bodypose(&self) -> BodyPose {
+        self.bodypose
+    }
+
+    fn estimated(&self) -> Pose {
+        let p = self.kin.pose;
+        Pose::new(
+            p.x + self.offset.x,
+            p.y + self.offset.y,
+            wrap(p.h + self.offset.h),
+        )
+    }
+
+    fn apply_readings(&mut self) {
+        while let Some(r) = self.script.readings.get(self.next_reading) {
+            if r.t > self.t + 1e-9 {
+                break;
+            }
+            match self
+                .devices
+                .iter_mut()
+                .find(|d| d.name.eq_ignore_ascii_case(&r.device))
+            {
+                Some(d) => d.value = r.value,
+                None => self.devices.push(DeviceReading {
+                    name: r.device.clone(),
+                    value: r.value,
+                }),
+            }
+            self.next_reading += 1;
+        }
+    }
+}
+
+impl Hal for ScriptedRobot {
+    fn update(&mut self, t: f64) -> Result<(), HalError> {
+        if !t.is_finite() || t + 1e-12 < self.t {
+            return Err(HalError::Link(format!(
+                "time must not go backwards ({} after {})",
+                t, self.t
+            )));
+        }
+        let mut left = t - self.t;
+        while left > 1e-12 {
+            let dt = left.min(MAX_STEP);
+            self.kin.step(&self.limits, dt);
+            left -= dt;
+        }
+        self.t = t;
+        self.ticks += 1;
+        self.apply_readings();
+        Ok(())
+    }
+
+    fn snapshot(&mut self, out: &mut Snapshot) -> Result<(), HalError> {
+        out.t = self.t;
+        out.pose = self.estimated();
+        out.true_pose = Some(self.kin.pose);
+        out.speed = self.kin.speed;
+        out.curvature = self.kin.curvature;
+        out.devices.clone_from(&self.devices);
+        out.battery = self
+            .devices
+            .iter()
+            .find(|d| d.name.eq_ignore_ascii_case("battery"))
+            .and_then(|d| d.value);
+        let latest_scan = self
+            .script
+            .scans
+            .iter()
+            .rev()
+            .find(|s| s.t <= self.t + 1e-9)
+            .map(|s| &s.scan);
+        match (latest_scan, out.scan.as_mut()) {
+            (Some(s), Some(o)) => o.clone_from(s),
+            (Some(s), None) => out.scan = Some(s.clone()),
+            (None, _) => out.scan = None,
+        }
+        let t = self.t;
+        let mut n = 0;
+        for s in &self.script.sightings {
+            if s.from <= t + 1e-9 && t <= s.until + 1e-9 {
+                if let Some(slot) = out.detections.get_mut(n) {
+                    slot.clone_from(&s.detection);
+                } else {
+                    out.detections.push(s.detection.clone());
+                }
+                n += 1;
+            }
+        }
+        out.detections.truncate(n);
+        Ok(())
+    }
+
+    fn set_motion(&mut self, speed: f64, curvature: f64) -> Result<(), HalError> {
+        if !speed.is_finite() || !curvature.is_finite() {
+            return Err(HalError::Refused(format!(
+                "setpoint is not a number (speed {speed}, curvature {curvature})"
+            )));
+        }
+        self.kin.speed_set = speed;
+        self.kin.curvature_set = curvature;
+        Ok(())
+    }
+
+    fn actuator(&mut self, id: &str, value: f64) -> Result<(), HalError> {
+        if let Some((_, why)) = self
+            .script
+            .refused_actuators
+            .iter()
+            .find(|(a, _)| a.eq_ignore_ascii_case(id))
+        {
+            return Err(HalError::Refused(why.clone()));
+        }
+        self.actuator_log.push((id.to_string(), value));
+        Ok(())
+    }
+
+    fn locmode(&mut self, mode: &str) -> Result<(), HalError> {
+        let known = self.script.locmodes.is_empty()
+            || self
+                .script
+                .locmodes
+                .iter()
+                .any(|m| m.eq_ignore_ascii_case(mode));
+        if !known {
+            return Err(HalError::Unsupported(format!("navigation mode {mode}")));
+        }
+        self.locmode = Some(mode.to_string());
+        Ok(())
+    }
+
+    fn bodypose(&mut self, pose: BodyPose) -> Result<(), HalError> {
+        self.bodypose = pose;
+        Ok(())
+    }
+
+    fn locate(&mut self, pose: Pose) -> Result<(), HalError> {
+        if !(pose.x.is_finite() && pose.y.is_finite() && pose.h.is_finite()) {
+            return Err(HalError::Refused("pose is not a number".into()));
+        }
+        let p = self.kin.pose;
+        self.offset = Pose::new(pose.x - p.x, pose.y - p.y, wrap(pose.h - p.h));
+        Ok(())
+    }
+
+    fn start(&mut self, op: &AsyncOp) -> Result<OpId, HalError> {
+        let rule = self.script.op_rules.iter().find(|r| r.matcher.matches(op));
+        let (ticks, outcome) = match rule {
+            Some(r) => (r.ticks, r.outcome.clone()),
+            None => (1, OpOutcome::Done),
+        };
+        let id = u32::try_from(self.ops.len())
+            .map_err(|_| HalError::Refused("too many operations".into()))?;
+        self.ops.push(RunningOp {
+            op: op.clone(),
+            due_tick: self.ticks + u64::from(ticks),
+            outcome,
+        });
+        Ok(OpId(id))
+    }
+
+    fn poll(&mut self, op: OpId) -> Result<OpStatus, HalError> {
+        let running = self.ops.get(op.0 as usize).ok_or(HalError::UnknownOp(op))?;
+        if self.ticks < running.due_tick {
+            return Ok(OpStatus::Pending);
+        }
+        Ok(match &running.outcome {
+            OpOutcome::Done => OpStatus::Done,
+            OpOutcome::Failed(why) => OpStatus::Failed(why.clone()),
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::types::{ManipTask, Side};
+
+    fn door() -> Detection {
+        Detection {
+            sensor: "scanner".into(),
+            object: "door".into(),
+            x: 3.0,
+            y: 1.0,
+            h: 0.0,
+            side: Side::Left,
+        }
+    }
+
+    fn run_to(robot: &mut ScriptedRobot, t: f64) -> Snapshot {
+        let mut snap = Snapshot::default();
+        robot.update(t).expect("monotonic time");
+        robot.snapshot(&mut snap).expect("snapshot");
+        snap
+    }
+
+    #[test]
+    fn scripted_readings_and_sightings_appear_at_their_times() {
+        let mut robot = ScriptedRobot::new(Limits::default())
+            .battery(0.0, 25.0)
+            .battery(1.0, 23.0)
+            .sighting(0.5, 0.7, door());
+        let s = run_to(&mut robot, 0.2);
+        assert_eq!(s.battery, Some(25.0));
+        assert!(s.detections.is_empty());
+        let s = run_to(&mut robot, 0.6);
+        assert_eq!(s.detections, vec![door()]);
+        let s = run_to(&mut robot, 1.0);
+        assert_eq!(s.battery, Some(23.0));
+        assert!(s.detections.is_empty());
+    }
+
+    #[test]
+    fn operations_complete_or_fail_after_their_ticks() {
+        let mut robot = ScriptedRobot::new(Limits::default()).op(
+            OpMatch::Manipulate(ManipTask::Take),
+            3,
+            OpOutcome::Failed("gripper empty".into()),
+        );
+        let take = robot
+            .start(&AsyncOp::Manipulate(ManipTask::Take))
+            .expect("start");
+        let init = robot.start(&AsyncOp::Init(vec![])).expect("start");
+        robot.update(0.01).expect("time");
+        assert_eq!(robot.poll(init), Ok(OpStatus::Done));
+        assert_eq!(robot.poll(take), Ok(OpStatus::Pending));
+        robot.update(0.02).expect("time");
+        robot.update(0.03).expect("time");
+        assert_eq!(
+            robot.poll(take),
+            Ok(OpStatus::Failed("gripper empty".into()))
+        );
+        assert_eq!(robot.poll(OpId(9)), Err(HalError::UnknownOp(OpId(9))));
+    }
+
+    #[test]
+    fn bad_inputs_are_errors_not_panics() {
+        let mut robot = ScriptedRobot::new(Limits::default()).refuse_actuator("brake", "locked");
+        assert!(robot.set_motion(f64::NAN, 0.0).is_err());
+        assert!(robot.update(1.0).is_ok());
+        assert!(robot.update(0.5).is_err());
+        assert_eq!(
+            robot.actuator("BRAKE", 1.0),
+            Err(HalError::Refused("locked".into()))
+        );
+    }
+
+    #[test]
+    fn locate_shifts_the_estimate_not_the_truth() {
+        let mut robot = ScriptedRobot::new(Limits::default());
+        robot.locate(Pose::new(2.0, 3.0, 0.5)).expect("finite pose");
+        let s = run_to(&mut robot, 0.1);
+        assert_eq!(s.pose, Pose::new(2.0, 3.0, 0.5));
+        assert_eq!(s.true_pose, Some(Pose::default()));
+    }
+}

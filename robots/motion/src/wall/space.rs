@@ -1,0 +1,94 @@
+//! "When turn(left) or turn(right) is given, the space for turning is first
+//! checked" (section 4.5.3).
+
+use crate::arc::Arc;
+use crate::obstacle::check_width;
+use crate::path::Path;
+use crate::pose::{Pose, Side};
+use nalgebra::Point2;
+use std::f64::consts::FRAC_PI_2;
+
+/// True when no map point lies within `half_width` of the path.
+pub fn path_is_free(path: &Path, points: &[Point2<f64>], half_width: f64) -> bool {
+    points.iter().all(|p| path.distance_to(p) > half_width)
+}
+
+/// True when a quarter turn to `side` at `curvature` from `pose` keeps every
+/// map point further than half the checked width (equation (12)) plus
+/// `margin` from the robot's centre line.
+pub fn turn_space_free(
+    pose: &Pose,
+    side: Side,
+    curvature: f64,
+    robot_width: f64,
+    margin: f64,
+    points: &[Point2<f64>],
+) -> bool {
+    if !(curvature.is_finite() && curvature > 0.0) {
+        return false;
+    }
+    let arc = Arc {
+        start: *pose,
+        curvature: side.sign() * curvature,
+        length: FRAC_PI_2 / curvature,
+    };
+    let clearance = 0.5 * check_width(robot_width) + margin;
+    points.iter().all(|p| arc.distance_to(p) > clearance)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A corridor 2 m wide along x with its left wall ending at x = 4 (a
+    /// corner to the left).
+    fn corridor() -> Vec<Point2<f64>> {
+        let mut pts = vec![];
+        for i in 0..=100 {
+            let x = i as f64 * 0.1;
+            if x < 4.0 {
+                pts.push(Point2::new(x, 1.0));
+            }
+            pts.push(Point2::new(x, -1.0));
+        }
+        pts
+    }
+
+    #[test]
+    fn left_turn_is_free_only_past_the_corner() {
+        let pts = corridor();
+        assert!(!turn_space_free(
+            &Pose::new(2.0, 0.0, 0.0),
+            Side::Left,
+            1.0,
+            0.6,
+            0.1,
+            &pts
+        ));
+        assert!(turn_space_free(
+            &Pose::new(4.3, 0.0, 0.0),
+            Side::Left,
+            1.0,
+            0.6,
+            0.1,
+            &pts
+        ));
+        // The right side is a wall all along.
+        assert!(!turn_space_free(
+            &Pose::new(4.3, 0.0, 0.0),
+            Side::Right,
+            1.0,
+            0.6,
+            0.1,
+            &pts
+        ));
+        assert!(!turn_space_free(
+            &Pose::new(4.3, 0.0, 0.0),
+            Side::Left,
+            0.0,
+            0.6,
+            0.1,
+            &pts
+        ));
+    }
+}

@@ -1,0 +1,265 @@
+//! The ILMR bytecode: a [`Module`] of tables that the compiler's lowering fills through
+//! [`ModuleBuilder`] and the VM runs. See `docs/bytecode.md`.
+
+mod builder;
+mod disasm;
+mod ids;
+mod op;
+mod serde_kinds;
+mod validate;
+
+pub use builder::{BuildError, ModuleBuilder};
+pub use disasm::{disassemble, render_expr};
+pub use ids::{BlockId, ConstId, ExprId, FileId, NameId, StmtId, UnitId, VarId};
+pub use op::{Arg, ArgRange, ExprOp, Instr, Op, Opcode};
+pub use validate::ModuleError;
+
+pub(crate) use serde_kinds::{serde_field, serde_var_kind};
+
+use ilmr_stdlib::VarKind;
+use serde::{Deserialize, Serialize};
+
+/// The first bytes of every `.ilmb` file (after the JSON opening).
+pub const MAGIC: &str = "ILMB";
+/// Bumped on every change to the tables or instructions.
+pub const VERSION: u32 = 1;
+
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
+pub struct Header {
+    pub magic: String,
+    pub version: u32,
+}
+
+impl Default for Header {
+    fn default() -> Header {
+        Header {
+            magic: MAGIC.to_string(),
+            version: VERSION,
+        }
+    }
+}
+
+/// One statement of the source: what traces print and `break(pattern)` matches.
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
+pub struct Stmt {
+    /// The statement's source text, trimmed, without its comment.
+    pub text: String,
+    pub file: FileId,
+    /// 1-based.
+    pub line: u32,
+    /// Byte offsets into the file, end exclusive.
+    pub span: (u32, u32),
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Global {
+    /// As first written; variables are matched case-insensitively.
+    pub name: String,
+    #[serde(with = "serde_var_kind")]
+    pub kind: VarKind,
+}
+
+/// The task or a skill: a list of top-level blocks that start together.
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
+pub struct Unit {
+    pub name: String,
+    pub skill: bool,
+    pub blocks: Vec<BlockId>,
+}
+
+/// A command block: `len` instructions from `start` in `Module::code`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+pub struct Block {
+    pub start: u32,
+    pub len: u32,
+}
+
+/// An expression: `len` ops from `start` in `Module::expr_code`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+pub struct Expr {
+    pub start: u32,
+    pub len: u32,
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Module {
+    pub header: Header,
+    pub files: Vec<String>,
+    pub stmts: Vec<Stmt>,
+    pub consts: Vec<f64>,
+    pub names: Vec<String>,
+    pub globals: Vec<Global>,
+    pub units: Vec<Unit>,
+    /// The task's unit.
+    pub main: UnitId,
+    pub blocks: Vec<Block>,
+    pub code: Vec<Instr>,
+    pub args: Vec<Arg>,
+    pub exprs: Vec<Expr>,
+    pub expr_code: Vec<ExprOp>,
+}
+
+/// How many entries each table of a module holds; a [`Fragment`] records the counts of
+/// the module it was compiled against.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+pub struct Counts {
+    pub files: u32,
+    pub stmts: u32,
+    pub consts: u32,
+    pub names: u32,
+    pub globals: u32,
+    pub units: u32,
+    pub blocks: u32,
+    pub code: u32,
+    pub args: u32,
+    pub exprs: u32,
+    pub expr_code: u32,
+}
+
+/// New code compiled against a live module (an interactive line): the entries it adds
+/// to each table, and the blocks to start as new top-level blocks.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Fragment {
+    pub base: Counts,
+    /// Holds only the added entries; its `main` and header are unused.
+    pub added: Module,
+    pub start: Vec<BlockId>,
+}
+
+impl Module {
+    pub fn counts(&self) -> Counts {
+        fn n<T>(v: &[T]) -> u32 {
+            u32::try_from(v.len()).unwrap_or(u32::MAX)
+        }
+        Counts {
+            files: n(&self.files),
+            stmts: n(&self.stmts),
+            consts: n(&self.consts),
+            names: n(&self.names),
+            globals: n(&self.globals),
+            units: n(&self.units),
+            blocks: n(&self.blocks),
+            code: n(&self.code),
+            args: n(&self.args),
+            exprs: n(&self.exprs),
+            expr_code: n(&self.expr_code),
+        }
+    }
+
+    pub fn stmt(&self, id: StmtId) -> Option<&Stmt> {
+        self.stmts.get(id.index())
+    }
+
+    pub fn name(&self, id: NameId) -> &str {
+        self.names.get(id.index()).map_or("?", String::as_str)
+    }
+
+    pub fn global(&self, id: VarId) -> Option<&Global> {
+        self.globals.get(id.index())
+    }
+
+    /// Looks a variable up by name in any letter case.
+    pub fn find_global(&self, name: &str) -> Option<VarId> {
+        self.globals
+            .iter()
+            .position(|g| g.name.eq_ignore_ascii_case(name))
+            .and_then(|i| u32::try_from(i).ok())
+            .map(VarId)
+    }
+
+    /// Looks a unit up by name in any letter case.
+    pub fn find_unit(&self, name: &str) -> Option<UnitId> {
+        self.units
+            .iter()
+            .position(|u| u.name.eq_ignore_ascii_case(name))
+            .and_then(|i| u32::try_from(i).ok())
+            .map(UnitId)
+    }
+
+    pub fn block_code(&self, id: BlockId) -> &[Instr] {
+        self.blocks
+            .get(id.index())
+            .and_then(|b| {
+                self.code
+                    .get(b.start as usize..(b.start as usize + b.len as usize))
+            })
+            .unwrap_or(&[])
+    }
+
+    pub fn expr_ops(&self, id: ExprId) -> &[ExprOp] {
+        self.exprs
+            .get(id.index())
+            .and_then(|e| {
+                self.expr_code
+                    .get(e.start as usize..(e.start as usize + e.len as usize))
+            })
+            .unwrap_or(&[])
+    }
+
+    pub fn arg_list(&self, range: ArgRange) -> &[Arg] {
+        self.args
+            .get(range.start as usize..(range.start as usize + range.len as usize))
+            .unwrap_or(&[])
+    }
+
+    /// The `.ilmb` encoding: JSON with the versioned header first.
+    pub fn to_bytes(&self) -> Vec<u8> {
+        // Serialising plain data with string keys cannot fail.
+        serde_json::to_vec(self).unwrap_or_default()
+    }
+
+    /// Reads an `.ilmb` file: checks the header, then every index ([`Module::validate`]).
+    pub fn from_bytes(bytes: &[u8]) -> Result<Module, ModuleError> {
+        #[derive(Deserialize)]
+        struct HeaderOnly {
+            header: Header,
+        }
+        let head: HeaderOnly =
+            serde_json::from_slice(bytes).map_err(|e| ModuleError::Decode(e.to_string()))?;
+        if head.header.magic != MAGIC {
+            return Err(ModuleError::BadMagic(head.header.magic));
+        }
+        if head.header.version != VERSION {
+            return Err(ModuleError::Version {
+                found: head.header.version,
+                expected: VERSION,
+            });
+        }
+        let module: Module =
+            serde_json::from_slice(bytes).map_err(|e| ModuleError::Decode(e.to_string()))?;
+        module.validate()?;
+        Ok(module)
+    }
+
+    /// Appends a fragment compiled against exactly this module, after validating it.
+    pub fn append(&mut self, fragment: &Fragment) -> Result<(), ModuleError> {
+        if fragment.base != self.counts() {
+            return Err(ModuleError::StaleFragment);
+        }
+        let mut joined = self.clone();
+        let a = &fragment.added;
+        joined.files.extend(a.files.iter().cloned());
+        joined.stmts.extend(a.stmts.iter().cloned());
+        joined.consts.extend(a.consts.iter().copied());
+        joined.names.extend(a.names.iter().cloned());
+        joined.globals.extend(a.globals.iter().cloned());
+        joined.units.extend(a.units.iter().cloned());
+        joined.blocks.extend(a.blocks.iter().copied());
+        joined.code.extend(a.code.iter().copied());
+        joined.args.extend(a.args.iter().copied());
+        joined.exprs.extend(a.exprs.iter().copied());
+        joined.expr_code.extend(a.expr_code.iter().copied());
+        joined.validate()?;
+        for b in &fragment.start {
+            if b.index() >= joined.blocks.len() {
+                return Err(ModuleError::Index {
+                    what: "fragment start block",
+                    index: b.0,
+                    len: joined.blocks.len(),
+                });
+            }
+        }
+        *self = joined;
+        Ok(())
+    }
+}

@@ -1,0 +1,689 @@
+//! Blocks, control flow and the ending of commands: the ready queue, instruction
+//! execution under the tick budget, expression evaluation, `break`, `priority`.
+
+use ilmr_hal::Hal;
+use ilmr_stdlib::Field;
+
+use super::clock::Clock;
+use super::nodes::{BlockState, Kind, NodeRef};
+use super::trace::EventKind;
+use super::vars::{FieldMask, How, NONE};
+use super::{EXPR_STACK, Vm, stmt_of};
+use crate::bytecode::{ExprId, ExprOp, Op, StmtId};
+
+/// What running a block's instructions came to.
+enum Flow {
+    /// Every instruction issued.
+    Done,
+    /// A wait or init holds the block.
+    Held,
+    /// The budget ran out; the block stays first in the ready queue.
+    Suspended,
+    /// The block was ended by one of its own statements.
+    Gone,
+}
+
+impl<H: Hal, C: Clock> Vm<H, C> {
+    pub(super) fn start_block(&mut self, parent: u32, block: u32, depth: u16) -> NodeRef {
+        let r = self.nodes.alloc(
+            parent,
+            NONE,
+            NONE,
+            Kind::Block(BlockState {
+                block,
+                pc: 0,
+                holder: NONE,
+                issued: false,
+                depth,
+            }),
+        );
+        self.enqueue(r.idx);
+        r
+    }
+
+    pub(super) fn enqueue(&mut self, idx: u32) {
+        let n = self.nodes.get_mut(idx);
+        if !n.queued {
+            n.queued = true;
+            let r = self.nodes.at(idx);
+            self.ready.push_back(r);
+        }
+    }
+
+    /// Runs ready nodes in FIFO order until the queue is empty or the budget is spent.
+    pub(super) fn run_ready(&mut self) {
+        self.ops_left = self.cfg.budget_ops;
+        while let Some(r) = self.ready.pop_front() {
+            if !self.nodes.alive(r) {
+                continue;
+            }
+            if self.ops_left == 0 {
+                self.ready.push_front(r);
+                self.overrun(r.idx);
+                return;
+            }
+            self.nodes.get_mut(r.idx).queued = false;
+            match self.nodes.get(r.idx).kind {
+                Kind::Block(_) => {
+                    if let Flow::Suspended = self.run_block(r) {
+                        self.nodes.get_mut(r.idx).queued = true;
+                        self.ready.push_front(r);
+                        self.overrun(r.idx);
+                        return;
+                    }
+                }
+                Kind::If { .. } => self.check_guard(r.idx),
+                Kind::While { .. } => self.check_while(r.idx),
+                Kind::WaitVar { var } if self.vars.get(var).status >= 1.0 => {
+                    self.end_node(r.idx, How::Completed, false, None, true);
+                }
+                _ => {}
+            }
+        }
+    }
+
+    fn overrun(&mut self, idx: u32) {
+        let stmt = match self.nodes.get(idx).kind {
+            Kind::Block(b) => {
+                let code = self.module.block_code(crate::bytecode::BlockId(b.block));
+                code.get(b.pc as usize).map_or(NONE, |i| i.stmt.0)
+            }
+            _ => self.nodes.get(idx).stmt,
+        };
+        let pending = self.ready.len() as u32;
+        self.push_event(stmt_of(stmt), EventKind::Overrun { pending });
+    }
+
+    fn run_block(&mut self, r: NodeRef) -> Flow {
+        loop {
+            if !self.nodes.alive(r) {
+                return Flow::Gone;
+            }
+            let Kind::Block(b) = self.nodes.get(r.idx).kind else {
+                return Flow::Gone;
+            };
+            if b.holder != NONE {
+                return Flow::Held;
+            }
+            let instr = {
+                let code = self.module.block_code(crate::bytecode::BlockId(b.block));
+                code.get(b.pc as usize).copied()
+            };
+            let Some(instr) = instr else {
+                self.set_block(r.idx, |s| s.issued = true);
+                if self.nodes.get(r.idx).children == 0 {
+                    self.end_node(r.idx, How::Completed, false, None, true);
+                }
+                return Flow::Done;
+            };
+            if self.ops_left == 0 {
+                return Flow::Suspended;
+            }
+            self.ops_left -= 1;
+            self.set_block(r.idx, |s| s.pc += 1);
+            self.exec(r.idx, b.depth, instr.op, instr.stmt);
+        }
+    }
+
+    fn set_block(&mut self, idx: u32, f: impl FnOnce(&mut BlockState)) {
+        if let Kind::Block(b) = &mut self.nodes.get_mut(idx).kind {
+            f(b);
+        }
+    }
+
+    fn hold(&mut self, block: u32, child: NodeRef) {
+        if self.nodes.alive(child) {
+            self.set_block(block, |s| s.holder = child.idx);
+        }
+    }
+
+    /// Executes one statement instruction of block `blk`.
+    fn exec(&mut self, blk: u32, depth: u16, op: Op, stmt: StmtId) {
+        self.push_event(Some(stmt), EventKind::Issue);
+        let s = stmt.0;
+        match op {
+            Op::Issue {
+                command,
+                args,
+                bind,
+            } => {
+                let bind = bind.map_or(NONE, |v| v.0);
+                if let Some(child) = self.issue(blk, s, command, args, bind)
+                    && command.spec().holds_block
+                {
+                    self.hold(blk, child);
+                }
+            }
+            Op::Assign { var, expr } => match self.eval(expr) {
+                Ok(v) => {
+                    self.write_reporting(
+                        var.0,
+                        &[(Field::Value, v), (Field::Status, 1.0)],
+                        Some(None),
+                        s,
+                        false,
+                        FieldMask(FieldMask::bit(Field::Value)),
+                    );
+                }
+                Err(e) => self.error(Some(stmt), e.to_string()),
+            },
+            Op::WaitTime { seconds, bind } => {
+                let secs = self.eval(seconds).unwrap_or(0.0);
+                let bind = bind.map_or(NONE, |v| v.0);
+                self.bind_issue(bind, s);
+                let child = self.nodes.alloc(blk, s, bind, Kind::WaitTime);
+                let ticks = (secs.max(0.0) / self.cfg.period).round() as u64;
+                self.timer_seq += 1;
+                self.timers.push(std::cmp::Reverse((
+                    self.tick + ticks.max(1),
+                    self.timer_seq,
+                    child.idx,
+                    child.epoch,
+                )));
+                self.hold(blk, child);
+            }
+            Op::WaitVar { var, bind } => {
+                let bind = bind.map_or(NONE, |v| v.0);
+                self.bind_issue(bind, s);
+                let child = self.nodes.alloc(blk, s, bind, Kind::WaitVar { var: var.0 });
+                if self.vars.get(var.0).status >= 1.0 {
+                    self.end_node(child.idx, How::Completed, false, None, true);
+                } else {
+                    let mut head = NONE;
+                    self.vars.subscribe(child.idx, var.0, &mut head);
+                    self.nodes.get_mut(child.idx).subs = head;
+                    self.hold(blk, child);
+                }
+            }
+            Op::If { cond, body, bind } => {
+                let bind = bind.map_or(NONE, |v| v.0);
+                self.bind_issue(bind, s);
+                let child = self.nodes.alloc(
+                    blk,
+                    s,
+                    bind,
+                    Kind::If {
+                        cond: cond.0,
+                        body: body.0,
+                        fired: false,
+                    },
+                );
+                self.check_guard(child.idx);
+            }
+            Op::While { cond, body, bind } => {
+                let bind = bind.map_or(NONE, |v| v.0);
+                self.bind_issue(bind, s);
+                let child = self.nodes.alloc(
+                    blk,
+                    s,
+                    bind,
+                    Kind::While {
+                        cond: cond.0,
+                        body: body.0,
+                        iteration: 0,
+                    },
+                );
+                self.check_while(child.idx);
+            }
+            Op::Call { unit, bind } => {
+                let bind = bind.map_or(NONE, |v| v.0);
+                self.bind_issue(bind, s);
+                let d = depth.saturating_add(1);
+                let child = self.nodes.alloc(
+                    blk,
+                    s,
+                    bind,
+                    Kind::Call {
+                        unit: unit.0,
+                        depth: d,
+                    },
+                );
+                if d > self.cfg.max_call_depth {
+                    let why = format!("skill calls nested deeper than {}", self.cfg.max_call_depth);
+                    self.end_node(child.idx, How::Refused, false, Some(why), true);
+                    return;
+                }
+                let blocks = self
+                    .module
+                    .units
+                    .get(unit.index())
+                    .map(|u| u.blocks.len())
+                    .unwrap_or(0);
+                for i in 0..blocks {
+                    let b = self.module.units[unit.index()].blocks[i];
+                    self.start_block(child.idx, b.0, d);
+                }
+                if blocks == 0 {
+                    self.end_node(child.idx, How::Completed, false, None, true);
+                }
+            }
+            Op::Break { pattern } => self.break_pattern(pattern.0),
+            Op::BreakAll => {
+                if let Err(e) = self.hal.set_motion(0.0, 0.0) {
+                    self.error(Some(stmt), format!("stopping the robot failed: {e}"));
+                }
+                self.end_children_of(self.root, NONE);
+            }
+            Op::Stop => {
+                self.motion.stopped = true;
+                if let Err(e) = self.hal.set_motion(0.0, self.snap.curvature) {
+                    self.error(Some(stmt), format!("stopping the robot failed: {e}"));
+                }
+            }
+            Op::Cont => self.motion.stopped = false,
+            Op::Priority => self.priority_highest(blk),
+            Op::Clear { var } => {
+                self.followers.retain(|f| f.var != var.0);
+                let mask = self.vars.clear(var.0);
+                self.changed(var.0, mask, s, false);
+            }
+        }
+    }
+
+    /// A statement bound to `var` was issued: its status is 0 until it ends.
+    pub(super) fn bind_issue(&mut self, var: u32, stmt: u32) {
+        if var != NONE {
+            self.write_fields(var, &[(Field::Status, 0.0)], Some(None), stmt, false);
+        }
+    }
+
+    /// Evaluates an expression on the fixed stack.
+    pub(super) fn eval(&mut self, id: ExprId) -> Result<f64, &'static str> {
+        let ops = self.module.expr_ops(id);
+        let mut sp = 0usize;
+        let tol = self.cfg.position_tolerance;
+        self.ops_left = self.ops_left.saturating_sub(ops.len() as u32);
+        for op in ops {
+            let v = match *op {
+                ExprOp::Const(c) => self.module.consts.get(c.index()).copied().unwrap_or(0.0),
+                ExprOp::Field(v, f) => self.vars.get(v.0).get(f),
+                ExprOp::PosEq(a, b) => {
+                    let (a, b) = (self.vars.get(a.0), self.vars.get(b.0));
+                    let same =
+                        a.status >= 1.0 && b.status >= 1.0 && (a.x - b.x).hypot(a.y - b.y) <= tol;
+                    f64::from(u8::from(same))
+                }
+                ExprOp::Neg => {
+                    let top = sp.checked_sub(1).ok_or("stack underflow")?;
+                    self.stack[top] = -self.stack[top];
+                    continue;
+                }
+                bin => {
+                    if sp < 2 {
+                        return Err("stack underflow");
+                    }
+                    sp -= 2;
+                    let (a, b) = (self.stack[sp], self.stack[sp + 1]);
+                    match bin {
+                        ExprOp::Add => a + b,
+                        ExprOp::Sub => a - b,
+                        ExprOp::Mul => a * b,
+                        ExprOp::Div => {
+                            if b == 0.0 {
+                                return Err("division by zero");
+                            }
+                            a / b
+                        }
+                        cmp => {
+                            let eq = (a - b).abs() <= 1e-9;
+                            let r = match cmp {
+                                ExprOp::Lt => a < b && !eq,
+                                ExprOp::Le => a < b || eq,
+                                ExprOp::Eq => eq,
+                                ExprOp::Ne => !eq,
+                                ExprOp::Gt => a > b && !eq,
+                                _ => a > b || eq,
+                            };
+                            f64::from(u8::from(r))
+                        }
+                    }
+                }
+            };
+            if sp >= EXPR_STACK {
+                return Err("expression too deep");
+            }
+            self.stack[sp] = v;
+            sp += 1;
+        }
+        if sp == 1 {
+            Ok(self.stack[0])
+        } else {
+            Err("malformed expression")
+        }
+    }
+
+    /// Evaluates an `if` guard: fire its body, or sleep until a variable it reads
+    /// changes.
+    pub(super) fn check_guard(&mut self, idx: u32) {
+        let Kind::If { cond, body, fired } = self.nodes.get(idx).kind else {
+            return;
+        };
+        if fired {
+            return;
+        }
+        self.ops_left = self.ops_left.saturating_sub(1);
+        let truth = match self.eval(ExprId(cond)) {
+            Ok(v) => v != 0.0,
+            Err(e) => {
+                let stmt = stmt_of(self.nodes.get(idx).stmt);
+                self.error(stmt, e.to_string());
+                false
+            }
+        };
+        // Subscriptions persist while the guard is false: its inputs are fixed, so
+        // it is woken exactly when one of them changes.
+        let mut subs = self.nodes.get(idx).subs;
+        if truth {
+            self.vars.unsubscribe_all(&mut subs);
+            self.nodes.get_mut(idx).subs = subs;
+            if let Kind::If { fired, .. } = &mut self.nodes.get_mut(idx).kind {
+                *fired = true;
+            }
+            let stmt = stmt_of(self.nodes.get(idx).stmt);
+            self.push_event(stmt, EventKind::Start { iteration: None });
+            let depth = self.depth_of(idx);
+            self.start_block(idx, body, depth);
+        } else if subs == NONE {
+            self.subscribe_expr(idx, cond, &mut subs);
+            self.nodes.get_mut(idx).subs = subs;
+        }
+    }
+
+    fn subscribe_expr(&mut self, idx: u32, cond: u32, subs: &mut u32) {
+        let ops = self.module.expr_ops(ExprId(cond));
+        for i in 0..ops.len() {
+            match self.module.expr_ops(ExprId(cond))[i] {
+                ExprOp::Field(v, _) => self.vars.subscribe(idx, v.0, subs),
+                ExprOp::PosEq(a, b) => {
+                    self.vars.subscribe(idx, a.0, subs);
+                    self.vars.subscribe(idx, b.0, subs);
+                }
+                _ => {}
+            }
+        }
+    }
+
+    pub(super) fn check_while(&mut self, idx: u32) {
+        let Kind::While {
+            cond,
+            body,
+            iteration,
+        } = self.nodes.get(idx).kind
+        else {
+            return;
+        };
+        self.ops_left = self.ops_left.saturating_sub(1);
+        match self.eval(ExprId(cond)) {
+            Ok(v) if v != 0.0 => {
+                if let Kind::While { iteration, .. } = &mut self.nodes.get_mut(idx).kind {
+                    *iteration += 1;
+                }
+                let stmt = stmt_of(self.nodes.get(idx).stmt);
+                self.push_event(
+                    stmt,
+                    EventKind::Start {
+                        iteration: Some(iteration + 1),
+                    },
+                );
+                let depth = self.depth_of(idx);
+                self.start_block(idx, body, depth);
+            }
+            Ok(_) => self.end_node(idx, How::Completed, false, None, true),
+            Err(e) => self.end_node(idx, How::Refused, false, Some(e.to_string()), true),
+        }
+    }
+
+    /// The skill call depth of the block a node stands in.
+    fn depth_of(&self, mut idx: u32) -> u16 {
+        while idx != NONE {
+            if let Kind::Block(b) = self.nodes.get(idx).kind {
+                return b.depth;
+            }
+            idx = self.nodes.get(idx).parent;
+        }
+        0
+    }
+
+    /// Writes fields of a variable; traces and wakes subscribers if anything changed.
+    /// `how`: `Some(h)` also sets how its command ended. `quiet`: no trace event (for
+    /// the distance of a running movement, which changes every tick).
+    pub(super) fn write_fields(
+        &mut self,
+        var: u32,
+        fields: &[(Field, f64)],
+        how: Option<Option<How>>,
+        stmt: u32,
+        quiet: bool,
+    ) {
+        self.write_reporting(var, fields, how, stmt, quiet, FieldMask::default());
+    }
+
+    /// As [`Self::write_fields`], tracing the fields in `report` even if unchanged
+    /// (an assignment's value, a movement's final distance and pose).
+    pub(super) fn write_reporting(
+        &mut self,
+        var: u32,
+        fields: &[(Field, f64)],
+        how: Option<Option<How>>,
+        stmt: u32,
+        quiet: bool,
+        report: FieldMask,
+    ) {
+        let mut mask = report;
+        for &(f, v) in fields {
+            if self.vars.set(var, f, v) {
+                mask.0 |= FieldMask::bit(f);
+            }
+        }
+        if let Some(h) = how {
+            self.vars.set_how(var, h);
+        }
+        self.changed(var, mask, stmt, quiet);
+    }
+
+    pub(super) fn changed(&mut self, var: u32, mask: FieldMask, stmt: u32, quiet: bool) {
+        if mask.is_empty() {
+            return;
+        }
+        if !quiet && self.cfg.trace != super::config::TraceLevel::Off {
+            let record = self.vars.get(var);
+            self.push_event(
+                stmt_of(stmt),
+                EventKind::Var {
+                    var: crate::bytecode::VarId(var),
+                    changed: mask,
+                    record,
+                },
+            );
+        }
+        let (nodes, ready) = (&mut self.nodes, &mut self.ready);
+        self.vars.for_each_subscriber(var, |n| {
+            let node = nodes.get_mut(n);
+            if !node.queued {
+                node.queued = true;
+                ready.push_back(nodes.at(n));
+            }
+        });
+    }
+
+    /// Ends one node: trace, variable, command-specific cleanup, unlink, free. With
+    /// `notify` its parent learns of it (blocks resume, loops iterate, ifs end).
+    pub(super) fn end_node(
+        &mut self,
+        idx: u32,
+        how: How,
+        linked: bool,
+        reason: Option<String>,
+        notify: bool,
+    ) {
+        let node = *self.nodes.get(idx);
+        if node.kind == Kind::Free {
+            return;
+        }
+        let is_command = !matches!(node.kind, Kind::Block(_) | Kind::Root);
+        if is_command {
+            self.push_event(
+                stmt_of(node.stmt),
+                EventKind::End {
+                    how,
+                    linked,
+                    reason,
+                },
+            );
+        }
+        let mut subs = node.subs;
+        self.vars.unsubscribe_all(&mut subs);
+        self.nodes.get_mut(idx).subs = NONE;
+        let travelled = self.movement_result(idx);
+        let was_head = self.motion_node_ended(idx);
+        if node.bind != NONE {
+            let mut fields = [(Field::Status, 1.0); 5];
+            let n = match travelled {
+                Some((d, x, y, h)) => {
+                    fields[1..].copy_from_slice(&[
+                        (Field::Dist, d),
+                        (Field::X, x),
+                        (Field::Y, y),
+                        (Field::H, h),
+                    ]);
+                    5
+                }
+                None => 1,
+            };
+            let mut report = FieldMask::default();
+            for (f, _) in &fields[1..n] {
+                report.0 |= FieldMask::bit(*f);
+            }
+            self.write_reporting(
+                node.bind,
+                &fields[..n],
+                Some(Some(how)),
+                node.stmt,
+                false,
+                report,
+            );
+            if how == How::Completed {
+                self.follow_after(node.kind, node.bind, node.stmt);
+            }
+        }
+        let parent = node.parent;
+        self.nodes.unlink(idx);
+        self.nodes.free(idx);
+        if was_head {
+            self.start_next_movement(linked);
+        }
+        if notify && parent != NONE {
+            self.child_ended(parent, idx);
+        }
+    }
+
+    fn child_ended(&mut self, parent: u32, child: u32) {
+        let p = *self.nodes.get(parent);
+        match p.kind {
+            Kind::Block(b) => {
+                if b.holder == child {
+                    self.set_block(parent, |s| s.holder = NONE);
+                    self.enqueue(parent);
+                } else if b.issued && p.children == 0 {
+                    self.end_node(parent, How::Completed, false, None, true);
+                }
+            }
+            Kind::If { .. } => self.end_node(parent, How::Completed, false, None, true),
+            Kind::While { .. } => self.enqueue(parent),
+            Kind::Call { .. } if p.children == 0 => {
+                self.end_node(parent, How::Completed, false, None, true)
+            }
+            _ => {}
+        }
+    }
+
+    /// Ends a node and everything inside it: descendants first (without waking their
+    /// parents, which end too), then the node itself, whose parent is told.
+    pub(super) fn end_subtree(&mut self, idx: u32, how: How) {
+        self.mark_dying(idx);
+        loop {
+            let mut c = idx;
+            while self.nodes.get(c).first_child != NONE {
+                c = self.nodes.get(c).first_child;
+            }
+            if c == idx {
+                break;
+            }
+            self.end_node(c, how, false, None, false);
+        }
+        self.end_node(idx, how, false, None, true);
+    }
+
+    fn mark_dying(&mut self, idx: u32) {
+        let mut stack = std::mem::take(&mut self.scratch);
+        stack.clear();
+        stack.push(idx);
+        while let Some(n) = stack.pop() {
+            self.nodes.get_mut(n).dying = true;
+            let mut c = self.nodes.get(n).first_child;
+            while c != NONE {
+                stack.push(c);
+                c = self.nodes.get(c).next;
+            }
+        }
+        self.scratch = stack;
+    }
+
+    /// Ends every child subtree of `parent` except `keep`.
+    fn end_children_of(&mut self, parent: u32, keep: u32) {
+        let mut kids = Vec::new();
+        let mut c = self.nodes.get(parent).first_child;
+        while c != NONE {
+            if c != keep {
+                kids.push(self.nodes.at(c));
+            }
+            c = self.nodes.get(c).next;
+        }
+        for k in kids {
+            if self.nodes.alive(k) {
+                self.end_subtree(k.idx, How::Broken);
+            }
+        }
+    }
+
+    fn break_pattern(&mut self, pattern: u32) {
+        let pat = self
+            .module
+            .name(crate::bytecode::NameId(pattern))
+            .to_lowercase();
+        let mut hits = Vec::new();
+        for (i, n) in self.nodes.all.iter().enumerate() {
+            if n.kind == Kind::Free || n.stmt == NONE {
+                continue;
+            }
+            if self
+                .lower
+                .get(n.stmt as usize)
+                .is_some_and(|t| t.contains(&pat))
+            {
+                hits.push(NodeRef {
+                    idx: i as u32,
+                    epoch: n.epoch,
+                });
+            }
+        }
+        for h in hits {
+            if self.nodes.alive(h) {
+                self.end_subtree(h.idx, How::Broken);
+            }
+        }
+    }
+
+    /// `priority = highest`: end everything that is neither this block's ancestor nor
+    /// inside it.
+    fn priority_highest(&mut self, blk: u32) {
+        self.priority = Some(self.nodes.at(blk));
+        let mut keep = blk;
+        let mut parent = self.nodes.get(blk).parent;
+        while parent != NONE {
+            self.end_children_of(parent, keep);
+            keep = parent;
+            parent = self.nodes.get(parent).parent;
+        }
+    }
+}

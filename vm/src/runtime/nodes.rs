@@ -1,0 +1,319 @@
+//! The live-command tree in one arena. Every live thing (a block issuing statements,
+//! an `if`, a `while`, a skill call, a wait, a command) is a [`Node`] of at most 128
+//! bytes; children hang off their parent in an intrusive list so that ending a node
+//! can end its whole subtree without allocating.
+
+use ilmr_hal::Side;
+use ilmr_stdlib::{Command, Field};
+
+use super::vars::NONE;
+
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct BlockState {
+    pub block: u32,
+    pub pc: u32,
+    /// The child that holds this block (wait, init), or NONE.
+    pub holder: u32,
+    /// Every instruction has been issued; the block ends when its children have.
+    pub issued: bool,
+    /// Skill call depth.
+    pub depth: u16,
+}
+
+/// A movement's evaluated arguments. Stored as f32 (sub-millimetre over kilometres)
+/// so that a node stays within 64 bytes; planning works in f64.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) enum MoveSpec {
+    /// NaN: no distance, go on until broken.
+    Goahead {
+        d: f32,
+    },
+    TurnExact {
+        deg: f32,
+        c: f32,
+    },
+    TurnSide {
+        left: bool,
+    },
+    /// `h` NaN: no heading given.
+    To {
+        x: f32,
+        y: f32,
+        h: f32,
+        rel: bool,
+    },
+    ToVar {
+        var: u32,
+        rel: bool,
+    },
+    FollowPath {
+        name: u32,
+        reverse: bool,
+        backwards: bool,
+    },
+    FollowWall,
+    FollowTarget,
+    ApproachVar {
+        var: u32,
+        d: f32,
+    },
+    ApproachObject {
+        object: u32,
+        d: f32,
+    },
+}
+
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) enum Which {
+    /// The whole device: a plain value, or the nearest scanner range.
+    All,
+    Side(Side),
+    Index(u32),
+}
+
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) enum SensorSpec {
+    Reading {
+        device: u32,
+        which: Which,
+    },
+    Search {
+        sensor: u32,
+        object: u32,
+        side: Option<Side>,
+    },
+    Locate {
+        field: Field,
+    },
+}
+
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) enum Kind {
+    Free,
+    Root,
+    Block(BlockState),
+    If {
+        cond: u32,
+        body: u32,
+        fired: bool,
+    },
+    While {
+        cond: u32,
+        body: u32,
+        iteration: u32,
+    },
+    Call {
+        unit: u32,
+        depth: u16,
+    },
+    WaitTime,
+    WaitVar {
+        var: u32,
+    },
+    Movement {
+        command: Command,
+        spec: MoveSpec,
+    },
+    Sensor {
+        spec: SensorSpec,
+        forever: bool,
+        since: u32,
+    },
+    Async {
+        op: u32,
+    },
+    SpeedAfter {
+        value: f32,
+        node: u32,
+        epoch: u32,
+    },
+}
+
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Node {
+    pub epoch: u32,
+    pub parent: u32,
+    pub first_child: u32,
+    pub next: u32,
+    pub prev: u32,
+    pub children: u32,
+    pub stmt: u32,
+    pub bind: u32,
+    pub subs: u32,
+    pub queued: bool,
+    /// Part of a subtree being ended: must not start.
+    pub dying: bool,
+    pub kind: Kind,
+}
+
+impl Node {
+    fn fresh(epoch: u32) -> Node {
+        Node {
+            epoch,
+            parent: NONE,
+            first_child: NONE,
+            next: NONE,
+            prev: NONE,
+            children: 0,
+            stmt: NONE,
+            bind: NONE,
+            subs: NONE,
+            queued: false,
+            dying: false,
+            kind: Kind::Free,
+        }
+    }
+}
+
+/// A node index with the generation it had, so stale references are detected.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) struct NodeRef {
+    pub idx: u32,
+    pub epoch: u32,
+}
+
+#[derive(Debug, Default)]
+pub(crate) struct Nodes {
+    pub all: Vec<Node>,
+    free: Vec<u32>,
+    pub live: usize,
+}
+
+impl Nodes {
+    pub fn alloc(&mut self, parent: u32, stmt: u32, bind: u32, kind: Kind) -> NodeRef {
+        let idx = match self.free.pop() {
+            Some(i) => i,
+            None => {
+                self.all.push(Node::fresh(0));
+                (self.all.len() - 1) as u32
+            }
+        };
+        let epoch = self.all[idx as usize].epoch;
+        let mut n = Node::fresh(epoch);
+        n.parent = parent;
+        n.stmt = stmt;
+        n.bind = bind;
+        n.kind = kind;
+        self.all[idx as usize] = n;
+        if parent != NONE {
+            self.link(parent, idx);
+        }
+        self.live += 1;
+        NodeRef { idx, epoch }
+    }
+
+    /// Appends `child` to the end of `parent`'s children so that ending order follows
+    /// issue order.
+    fn link(&mut self, parent: u32, child: u32) {
+        // Children are kept as a ring-free list with the newest first; `prev` of the
+        // first child points at the last so that appending stays O(1).
+        let first = self.all[parent as usize].first_child;
+        if first == NONE {
+            self.all[parent as usize].first_child = child;
+            self.all[child as usize].prev = child;
+        } else {
+            let last = self.all[first as usize].prev;
+            self.all[last as usize].next = child;
+            self.all[child as usize].prev = last;
+            self.all[first as usize].prev = child;
+        }
+        self.all[child as usize].next = NONE;
+        self.all[parent as usize].children += 1;
+    }
+
+    pub fn unlink(&mut self, child: u32) {
+        let parent = self.all[child as usize].parent;
+        if parent == NONE {
+            return;
+        }
+        let first = self.all[parent as usize].first_child;
+        let (prev, next) = (self.all[child as usize].prev, self.all[child as usize].next);
+        if first == child {
+            self.all[parent as usize].first_child = next;
+            if next != NONE {
+                self.all[next as usize].prev = prev;
+            }
+        } else {
+            self.all[prev as usize].next = next;
+            if next != NONE {
+                self.all[next as usize].prev = prev;
+            } else {
+                self.all[first as usize].prev = prev;
+            }
+        }
+        self.all[child as usize].parent = NONE;
+        self.all[parent as usize].children = self.all[parent as usize].children.saturating_sub(1);
+    }
+
+    pub fn free(&mut self, idx: u32) {
+        let n = &mut self.all[idx as usize];
+        n.epoch = n.epoch.wrapping_add(1);
+        n.kind = Kind::Free;
+        self.free.push(idx);
+        self.live = self.live.saturating_sub(1);
+    }
+
+    pub fn footprint(&self) -> usize {
+        self.all.capacity() * std::mem::size_of::<Node>()
+            + self.free.capacity() * std::mem::size_of::<u32>()
+    }
+
+    pub fn alive(&self, r: NodeRef) -> bool {
+        self.all
+            .get(r.idx as usize)
+            .is_some_and(|n| n.epoch == r.epoch && n.kind != Kind::Free)
+    }
+
+    pub fn get(&self, idx: u32) -> &Node {
+        &self.all[idx as usize]
+    }
+
+    pub fn get_mut(&mut self, idx: u32) -> &mut Node {
+        &mut self.all[idx as usize]
+    }
+
+    pub fn at(&self, idx: u32) -> NodeRef {
+        NodeRef {
+            idx,
+            epoch: self.all[idx as usize].epoch,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_node_fits_in_64_bytes() {
+        assert!(
+            std::mem::size_of::<Node>() <= 64,
+            "{}",
+            std::mem::size_of::<Node>()
+        );
+    }
+
+    #[test]
+    fn children_keep_issue_order_through_unlinks() {
+        let mut n = Nodes::default();
+        let root = n.alloc(NONE, NONE, NONE, Kind::Root).idx;
+        let kids: Vec<u32> = (0..4)
+            .map(|_| n.alloc(root, NONE, NONE, Kind::WaitTime).idx)
+            .collect();
+        n.unlink(kids[1]);
+        n.unlink(kids[3]);
+        let mut order = Vec::new();
+        let mut c = n.get(root).first_child;
+        while c != NONE {
+            order.push(c);
+            c = n.get(c).next;
+        }
+        assert_eq!(order, vec![kids[0], kids[2]]);
+        assert_eq!(n.get(root).children, 2);
+        let k = n.alloc(root, NONE, NONE, Kind::WaitTime).idx;
+        n.unlink(kids[0]);
+        let first = n.get(root).first_child;
+        assert_eq!(first, kids[2]);
+        assert_eq!(n.get(first).next, k);
+    }
+}

@@ -1,0 +1,222 @@
+//! Typed trace events and their JSON Lines rendering:
+//! `{"t":0.01,"event":"start","line":3,"text":"goahead(1.2)"}` then event-specific keys.
+
+use std::fmt::Write;
+
+use crate::bytecode::{Module, StmtId, VarId};
+
+use super::vars::{FIELDS, FieldMask, How, VarRecord};
+
+#[derive(Debug, Clone, PartialEq)]
+pub enum EventKind {
+    /// A statement was executed by its block.
+    Issue,
+    /// A command began to act later than it was issued: a queued movement got the
+    /// reservation, an `if` body started, a `while` iteration started.
+    Start { iteration: Option<u32> },
+    End {
+        how: How,
+        /// A movement ended early because the next one was joined to it.
+        linked: bool,
+        reason: Option<String>,
+    },
+    Var {
+        var: VarId,
+        changed: FieldMask,
+        record: VarRecord,
+    },
+    Pose {
+        x: f64,
+        y: f64,
+        h: f64,
+        speed: f64,
+        curvature: f64,
+        /// Ground truth (`true`) or the robot's estimate.
+        truth: bool,
+    },
+    /// A block ran out of the tick's budget and was suspended.
+    Overrun { pending: u32 },
+    /// A runtime error that ended no command (a division by zero, a HAL call failing).
+    Error { message: String },
+}
+
+#[derive(Debug, Clone, PartialEq)]
+pub struct Event {
+    pub tick: u64,
+    /// Seconds.
+    pub t: f64,
+    pub stmt: Option<StmtId>,
+    pub kind: EventKind,
+}
+
+impl EventKind {
+    pub fn name(&self) -> &'static str {
+        match self {
+            EventKind::Issue => "issue",
+            EventKind::Start { .. } => "start",
+            EventKind::End { .. } => "end",
+            EventKind::Var { .. } => "var",
+            EventKind::Pose { .. } => "pose",
+            EventKind::Overrun { .. } => "overrun",
+            EventKind::Error { .. } => "error",
+        }
+    }
+}
+
+/// Formats a number with at most four decimals and no trailing zeros (`-0` as `0`).
+pub fn fmt_num(x: f64) -> String {
+    if !x.is_finite() {
+        return if x.is_nan() {
+            "null".into()
+        } else if x > 0.0 {
+            "1e999".into()
+        } else {
+            "-1e999".into()
+        };
+    }
+    let s = format!("{:.4}", x);
+    let s = if s.contains('.') {
+        s.trim_end_matches('0').trim_end_matches('.').to_string()
+    } else {
+        s
+    };
+    if s == "-0" { "0".into() } else { s }
+}
+
+fn json_str(out: &mut String, s: &str) {
+    out.push('"');
+    for c in s.chars() {
+        match c {
+            '"' => out.push_str("\\\""),
+            '\\' => out.push_str("\\\\"),
+            '\n' => out.push_str("\\n"),
+            '\r' => out.push_str("\\r"),
+            '\t' => out.push_str("\\t"),
+            c if (c as u32) < 0x20 => {
+                let _ = write!(out, "\\u{:04x}", c as u32);
+            }
+            c => out.push(c),
+        }
+    }
+    out.push('"');
+}
+
+/// One event as one line of JSON (no newline).
+pub fn render_event(m: &Module, e: &Event) -> String {
+    let mut o = String::with_capacity(96);
+    let _ = write!(
+        o,
+        "{{\"t\":{},\"event\":\"{}\"",
+        fmt_num(e.t),
+        e.kind.name()
+    );
+    if let Some(s) = e.stmt.and_then(|s| m.stmt(s)) {
+        let _ = write!(o, ",\"line\":{},\"text\":", s.line);
+        json_str(&mut o, &s.text);
+    }
+    match &e.kind {
+        EventKind::Issue => {}
+        EventKind::Start { iteration } => {
+            if let Some(i) = iteration {
+                let _ = write!(o, ",\"iteration\":{i}");
+            }
+        }
+        EventKind::End {
+            how,
+            linked,
+            reason,
+        } => {
+            let _ = write!(o, ",\"how\":\"{}\"", how.name());
+            if *linked {
+                o.push_str(",\"linked\":true");
+            }
+            if let Some(r) = reason {
+                o.push_str(",\"reason\":");
+                json_str(&mut o, r);
+            }
+        }
+        EventKind::Var {
+            var,
+            changed,
+            record,
+        } => {
+            o.push_str(",\"var\":");
+            json_str(&mut o, m.global(*var).map_or("?", |g| g.name.as_str()));
+            for f in FIELDS {
+                if changed.has(f) {
+                    let _ = write!(o, ",\"{}\":{}", f.name(), fmt_num(record.get(f)));
+                }
+            }
+            if let Some(how) = record
+                .how
+                .filter(|_| changed.has(ilmr_stdlib::Field::Status))
+            {
+                let _ = write!(o, ",\"how\":\"{}\"", how.name());
+            }
+        }
+        EventKind::Pose {
+            x,
+            y,
+            h,
+            speed,
+            curvature,
+            truth,
+        } => {
+            let _ = write!(
+                o,
+                ",\"x\":{},\"y\":{},\"h\":{},\"v\":{},\"c\":{},\"source\":\"{}\"",
+                fmt_num(*x),
+                fmt_num(*y),
+                fmt_num(*h),
+                fmt_num(*speed),
+                fmt_num(*curvature),
+                if *truth { "true" } else { "estimated" }
+            );
+        }
+        EventKind::Overrun { pending } => {
+            let _ = write!(o, ",\"pending\":{pending}");
+        }
+        EventKind::Error { message } => {
+            o.push_str(",\"message\":");
+            json_str(&mut o, message);
+        }
+    }
+    o.push('}');
+    o
+}
+
+/// Writes events as JSON Lines.
+pub fn write_jsonl(
+    m: &Module,
+    events: &[Event],
+    out: &mut impl std::io::Write,
+) -> std::io::Result<()> {
+    for e in events {
+        writeln!(out, "{}", render_event(m, e))?;
+    }
+    Ok(())
+}
+
+/// Events as JSON Lines in one string (for snapshots).
+pub fn to_jsonl(m: &Module, events: &[Event]) -> String {
+    let mut s = String::new();
+    for e in events {
+        s.push_str(&render_event(m, e));
+        s.push('\n');
+    }
+    s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn numbers_are_short_and_stable() {
+        assert_eq!(fmt_num(0.01), "0.01");
+        assert_eq!(fmt_num(3.0 * 0.01), "0.03");
+        assert_eq!(fmt_num(-0.00001), "0");
+        assert_eq!(fmt_num(1.23456), "1.2346");
+        assert_eq!(fmt_num(2.0), "2");
+    }
+}

@@ -1,0 +1,266 @@
+//! Variable records (Table 8 plus how the command ended) and the subscriptions that wake
+//! guards and waits when a variable changes. Subscriptions are intrusive lists in one
+//! pool: a doubly linked list per variable (wake order = subscription order) and a
+//! singly linked list per node (so a node drops all of its subscriptions at once).
+
+use ilmr_stdlib::Field;
+use serde::Serialize;
+
+pub(crate) const NONE: u32 = u32::MAX;
+
+/// How a command ended.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum How {
+    Completed,
+    Broken,
+    Refused,
+}
+
+impl How {
+    pub fn name(self) -> &'static str {
+        match self {
+            How::Completed => "completed",
+            How::Broken => "broken",
+            How::Refused => "refused",
+        }
+    }
+}
+
+/// A variable: the fields of Table 8 and how its command ended (`None` while it runs
+/// or for plain arithmetic).
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
+pub struct VarRecord {
+    pub status: f64,
+    pub x: f64,
+    pub y: f64,
+    pub h: f64,
+    pub value: f64,
+    pub dist: f64,
+    pub how: Option<How>,
+}
+
+/// Fields changed by one write, as a bit set over [`FIELDS`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct FieldMask(pub u8);
+
+/// Trace order of the fields.
+pub const FIELDS: [Field; 6] = [
+    Field::Status,
+    Field::X,
+    Field::Y,
+    Field::H,
+    Field::Value,
+    Field::Dist,
+];
+
+impl FieldMask {
+    pub fn bit(f: Field) -> u8 {
+        match f {
+            Field::Status => 1,
+            Field::X => 2,
+            Field::Y => 4,
+            Field::H => 8,
+            Field::Value => 16,
+            Field::Dist => 32,
+        }
+    }
+    pub fn has(self, f: Field) -> bool {
+        self.0 & FieldMask::bit(f) != 0
+    }
+    pub fn is_empty(self) -> bool {
+        self.0 == 0
+    }
+}
+
+impl VarRecord {
+    pub fn get(&self, f: Field) -> f64 {
+        match f {
+            Field::Status => self.status,
+            Field::X => self.x,
+            Field::Y => self.y,
+            Field::H => self.h,
+            Field::Value => self.value,
+            Field::Dist => self.dist,
+        }
+    }
+
+    fn slot(&mut self, f: Field) -> &mut f64 {
+        match f {
+            Field::Status => &mut self.status,
+            Field::X => &mut self.x,
+            Field::Y => &mut self.y,
+            Field::H => &mut self.h,
+            Field::Value => &mut self.value,
+            Field::Dist => &mut self.dist,
+        }
+    }
+}
+
+#[derive(Debug, Clone, Copy)]
+struct Sub {
+    node: u32,
+    var: u32,
+    prev: u32,
+    next: u32,
+    next_of_node: u32,
+}
+
+#[derive(Debug, Default)]
+pub(crate) struct Vars {
+    pub records: Vec<VarRecord>,
+    heads: Vec<(u32, u32)>,
+    subs: Vec<Sub>,
+    free_subs: u32,
+}
+
+impl Vars {
+    pub fn new(n: usize) -> Vars {
+        Vars {
+            records: vec![VarRecord::default(); n],
+            heads: vec![(NONE, NONE); n],
+            subs: Vec::new(),
+            free_subs: NONE,
+        }
+    }
+
+    pub fn footprint(&self) -> usize {
+        use std::mem::size_of;
+        self.records.capacity() * size_of::<VarRecord>()
+            + self.heads.capacity() * size_of::<(u32, u32)>()
+            + self.subs.capacity() * size_of::<Sub>()
+    }
+
+    pub fn grow(&mut self, n: usize) {
+        if n > self.records.len() {
+            self.records.resize(n, VarRecord::default());
+            self.heads.resize(n, (NONE, NONE));
+        }
+    }
+
+    pub fn get(&self, v: u32) -> VarRecord {
+        self.records.get(v as usize).copied().unwrap_or_default()
+    }
+
+    /// Writes one field; returns whether it changed.
+    pub fn set(&mut self, v: u32, f: Field, value: f64) -> bool {
+        match self.records.get_mut(v as usize) {
+            Some(r) => {
+                let slot = r.slot(f);
+                if slot.to_bits() == value.to_bits() {
+                    false
+                } else {
+                    *slot = value;
+                    true
+                }
+            }
+            None => false,
+        }
+    }
+
+    pub fn set_how(&mut self, v: u32, how: Option<How>) {
+        if let Some(r) = self.records.get_mut(v as usize) {
+            r.how = how;
+        }
+    }
+
+    pub fn clear(&mut self, v: u32) -> FieldMask {
+        let mut mask = FieldMask::default();
+        if let Some(r) = self.records.get_mut(v as usize) {
+            for f in FIELDS {
+                if r.get(f) != 0.0 {
+                    mask.0 |= FieldMask::bit(f);
+                }
+            }
+            *r = VarRecord::default();
+        }
+        mask
+    }
+
+    /// Subscribes `node` to changes of `var`; `node_head` is the node's list head.
+    pub fn subscribe(&mut self, node: u32, var: u32, node_head: &mut u32) {
+        let Some(&(_, tail)) = self.heads.get(var as usize) else {
+            return;
+        };
+        let sub = Sub {
+            node,
+            var,
+            prev: tail,
+            next: NONE,
+            next_of_node: *node_head,
+        };
+        let id = if self.free_subs != NONE {
+            let id = self.free_subs;
+            self.free_subs = self.subs[id as usize].next;
+            self.subs[id as usize] = sub;
+            id
+        } else {
+            self.subs.push(sub);
+            (self.subs.len() - 1) as u32
+        };
+        if tail != NONE {
+            self.subs[tail as usize].next = id;
+        } else {
+            self.heads[var as usize].0 = id;
+        }
+        self.heads[var as usize].1 = id;
+        *node_head = id;
+    }
+
+    /// Drops every subscription of a node.
+    pub fn unsubscribe_all(&mut self, node_head: &mut u32) {
+        let mut id = *node_head;
+        while id != NONE {
+            let s = self.subs[id as usize];
+            if s.prev != NONE {
+                self.subs[s.prev as usize].next = s.next;
+            } else {
+                self.heads[s.var as usize].0 = s.next;
+            }
+            if s.next != NONE {
+                self.subs[s.next as usize].prev = s.prev;
+            } else {
+                self.heads[s.var as usize].1 = s.prev;
+            }
+            self.subs[id as usize].next = self.free_subs;
+            self.free_subs = id;
+            id = s.next_of_node;
+        }
+        *node_head = NONE;
+    }
+
+    /// Calls `f` for every node subscribed to `var`, in subscription order.
+    pub fn for_each_subscriber(&self, var: u32, mut f: impl FnMut(u32)) {
+        let mut id = self.heads.get(var as usize).map_or(NONE, |h| h.0);
+        while id != NONE {
+            let s = &self.subs[id as usize];
+            f(s.node);
+            id = s.next;
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn subscriptions_wake_in_order_and_drop_per_node() {
+        let mut vars = Vars::new(2);
+        let (mut a, mut b) = (NONE, NONE);
+        vars.subscribe(10, 0, &mut a);
+        vars.subscribe(11, 0, &mut b);
+        vars.subscribe(10, 1, &mut a);
+        let mut seen = Vec::new();
+        vars.for_each_subscriber(0, |n| seen.push(n));
+        assert_eq!(seen, vec![10, 11]);
+        vars.unsubscribe_all(&mut a);
+        seen.clear();
+        vars.for_each_subscriber(0, |n| seen.push(n));
+        vars.for_each_subscriber(1, |n| seen.push(n));
+        assert_eq!(seen, vec![11]);
+        // Freed records are reused.
+        vars.subscribe(12, 1, &mut a);
+        assert!(vars.subs.len() <= 3);
+    }
+}

@@ -1,0 +1,289 @@
+//! The module format: the opcode table of docs/bytecode.md, serialisation, validation
+//! of untrusted files, the builder's errors and the disassembler.
+
+mod common;
+
+use common::{A, Asm, X, config, robot, vm};
+use ilmr_stdlib::{Command, VarKind};
+use ilmr_vm::bytecode::{BuildError, ExprOp, ModuleError, Op, Opcode, disassemble};
+use ilmr_vm::{Module, ModuleBuilder};
+
+#[test]
+fn docs_table_matches_opcodes() {
+    let doc = include_str!("../../docs/bytecode.md");
+    let section = doc
+        .split("## Instructions")
+        .nth(1)
+        .and_then(|s| s.split("\n## ").next())
+        .expect("an Instructions section");
+    let documented: Vec<&str> = section
+        .lines()
+        .filter_map(|l| l.strip_prefix("| `"))
+        .filter_map(|l| l.split('`').next())
+        .collect();
+    let opcodes: Vec<&str> = Opcode::ALL.iter().map(|o| o.mnemonic()).collect();
+    assert_eq!(documented, opcodes);
+    for (i, op) in Opcode::ALL.iter().enumerate() {
+        assert_eq!(*op as usize, i, "ALL is in discriminant order");
+    }
+}
+
+/// Figure 27 of the dissertation, in part.
+fn figure_27() -> Module {
+    let mut a = Asm::new();
+    let clap = a.skill("clap_hands");
+    let cb = vec![a.cmd(
+        "actuator(hands,on)",
+        Command::Actuator,
+        &[A::W("hands"), A::W("on")],
+        None,
+    )];
+    let cb = a.block(cb);
+    a.define(clap, &[cb]);
+    a.blank();
+    let code = vec![
+        a.cmd("obsavoid(on)", Command::ObsAvoid, &[A::W("on")], None),
+        a.cmd(
+            "d=followwall(middle)",
+            Command::FollowWall,
+            &[A::W("middle")],
+            Some("d"),
+        ),
+        a.assign("cnt=0", "cnt", &[X::N(0.0)]),
+        a.while_(
+            "while(cnt<5)",
+            &[X::V("cnt"), X::N(5.0), X::Op(ExprOp::Lt)],
+            None,
+            |a| {
+                vec![
+                    a.cmd(
+                        "door=findtarget(scanner,door)",
+                        Command::FindTarget,
+                        &[A::W("scanner"), A::W("door")],
+                        Some("door"),
+                    ),
+                    a.if_("if(door)", &[X::St("door")], |a| {
+                        vec![
+                            a.assign(
+                                "cnt=cnt+1",
+                                "cnt",
+                                &[X::V("cnt"), X::N(1.0), X::Op(ExprOp::Add)],
+                            ),
+                            a.call("clap_hands", clap, None),
+                        ]
+                    }),
+                ]
+            },
+        ),
+        a.if_(
+            "if(cnt==5)",
+            &[X::V("cnt"), X::N(5.0), X::Op(ExprOp::Eq)],
+            |a| {
+                vec![
+                    a.brk("break(followw)", "followw"),
+                    a.brk("break(while(c))", "while(c"),
+                ]
+            },
+        ),
+        a.cmd(
+            "ready=gotoxy(door)",
+            Command::GotoXY,
+            &[A::V("door")],
+            Some("ready"),
+        ),
+        a.wait_var("wait(ready)", "ready"),
+    ];
+    let b1 = a.block(code);
+    a.blank();
+    let code = vec![
+        a.cmd(
+            "battery=sensor(battery)",
+            Command::Sensor,
+            &[A::W("battery")],
+            Some("battery"),
+        ),
+        a.if_(
+            "if(battery<24)",
+            &[X::V("battery"), X::N(24.0), X::Op(ExprOp::Lt)],
+            |a| {
+                vec![
+                    a.op("priority=highest", Op::Priority),
+                    a.op("stop", Op::Stop),
+                ]
+            },
+        ),
+    ];
+    let b2 = a.block(code);
+    a.task(&[b1, b2])
+}
+
+#[test]
+fn disassembly_lists_every_block_with_its_source() {
+    insta::assert_snapshot!(disassemble(&figure_27()));
+}
+
+#[test]
+fn modules_round_trip_through_bytes() {
+    let m = figure_27();
+    let bytes = m.to_bytes();
+    assert_eq!(Module::from_bytes(&bytes), Ok(m));
+}
+
+#[test]
+fn foreign_files_are_rejected_before_they_run() {
+    let m = figure_27();
+    let json: serde_json::Value = serde_json::from_slice(&m.to_bytes()).expect("json");
+
+    assert!(matches!(
+        Module::from_bytes(b"\x00\x01garbage"),
+        Err(ModuleError::Decode(_))
+    ));
+
+    let mut wrong = json.clone();
+    wrong["header"]["magic"] = "ELF".into();
+    let bytes = serde_json::to_vec(&wrong).expect("json");
+    assert_eq!(
+        Module::from_bytes(&bytes),
+        Err(ModuleError::BadMagic("ELF".into()))
+    );
+
+    let mut newer = json.clone();
+    newer["header"]["version"] = 99.into();
+    let bytes = serde_json::to_vec(&newer).expect("json");
+    assert!(matches!(
+        Module::from_bytes(&bytes),
+        Err(ModuleError::Version { found: 99, .. })
+    ));
+
+    let mut out_of_range = json.clone();
+    out_of_range["blocks"][0]["len"] = 100_000.into();
+    let bytes = serde_json::to_vec(&out_of_range).expect("json");
+    assert!(matches!(
+        Module::from_bytes(&bytes),
+        Err(ModuleError::Index { .. })
+    ));
+
+    let mut bad_expr = json;
+    bad_expr["expr_code"][0] = "add".into();
+    let bytes = serde_json::to_vec(&bad_expr).expect("json");
+    assert!(matches!(
+        Module::from_bytes(&bytes),
+        Err(ModuleError::Expr { .. })
+    ));
+}
+
+/// Every number of a valid file nudged, one at a time: loading never panics, and
+/// whatever loads also runs.
+#[test]
+fn mutated_files_never_panic() {
+    let m = figure_27();
+    let json: serde_json::Value = serde_json::from_slice(&m.to_bytes()).expect("json");
+    let mut paths = Vec::new();
+    collect_numbers(&json, &mut Vec::new(), &mut paths);
+    assert!(paths.len() > 100);
+    let mut loaded = 0;
+    for (i, path) in paths.iter().enumerate() {
+        for delta in [1i64, 7, -1, 1 << 20] {
+            let mut v = json.clone();
+            let slot = path.iter().fold(&mut v, |v, k| match k {
+                Key::I(i) => &mut v[*i],
+                Key::S(s) => &mut v[s.as_str()],
+            });
+            let n = slot.as_i64().unwrap_or(0).saturating_add(delta);
+            *slot = n.into();
+            let bytes = serde_json::to_vec(&v).expect("json");
+            if let Ok(module) = Module::from_bytes(&bytes) {
+                loaded += 1;
+                if i % 5 == 0 {
+                    let mut vm = vm(module, robot(), config());
+                    vm.run_for(0.3);
+                }
+            }
+        }
+    }
+    assert!(loaded > 0);
+}
+
+enum Key {
+    I(usize),
+    S(String),
+}
+
+fn collect_numbers(v: &serde_json::Value, at: &mut Vec<Key>, out: &mut Vec<Vec<Key>>) {
+    let clone = |at: &Vec<Key>| {
+        at.iter()
+            .map(|k| match k {
+                Key::I(i) => Key::I(*i),
+                Key::S(s) => Key::S(s.clone()),
+            })
+            .collect::<Vec<_>>()
+    };
+    match v {
+        serde_json::Value::Number(n) if n.is_u64() => out.push(clone(at)),
+        serde_json::Value::Array(a) => {
+            for (i, x) in a.iter().enumerate() {
+                at.push(Key::I(i));
+                collect_numbers(x, at, out);
+                at.pop();
+            }
+        }
+        serde_json::Value::Object(o) => {
+            for (k, x) in o {
+                at.push(Key::S(k.clone()));
+                collect_numbers(x, at, out);
+                at.pop();
+            }
+        }
+        _ => {}
+    }
+}
+
+#[test]
+fn the_builder_refuses_what_the_vm_could_not_run() {
+    let mut b = ModuleBuilder::new();
+    b.global("door", VarKind::Position).expect("new");
+    assert!(matches!(
+        b.global("DOOR", VarKind::Number),
+        Err(BuildError::KindConflict { .. })
+    ));
+    assert_eq!(
+        b.global("Door", VarKind::Position),
+        b.global("door", VarKind::Position)
+    );
+
+    let mut a = Asm::new();
+    let code = vec![
+        a.assign("x=1", "x", &[X::N(1.0)]),
+        a.op("priority=highest", Op::Priority),
+    ];
+    let blk = a.block(code);
+    let main = a.b.declare_unit("task", false).expect("unit");
+    a.b.define_unit(main, &[blk]);
+    a.b.set_main(main);
+    assert!(matches!(
+        a.b.finish(),
+        Err(BuildError::Invalid(ModuleError::PriorityNotFirst { .. }))
+    ));
+
+    let mut a = Asm::new();
+    let stmt =
+        a.b.stmt(ilmr_vm::bytecode::FileId(0), 1, (0, 4), "wait")
+            .expect("stmt");
+    let args = a.b.args(&[]).expect("args");
+    let blk =
+        a.b.block(&[ilmr_vm::bytecode::Instr::new(
+            Op::Issue {
+                command: Command::Wait,
+                args,
+                bind: None,
+            },
+            stmt,
+        )])
+        .expect("block");
+    let main = a.b.declare_unit("task", false).expect("unit");
+    a.b.define_unit(main, &[blk]);
+    assert_eq!(
+        a.b.finish(),
+        Err(BuildError::Invalid(ModuleError::NotIssuable(Command::Wait)))
+    );
+}

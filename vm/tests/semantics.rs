@@ -1,0 +1,763 @@
+//! One small hand-built program per rule of the execution model, run on the
+//! ScriptedRobot, checked by plain assertions and by a snapshot of the trace.
+
+mod common;
+
+use common::{A, Asm, X, config, ended, robot, trace, vm, when};
+use ilmr_hal::{Detection, OpMatch, OpOutcome, Side};
+use ilmr_stdlib::{Command, Field, VarKind};
+use ilmr_vm::bytecode::{ExprOp, Op};
+use ilmr_vm::{Config, TraceLevel};
+
+#[test]
+fn movements_start_in_issue_order_and_other_statements_go_on() {
+    let mut a = Asm::new();
+    let code = vec![
+        a.cmd("speed(0.5)", Command::Speed, &[A::N(0.5)], None),
+        a.cmd(
+            "first=goahead(1)",
+            Command::Goahead,
+            &[A::N(1.0)],
+            Some("first"),
+        ),
+        a.cmd(
+            "second=goahead(0.5)",
+            Command::Goahead,
+            &[A::N(0.5)],
+            Some("second"),
+        ),
+        a.assign("after=1", "after", &[X::N(1.0)]),
+    ];
+    let b = a.block(code);
+    let m = a.task(&[b]);
+    let mut vm = vm(m, robot(), config());
+    assert!(vm.run_for(10.0), "task ends");
+    let first_end = when(&vm, "end", "first=goahead(1)").expect("first ends");
+    let second_start = when(&vm, "start", "second=goahead(0.5)").expect("second starts");
+    assert_eq!(
+        when(&vm, "var", "after=1"),
+        Some(0.0),
+        "not held by the queue"
+    );
+    assert!(
+        second_start >= first_end,
+        "second waits for the reservation"
+    );
+    let first = vm.var("first").expect("bound");
+    assert!(
+        (first.dist - 1.0).abs() < 0.6,
+        "first drove about 1 m: {first:?}"
+    );
+    insta::assert_snapshot!(trace(&vm));
+}
+
+#[test]
+fn a_wait_holds_only_its_own_block() {
+    let mut a = Asm::new();
+    let one = vec![a.wait("wait(1)", 1.0), a.assign("x=1", "x", &[X::N(1.0)])];
+    let b1 = a.block(one);
+    a.blank();
+    let two = vec![a.assign("y=1", "y", &[X::N(1.0)])];
+    let b2 = a.block(two);
+    let mut vm = vm(a.task(&[b1, b2]), robot(), config());
+    assert!(vm.run_for(3.0));
+    assert_eq!(when(&vm, "var", "y=1"), Some(0.0));
+    assert_eq!(when(&vm, "var", "x=1"), Some(1.0));
+    insta::assert_snapshot!(trace(&vm));
+}
+
+#[test]
+fn a_guard_fires_once_when_its_reading_drops() {
+    let mut a = Asm::new();
+    let code = vec![
+        a.cmd(
+            "b=sensor(battery)",
+            Command::Sensor,
+            &[A::W("battery")],
+            Some("b"),
+        ),
+        a.if_(
+            "if(b<24)",
+            &[X::V("b"), X::N(24.0), X::Op(ExprOp::Lt)],
+            |a| {
+                vec![
+                    a.wait("wait(1)", 1.0),
+                    a.assign(
+                        "low=low+1",
+                        "low",
+                        &[X::V("low"), X::N(1.0), X::Op(ExprOp::Add)],
+                    ),
+                ]
+            },
+        ),
+    ];
+    let b = a.block(code);
+    let r = robot()
+        .battery(0.0, 25.0)
+        .battery(1.5, 23.5)
+        .battery(2.0, 23.0);
+    let mut vm = vm(a.task(&[b]), r, config());
+    assert!(vm.run_for(4.0), "the if ends when its body has");
+    assert_eq!(when(&vm, "start", "if(b<24)"), Some(1.5));
+    assert_eq!(vm.var("low").map(|v| v.value), Some(1.0), "body runs once");
+    assert_eq!(
+        vm.var("b").map(|v| v.value),
+        Some(23.0),
+        "b keeps following"
+    );
+    insta::assert_snapshot!(trace(&vm));
+}
+
+#[test]
+fn a_while_counts_and_reevaluates_after_each_iteration() {
+    let mut a = Asm::new();
+    let code = vec![
+        a.assign("cnt=0", "cnt", &[X::N(0.0)]),
+        a.while_(
+            "loop=while(cnt<3)",
+            &[X::V("cnt"), X::N(3.0), X::Op(ExprOp::Lt)],
+            Some("loop"),
+            |a| {
+                vec![
+                    a.wait("wait(0.1)", 0.1),
+                    a.assign(
+                        "cnt=cnt+1",
+                        "cnt",
+                        &[X::V("cnt"), X::N(1.0), X::Op(ExprOp::Add)],
+                    ),
+                ]
+            },
+        ),
+        a.wait_var("wait(loop)", "loop"),
+        a.assign("done=cnt", "done", &[X::V("cnt")]),
+    ];
+    let b = a.block(code);
+    let mut vm = vm(a.task(&[b]), robot(), config());
+    assert!(vm.run_for(2.0));
+    assert_eq!(vm.var("done").map(|v| v.value), Some(3.0));
+    assert_eq!(when(&vm, "var", "done=cnt"), Some(0.3));
+    insta::assert_snapshot!(trace(&vm));
+}
+
+#[test]
+fn break_ends_every_live_command_whose_text_matches() {
+    let mut a = Asm::new();
+    let one = vec![
+        a.cmd("d=goahead()", Command::Goahead, &[], Some("d")),
+        a.cmd(
+            "door=sensor(scanner,door)",
+            Command::Sensor,
+            &[A::W("scanner"), A::W("door")],
+            Some("door"),
+        ),
+    ];
+    let b1 = a.block(one);
+    a.blank();
+    let two = vec![a.wait("wait(1)", 1.0), a.brk("break(GoAhead)", "GoAhead")];
+    let b2 = a.block(two);
+    let mut vm = vm(a.task(&[b1, b2]), robot(), config());
+    vm.run_for(2.0);
+    assert_eq!(ended(&vm, "d=goahead()").as_deref(), Some("broken"));
+    assert_eq!(
+        ended(&vm, "door=sensor(scanner,door)"),
+        None,
+        "the search goes on"
+    );
+    let d = vm.var("d").expect("bound");
+    assert_eq!((d.status, d.how), (1.0, Some(ilmr_vm::How::Broken)));
+    assert!(d.dist > 0.1);
+    insta::assert_snapshot!(trace(&vm));
+}
+
+#[test]
+fn breaking_a_while_ends_everything_inside_it() {
+    let mut a = Asm::new();
+    let one = vec![a.while_("while(1)", &[X::N(1.0)], None, |a| {
+        vec![
+            a.wait("wait(5)", 5.0),
+            a.assign("never=1", "never", &[X::N(1.0)]),
+        ]
+    })];
+    let b1 = a.block(one);
+    a.blank();
+    let two = vec![a.wait("wait(0.5)", 0.5), a.brk("break(while(1)", "while(1")];
+    let b2 = a.block(two);
+    let mut vm = vm(a.task(&[b1, b2]), robot(), config());
+    assert!(vm.run_for(2.0));
+    assert_eq!(ended(&vm, "wait(5)").as_deref(), Some("broken"));
+    assert_eq!(ended(&vm, "while(1)").as_deref(), Some("broken"));
+    assert_eq!(vm.var("never").map(|v| v.status), Some(0.0));
+    insta::assert_snapshot!(trace(&vm));
+}
+
+#[test]
+fn priority_highest_ends_every_other_command_and_runs_alone() {
+    let mut a = Asm::new();
+    let one = vec![
+        a.cmd("speed(0.4)", Command::Speed, &[A::N(0.4)], None),
+        a.cmd("goahead()", Command::Goahead, &[], None),
+        a.cmd(
+            "x=sensor(scanner,door)",
+            Command::Sensor,
+            &[A::W("scanner"), A::W("door")],
+            Some("x"),
+        ),
+    ];
+    let b1 = a.block(one);
+    a.blank();
+    let two = vec![
+        a.cmd(
+            "battery=sensor(battery)",
+            Command::Sensor,
+            &[A::W("battery")],
+            Some("battery"),
+        ),
+        a.if_(
+            "if(battery<24)",
+            &[X::V("battery"), X::N(24.0), X::Op(ExprOp::Lt)],
+            |a| {
+                vec![
+                    a.op("priority=highest", Op::Priority),
+                    a.cmd(
+                        "charge=goahead(-0.5)",
+                        Command::Goahead,
+                        &[A::N(-0.5)],
+                        Some("charge"),
+                    ),
+                ]
+            },
+        ),
+    ];
+    let b2 = a.block(two);
+    let r = robot().battery(0.0, 25.0).battery(1.0, 23.0);
+    let mut vm = vm(a.task(&[b1, b2]), r, config());
+    assert!(vm.run_for(10.0));
+    assert_eq!(ended(&vm, "goahead()").as_deref(), Some("broken"));
+    assert_eq!(
+        ended(&vm, "x=sensor(scanner,door)").as_deref(),
+        Some("broken")
+    );
+    assert_eq!(when(&vm, "end", "goahead()"), Some(1.0));
+    assert_eq!(
+        ended(&vm, "charge=goahead(-0.5)").as_deref(),
+        Some("completed")
+    );
+    insta::assert_snapshot!(trace(&vm));
+}
+
+#[test]
+fn a_budget_overrun_suspends_the_block_but_not_the_movement() {
+    let mut a = Asm::new();
+    let one = vec![
+        a.cmd("speed(0.5)", Command::Speed, &[A::N(0.5)], None),
+        a.cmd("m=goahead(1)", Command::Goahead, &[A::N(1.0)], Some("m")),
+    ];
+    let b1 = a.block(one);
+    a.blank();
+    let two = vec![a.while_(
+        "while(n<1000000)",
+        &[X::V("n"), X::N(1e6), X::Op(ExprOp::Lt)],
+        None,
+        |a| vec![a.assign("n=n+1", "n", &[X::V("n"), X::N(1.0), X::Op(ExprOp::Add)])],
+    )];
+    let b2 = a.block(two);
+    let cfg = Config {
+        budget_ops: 5_000,
+        ..config()
+    };
+    let mut vm = vm(a.task(&[b1, b2]), robot(), cfg);
+    vm.run_for(4.0);
+    let overruns = vm
+        .events()
+        .iter()
+        .filter(|e| e.kind.name() == "overrun")
+        .count();
+    assert!(overruns >= 300, "one overrun per tick: {overruns}");
+    assert_eq!(ended(&vm, "m=goahead(1)").as_deref(), Some("completed"));
+    let end = when(&vm, "end", "m=goahead(1)").expect("ends");
+    assert!(end < 3.5, "the movement was not starved: ended at {end}");
+    let n = vm.var("n").expect("n").value;
+    assert!(
+        n > 1000.0 && n < 1e6,
+        "the loop made progress without finishing: {n}"
+    );
+    // The snapshot keeps the first second: the overruns repeat every tick after.
+    let head: String = trace(&vm)
+        .lines()
+        .take(12)
+        .map(|l| format!("{l}\n"))
+        .collect();
+    insta::assert_snapshot!(head);
+}
+
+#[test]
+fn stop_halts_the_robot_and_cont_resumes_the_movement() {
+    let mut a = Asm::new();
+    let one = vec![
+        a.cmd("speed(0.5)", Command::Speed, &[A::N(0.5)], None),
+        a.cmd("m=goahead(2)", Command::Goahead, &[A::N(2.0)], Some("m")),
+    ];
+    let b1 = a.block(one);
+    a.blank();
+    let two = vec![
+        a.wait("wait(1.5)", 1.5),
+        a.op("stop", Op::Stop),
+        a.wait("wait(2)", 2.0),
+        a.op("cont", Op::Cont),
+    ];
+    let b2 = a.block(two);
+    let mut vm = vm(a.task(&[b1, b2]), robot(), config());
+    vm.run_for(3.0);
+    assert!(vm.hal().speed().abs() < 1e-9, "halted during the stop");
+    let x_stopped = vm.hal().true_pose().x;
+    vm.run_for(0.4);
+    assert!((vm.hal().true_pose().x - x_stopped).abs() < 1e-9);
+    assert!(vm.run_for(10.0));
+    assert_eq!(ended(&vm, "m=goahead(2)").as_deref(), Some("completed"));
+    assert!((vm.hal().true_pose().x - 2.0).abs() < 0.05);
+    insta::assert_snapshot!(trace(&vm));
+}
+
+#[test]
+fn clear_resets_a_variable_so_waits_wait_anew() {
+    let mut a = Asm::new();
+    let one = vec![
+        a.assign("x=5", "x", &[X::N(5.0)]),
+        a.clear("clear(x)", "x"),
+        a.wait_var("wait(x)", "x"),
+        a.assign("seen=x", "seen", &[X::V("x")]),
+    ];
+    let b1 = a.block(one);
+    a.blank();
+    let two = vec![a.wait("wait(0.5)", 0.5), a.assign("x=7", "x", &[X::N(7.0)])];
+    let b2 = a.block(two);
+    let mut vm = vm(a.task(&[b1, b2]), robot(), config());
+    assert!(vm.run_for(2.0));
+    assert_eq!(when(&vm, "var", "seen=x"), Some(0.5));
+    assert_eq!(vm.var("seen").map(|v| v.value), Some(7.0));
+    insta::assert_snapshot!(trace(&vm));
+}
+
+#[test]
+fn a_skill_call_binds_a_status_set_when_all_its_commands_ended() {
+    let mut a = Asm::new();
+    let skill = a.skill("Takebox");
+    let s1 = vec![
+        a.cmd(
+            "manipulate(take)",
+            Command::Manipulate,
+            &[A::W("take")],
+            None,
+        ),
+        a.wait("wait(0.3)", 0.3),
+    ];
+    let sb1 = a.block(s1);
+    a.blank();
+    let s2 = vec![a.cmd(
+        "actuator(brake,on)",
+        Command::Actuator,
+        &[A::W("brake"), A::W("on")],
+        None,
+    )];
+    let sb2 = a.block(s2);
+    a.define(skill, &[sb1, sb2]);
+    a.blank();
+    let main = vec![
+        a.call("Over=Takebox", skill, Some("Over")),
+        a.wait_var("wait(Over)", "Over"),
+        a.assign("done=1", "done", &[X::N(1.0)]),
+    ];
+    let mb = a.block(main);
+    let r = robot().op(
+        OpMatch::Manipulate(ilmr_hal::ManipTask::Take),
+        50,
+        OpOutcome::Done,
+    );
+    let mut vm = vm(a.task(&[mb]), r, config());
+    assert!(vm.run_for(2.0));
+    assert_eq!(
+        when(&vm, "end", "Over=Takebox"),
+        Some(0.5),
+        "after the manipulation"
+    );
+    assert_eq!(when(&vm, "var", "done=1"), Some(0.5));
+    assert_eq!(vm.hal().actuator_log(), &[("brake".to_string(), 1.0)]);
+    insta::assert_snapshot!(trace(&vm));
+}
+
+#[test]
+fn consecutive_movements_link_without_a_stop() {
+    let mut a = Asm::new();
+    let code = vec![
+        a.cmd("speed(0.5)", Command::Speed, &[A::N(0.5)], None),
+        a.cmd("goahead(2)", Command::Goahead, &[A::N(2.0)], None),
+        a.cmd(
+            "turn(d=90,c=0.5)",
+            Command::Turn,
+            &[A::S("d", 90.0), A::S("c", 0.5)],
+            None,
+        ),
+    ];
+    let b = a.block(code);
+    let mut vm = vm(a.task(&[b]), robot(), config());
+    let mut slowest = f64::INFINITY;
+    let mut linked_at = None;
+    for _ in 0..2000 {
+        vm.tick();
+        if linked_at.is_none() {
+            linked_at = when(&vm, "start", "turn(d=90,c=0.5)");
+        }
+        if vm.time() > 2.0 && !vm.finished() && linked_at.is_some_and(|t| vm.time() < t + 1.0) {
+            slowest = slowest.min(vm.hal().speed());
+        }
+        if vm.finished() {
+            break;
+        }
+    }
+    assert!(vm.finished());
+    let linked = vm
+        .events()
+        .iter()
+        .any(|e| matches!(e.kind, ilmr_vm::EventKind::End { linked: true, .. }));
+    assert!(linked, "the goahead was linked to the turn");
+    assert!(
+        slowest > 0.4,
+        "no stop between the linked movements: {slowest}"
+    );
+    let p = vm.hal().true_pose();
+    // 2 m ahead then a quarter circle of radius 2 to the left ends near (4, 2).
+    assert!(
+        (p.x - 4.0).abs() < 0.15 && (p.y - 2.0).abs() < 0.15,
+        "{p:?}"
+    );
+    insta::assert_snapshot!(trace(&vm));
+}
+
+#[test]
+fn a_wait_on_the_first_movement_prevents_linking() {
+    let mut a = Asm::new();
+    let code = vec![
+        a.cmd("speed(0.5)", Command::Speed, &[A::N(0.5)], None),
+        a.cmd("m=goahead(2)", Command::Goahead, &[A::N(2.0)], Some("m")),
+        a.cmd("goahead(1)", Command::Goahead, &[A::N(1.0)], None),
+        a.wait_var("wait(m)", "m"),
+    ];
+    let b = a.block(code);
+    let mut vm = vm(a.task(&[b]), robot(), config());
+    let mut slowest = f64::INFINITY;
+    for _ in 0..2000 {
+        vm.tick();
+        if vm.time() > 2.0 && !vm.finished() {
+            slowest = slowest.min(vm.hal().speed().abs());
+        }
+        if vm.finished() {
+            break;
+        }
+    }
+    assert!(vm.finished());
+    let linked = vm
+        .events()
+        .iter()
+        .any(|e| matches!(e.kind, ilmr_vm::EventKind::End { linked: true, .. }));
+    assert!(!linked);
+    assert!(
+        slowest < 0.1,
+        "the robot slowed to a stop between them: {slowest}"
+    );
+    assert!((vm.hal().true_pose().x - 3.0).abs() < 0.05);
+}
+
+#[test]
+fn a_found_door_is_stored_and_compared_by_position() {
+    let mut a = Asm::new();
+    let code = vec![
+        a.cmd(
+            "MyDoor=sensor(scanner,door)",
+            Command::Sensor,
+            &[A::W("scanner"), A::W("door")],
+            Some("MyDoor"),
+        ),
+        a.wait_var("wait(MyDoor)", "MyDoor"),
+        a.cmd(
+            "Door=sensor(scanner,door,left,forever)",
+            Command::Sensor,
+            &[A::W("scanner"), A::W("door"), A::W("left"), A::W("forever")],
+            Some("Door"),
+        ),
+        a.if_("if(Door==MyDoor)", &[X::At("Door", "MyDoor")], |a| {
+            vec![a.brk("break(sensor)", "sensor")]
+        }),
+    ];
+    let b = a.block(code);
+    let door = |x: f64, side: Side| Detection {
+        sensor: "scanner".into(),
+        object: "door".into(),
+        x,
+        y: 1.0,
+        h: 0.0,
+        side,
+    };
+    // The first door is seen on the right, so the left-only search misses it.
+    let r = robot()
+        .sighting(0.5, 0.6, door(3.0, Side::Right))
+        .sighting(1.0, 1.2, door(8.0, Side::Left))
+        .sighting(2.0, 2.2, door(3.1, Side::Left));
+    let mut vm = vm(a.task(&[b]), r, config());
+    assert!(vm.run_for(4.0));
+    assert_eq!(when(&vm, "end", "MyDoor=sensor(scanner,door)"), Some(0.5));
+    assert_eq!(when(&vm, "start", "if(Door==MyDoor)"), Some(2.0));
+    assert_eq!(
+        ended(&vm, "Door=sensor(scanner,door,left,forever)").as_deref(),
+        Some("broken")
+    );
+    insta::assert_snapshot!(trace(&vm));
+}
+
+#[test]
+fn refusals_and_missing_data_become_variable_states() {
+    let mut a = Asm::new();
+    let code = vec![
+        a.cmd(
+            "ok=manipulate(take)",
+            Command::Manipulate,
+            &[A::W("take")],
+            Some("ok"),
+        ),
+        a.cmd(
+            "v=sensor(sonar)",
+            Command::Sensor,
+            &[A::W("sonar")],
+            Some("v"),
+        ),
+        a.cmd(
+            "actuator(brake,on)",
+            Command::Actuator,
+            &[A::W("brake"), A::W("on")],
+            None,
+        ),
+        a.cmd("gotoxy(nowhere)", Command::GotoXY, &[A::V("nowhere")], None),
+    ];
+    let b = a.block(code);
+    let r = robot()
+        .op(OpMatch::Any, 3, OpOutcome::Failed("gripper blocked".into()))
+        .refuse_actuator("brake", "locked");
+    let mut vm = vm(a.task(&[b]), r, config());
+    assert!(vm.run_for(3.0));
+    let ok = vm.var("ok").expect("ok");
+    assert_eq!((ok.status, ok.how), (1.0, Some(ilmr_vm::How::Refused)));
+    assert_eq!(
+        vm.var("v").map(|v| v.how),
+        Some(Some(ilmr_vm::How::Refused))
+    );
+    assert_eq!(ended(&vm, "actuator(brake,on)").as_deref(), Some("refused"));
+    assert_eq!(ended(&vm, "gotoxy(nowhere)").as_deref(), Some("refused"));
+    insta::assert_snapshot!(trace(&vm));
+}
+
+#[test]
+fn init_holds_its_block_until_the_robot_is_ready() {
+    let mut a = Asm::new();
+    let one = vec![
+        a.cmd("init()", Command::Init, &[], None),
+        a.assign("ready=1", "ready", &[X::N(1.0)]),
+    ];
+    let b1 = a.block(one);
+    a.blank();
+    let two = vec![a.assign("meanwhile=1", "meanwhile", &[X::N(1.0)])];
+    let b2 = a.block(two);
+    let r = robot().op(OpMatch::Init, 30, OpOutcome::Done);
+    let mut vm = vm(a.task(&[b1, b2]), r, config());
+    assert!(vm.run_for(1.0));
+    assert_eq!(when(&vm, "var", "meanwhile=1"), Some(0.0));
+    assert_eq!(when(&vm, "var", "ready=1"), Some(0.3));
+}
+
+#[test]
+fn an_exact_turn_follows_its_arc() {
+    let mut a = Asm::new();
+    let code = vec![
+        a.cmd("speed(0.4)", Command::Speed, &[A::N(0.4)], None),
+        a.cmd(
+            "t=turn(d=90,c=0.6)",
+            Command::Turn,
+            &[A::S("d", 90.0), A::S("c", 0.6)],
+            Some("t"),
+        ),
+    ];
+    let b = a.block(code);
+    let cfg = Config {
+        trace: TraceLevel::Full,
+        pose_every: 50,
+        ..Config::default()
+    };
+    let mut vm = vm(a.task(&[b]), robot(), cfg);
+    let r = 1.0 / 0.6;
+    let mut worst: f64 = 0.0;
+    while !vm.finished() && vm.time() < 20.0 {
+        vm.tick();
+        let p = vm.hal().true_pose();
+        if p.x > 0.05 {
+            // Distance from the circle about (0, r).
+            worst = worst.max((p.x.hypot(p.y - r) - r).abs());
+        }
+    }
+    assert!(vm.finished());
+    let t = vm.var("t").expect("t");
+    assert!(
+        (t.dist - r * std::f64::consts::FRAC_PI_2).abs() < 0.05,
+        "{t:?}"
+    );
+    assert!(worst < 0.08, "max deviation from the arc {worst}");
+    let p = vm.hal().true_pose();
+    assert!((p.h - std::f64::consts::FRAC_PI_2).abs() < 0.1, "{p:?}");
+    insta::assert_snapshot!(trace(&vm));
+}
+
+#[test]
+fn an_interactive_line_joins_the_running_task() {
+    let mut a = Asm::new();
+    a.var("count", VarKind::Number);
+    let code = vec![a.while_(
+        "while(count<100)",
+        &[X::V("count"), X::N(100.0), X::Op(ExprOp::Lt)],
+        None,
+        |a| vec![a.wait("wait(0.1)", 0.1)],
+    )];
+    let b = a.block(code);
+    let mut vm = vm(a.task(&[b]), robot(), config());
+    vm.run_for(0.5);
+    let mut line = Asm::extending(vm.module(), "<interactive>");
+    let code = vec![line.assign("count=100", "count", &[X::N(100.0)])];
+    let lb = line.block(code);
+    let fragment = line.fragment(&[lb]);
+    vm.add_block(&fragment)
+        .expect("compiled against this module");
+    assert!(vm.add_block(&fragment).is_err(), "a fragment applies once");
+    assert!(vm.run_for(1.0), "the loop saw the new value");
+    assert_eq!(when(&vm, "var", "count=100"), Some(0.5));
+    assert_eq!(ended(&vm, "while(count<100)").as_deref(), Some("completed"));
+}
+
+#[test]
+fn the_same_inputs_give_a_byte_identical_trace() {
+    let run = || {
+        let mut a = Asm::new();
+        let one = vec![
+            a.cmd("speed(0.6)", Command::Speed, &[A::N(0.6)], None),
+            a.cmd(
+                "gotoxy(3,1)",
+                Command::GotoXY,
+                &[A::N(3.0), A::N(1.0)],
+                None,
+            ),
+            a.cmd(
+                "turn(d=-90,c=1)",
+                Command::Turn,
+                &[A::S("d", -90.0), A::S("c", 1.0)],
+                None,
+            ),
+        ];
+        let b1 = a.block(one);
+        a.blank();
+        let two = vec![
+            a.cmd(
+                "b=sensor(battery)",
+                Command::Sensor,
+                &[A::W("battery")],
+                Some("b"),
+            ),
+            a.if_(
+                "if(b<24)",
+                &[X::F("b", Field::Value), X::N(24.0), X::Op(ExprOp::Lt)],
+                |a| vec![a.assign("low=1", "low", &[X::N(1.0)])],
+            ),
+        ];
+        let b2 = a.block(two);
+        let r = robot().battery(0.0, 25.0).battery(3.0, 23.0);
+        let cfg = Config::default();
+        let mut vm = vm(a.task(&[b1, b2]), r, cfg);
+        vm.run_for(15.0);
+        trace(&vm)
+    };
+    let (one, two) = (run(), run());
+    assert!(one.lines().count() > 100);
+    assert_eq!(one, two);
+}
+
+#[test]
+fn runaway_skill_recursion_is_refused_not_fatal() {
+    let mut a = Asm::new();
+    let skill = a.skill("Again");
+    let code = vec![
+        a.assign(
+            "depth=depth+1",
+            "depth",
+            &[X::V("depth"), X::N(1.0), X::Op(ExprOp::Add)],
+        ),
+        a.call("Again", skill, None),
+    ];
+    let sb = a.block(code);
+    a.define(skill, &[sb]);
+    a.blank();
+    let main = vec![
+        a.call("r=Again", skill, Some("r")),
+        a.wait_var("wait(r)", "r"),
+    ];
+    let mb = a.block(main);
+    let cfg = Config {
+        budget_ops: 40,
+        ..config()
+    };
+    let mut vm = vm(a.task(&[mb]), robot(), cfg);
+    assert!(
+        vm.run_for(5.0),
+        "the refusal at the depth limit unwinds every call"
+    );
+    assert_eq!(vm.var("depth").map(|v| v.value), Some(64.0));
+    assert!(vm.events().iter().any(|e| e.kind.name() == "overrun"));
+    let refused = vm.events().iter().filter(|e| {
+        matches!(
+            &e.kind,
+            ilmr_vm::EventKind::End {
+                how: ilmr_vm::How::Refused,
+                ..
+            }
+        )
+    });
+    assert_eq!(refused.count(), 1);
+    assert_eq!(
+        vm.var("r").map(|v| v.how),
+        Some(Some(ilmr_vm::How::Completed))
+    );
+}
+
+#[test]
+fn speed_with_w_waits_for_the_running_movement() {
+    let mut a = Asm::new();
+    let code = vec![
+        a.cmd("speed(0.5)", Command::Speed, &[A::N(0.5)], None),
+        a.cmd("m=goahead(1)", Command::Goahead, &[A::N(1.0)], Some("m")),
+        a.cmd(
+            "speed(-0.3,w)",
+            Command::Speed,
+            &[A::N(-0.3), A::W("w")],
+            None,
+        ),
+        a.wait_var("wait(m)", "m"),
+        a.cmd("goahead(0.5)", Command::Goahead, &[A::N(0.5)], None),
+    ];
+    let b = a.block(code);
+    let mut vm = vm(a.task(&[b]), robot(), config());
+    assert!(vm.run_for(15.0));
+    assert_eq!(
+        when(&vm, "end", "speed(-0.3,w)"),
+        when(&vm, "end", "m=goahead(1)"),
+        "the new speed applies when the movement ends"
+    );
+    // 1 m ahead at 0.5 m/s, then 0.5 m reversing.
+    assert!(
+        (vm.hal().true_pose().x - 0.5).abs() < 0.05,
+        "{:?}",
+        vm.hal().true_pose()
+    );
+}
