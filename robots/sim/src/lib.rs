@@ -18,6 +18,7 @@ pub mod config;
 pub mod geometry;
 pub mod kinematics;
 pub mod rng;
+mod robot;
 pub mod sensors;
 mod sim;
 pub mod world;
@@ -25,5 +26,9 @@ pub mod world;
 pub use config::{RobotConfig, RobotKind};
 pub use geometry::{Pose, Vec2};
 pub use kinematics::{BodyPose, MovementMode};
+pub use robot::{
+    BALL_SECONDS, INIT_SECONDS, LEAVE_SECONDS, MOVEMODE_SECONDS, STEP, SimRobot, TAKE_SECONDS,
+    config_from_model,
+};
 pub use sim::{Contact, EventKind, Faults, SensorSnapshot, SimError, SimEvent, Simulator};
 pub use world::{World, WorldError};

@@ -6,7 +6,7 @@ use ilmr_hal::{AsyncOp, BodyPose, Hal, ManipTask, OpId, OpStatus, Pose, Side};
 use ilmr_stdlib::{Command, Field};
 
 use super::clock::Clock;
-use super::nodes::{Kind, MoveSpec, NodeRef, SensorSpec, Which};
+use super::nodes::{Kind, MoveSpec, NodeRef, SensorSpec, WallMode, Which};
 use super::trace::EventKind;
 use super::vars::{How, NONE};
 use super::{Follower, Recording, Vm, stmt_of};
@@ -197,6 +197,7 @@ impl<H: Hal, C: Clock> Vm<H, C> {
                     self.hal
                         .locate(Pose::new(n[0], n[1], n[2].to_radians()))
                         .map_err(Self::refuse_hal)?;
+                    self.motion.relocated();
                     return Ok(None);
                 }
                 let field = match word0.to_ascii_lowercase().as_str() {
@@ -212,7 +213,7 @@ impl<H: Hal, C: Clock> Vm<H, C> {
                 Ok(None)
             }
             Command::ObsAvoid => {
-                self.motion.obsavoid = word0.to_ascii_lowercase();
+                self.motion.set_obsavoid(word0)?;
                 Ok(None)
             }
             Command::Record => {
@@ -407,7 +408,11 @@ impl<H: Hal, C: Clock> Vm<H, C> {
                         c: c as f32,
                     }
                 } else if let Some(v) = var0 {
-                    MoveSpec::ToVar { var: v, rel: false }
+                    MoveSpec::ToVar {
+                        var: v,
+                        rel: false,
+                        r: has_r,
+                    }
                 } else {
                     match self.word_of(self.arg(r, 0)).and_then(side_of) {
                         Some(side) => MoveSpec::TurnSide {
@@ -421,9 +426,8 @@ impl<H: Hal, C: Clock> Vm<H, C> {
             }
             Command::GotoXY | Command::GotoRelXY => {
                 let rel = command == Command::GotoRelXY;
-                let _ = has_r;
                 match var0 {
-                    Some(var) => MoveSpec::ToVar { var, rel },
+                    Some(var) => MoveSpec::ToVar { var, rel, r: has_r },
                     None => {
                         let (n, count) = self.numbers::<3>(r)?;
                         if count < 2 {
@@ -434,6 +438,7 @@ impl<H: Hal, C: Clock> Vm<H, C> {
                             y: n[1] as f32,
                             h: if count == 3 { n[2] as f32 } else { f32::NAN },
                             rel,
+                            r: has_r,
                         }
                     }
                 }
@@ -446,8 +451,39 @@ impl<H: Hal, C: Clock> Vm<H, C> {
                 },
                 _ => return Err("followpath needs a path name".into()),
             },
-            Command::FollowWall => MoveSpec::FollowWall,
-            Command::FollowTarget => MoveSpec::FollowTarget,
+            Command::FollowWall => {
+                let word = self.word_of(self.arg(r, 0)).unwrap_or("");
+                let mode = match side_of(word) {
+                    Some(side) => WallMode::Side(side),
+                    None if word.eq_ignore_ascii_case("middle") => WallMode::Middle,
+                    None => return Err("followwall needs left, right or middle".into()),
+                };
+                let d = match self.arg(r, 1) {
+                    Some(a) => self.number(Some(a))?,
+                    None => f64::NAN,
+                };
+                if d <= 0.0 {
+                    return Err(format!("followwall distance {d} m is not positive"));
+                }
+                MoveSpec::FollowWall { mode, d: d as f32 }
+            }
+            Command::FollowTarget => {
+                let object = match self.arg(r, 0) {
+                    Some(Arg::Word(n)) => n.0,
+                    _ => return Err("followtarget needs an object of the robot model".into()),
+                };
+                let d = match self.arg(r, 1) {
+                    Some(a) => self.number(Some(a))?,
+                    None => 0.0,
+                };
+                if !(d >= 0.0 && d.is_finite()) {
+                    return Err(format!("followtarget distance {d} m is not usable"));
+                }
+                MoveSpec::FollowTarget {
+                    object,
+                    d: d as f32,
+                }
+            }
             Command::Approach => {
                 let d = match self.arg(r, 1) {
                     Some(a) => self.number(Some(a))?,

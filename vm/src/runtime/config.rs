@@ -1,5 +1,5 @@
 //! Tunables of the VM. The defaults are MoRo-like; a robot model overrides the
-//! physical ones.
+//! physical ones (each field names the ROBO.INI parameter it comes from).
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum TraceLevel {
@@ -23,14 +23,35 @@ pub struct Config {
     pub link_distance: f64,
     /// Speed before any `speed(..)`, m/s.
     pub default_speed: f64,
-    /// The robot's largest curvature, 1/m: the controller never asks for more.
+    /// The robot's largest curvature, 1/m: the controller never asks for more
+    /// (`max_curvature`).
     pub max_curvature: f64,
+    /// Fastest change of curvature, 1/m per s: Δc of the controller (`curinc`).
+    pub curinc: f64,
     /// Curvature of `turn(left)` and `turn(right)`, 1/m.
     pub turn_curvature: f64,
-    /// Look-ahead of the path tracker, metres.
+    /// Shortest look-ahead of the position controller, metres.
     pub lookahead: f64,
-    /// Planned deceleration towards a goal, m/s^2.
+    /// Planned acceleration, m/s^2 (`max_acceleration`).
+    pub acceleration: f64,
+    /// Planned deceleration towards a goal, m/s^2 (`max_deceleration`).
     pub deceleration: f64,
+    /// Width of the robot, metres: the checked area of equation (12) and the
+    /// room `turn(left|right)` needs (`robot_width`).
+    pub robot_width: f64,
+    /// Length of the robot, metres (`robot_length`).
+    pub robot_length: f64,
+    /// From the reference point (whose pose the robot reports) to the front, metres.
+    pub front_offset: f64,
+    /// The laser scanner sits this far ahead of the reference point, metres.
+    pub scanner_offset: f64,
+    /// Distance of `followwall` when none is given, metres (`followwall_d`).
+    pub followwall_d: f64,
+    /// Largest curvature of paths round obstacles, 1/m (`omax_curvature`).
+    pub obstacle_curvature: f64,
+    /// Seconds an obstacle must stay away before the avoider returns to normal
+    /// (`bs_security`).
+    pub security_wait: f64,
     /// A movement has arrived when this close to its end, metres.
     pub goal_tolerance: f64,
     /// Ticks between pose samples.
@@ -53,9 +74,18 @@ impl Default for Config {
             link_distance: 0.5,
             default_speed: 0.3,
             max_curvature: 1.4,
+            curinc: 2.0,
             turn_curvature: 0.5,
-            lookahead: 0.5,
+            lookahead: 0.6,
+            acceleration: 0.5,
             deceleration: 0.5,
+            robot_width: 0.6,
+            robot_length: 1.2,
+            front_offset: 0.95,
+            scanner_offset: 0.85,
+            followwall_d: 1.0,
+            obstacle_curvature: 1.0,
+            security_wait: 0.5,
             goal_tolerance: 0.02,
             pose_every: 10,
             sensor_timeout: 1.0,

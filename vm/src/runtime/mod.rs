@@ -103,7 +103,7 @@ impl<H: Hal, C: Clock> Vm<H, C> {
             module,
             hal,
             clock,
-            motion: Motion::new(config.default_speed),
+            motion: Motion::new(&config),
             cfg: config,
             tick: 0,
             snap: Snapshot::default(),

@@ -35,24 +35,33 @@ pub(crate) enum MoveSpec {
     TurnSide {
         left: bool,
     },
-    /// `h` NaN: no heading given.
+    /// `h` NaN: no heading given. `r`: may reverse and turn first.
     To {
         x: f32,
         y: f32,
         h: f32,
         rel: bool,
+        r: bool,
     },
     ToVar {
         var: u32,
         rel: bool,
+        r: bool,
     },
     FollowPath {
         name: u32,
         reverse: bool,
         backwards: bool,
     },
-    FollowWall,
-    FollowTarget,
+    /// `d` NaN: the robot model's `followwall_d`.
+    FollowWall {
+        mode: WallMode,
+        d: f32,
+    },
+    FollowTarget {
+        object: u32,
+        d: f32,
+    },
     ApproachVar {
         var: u32,
         d: f32,
@@ -61,6 +70,13 @@ pub(crate) enum MoveSpec {
         object: u32,
         d: f32,
     },
+}
+
+/// Which wall `followwall` follows.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum WallMode {
+    Side(Side),
+    Middle,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -1,53 +1,191 @@
 //! The movement reservation (section 4.5.2): movement commands start one at a time in
 //! issue order; the running one is stepped first in every tick so that control never
 //! starves; a queued successor is joined to the running one near its end (linking).
+//!
+//! Paths, the controller, the speed profile, obstacle avoidance and wall following
+//! are ilmr-motion's; this module keeps their state between ticks and feeds them the
+//! robot's snapshot and the environmental map.
 
-mod path;
-mod track;
+mod behave;
+mod drive;
+mod map;
+mod plan;
 
 use std::collections::VecDeque;
 
-use ilmr_hal::{Hal, Pose};
+use ilmr_hal::Hal;
+use ilmr_motion::obstacle::{AreaParams, AvoidMode, AvoidParams, Avoider, SideParams};
+use ilmr_motion::path::JOIN_TOLERANCE;
+use ilmr_motion::{Path, Pose, Side};
+use nalgebra::Point2;
 
 use super::Vm;
 use super::clock::Clock;
-use super::nodes::{Kind, MoveSpec, NodeRef};
+use super::config::Config;
+use super::nodes::{Kind, NodeRef};
 use super::stmt_of;
 use super::trace::EventKind;
 use super::vars::{How, NONE};
-use path::{Path, wrap};
+use map::EnvMap;
 
-#[derive(Debug, Default)]
+/// The wall `followwall` keeps to.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) enum WallSide {
+    Side(Side),
+    Middle,
+}
+
+/// What steers the reference path of the running movement.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) enum Mode {
+    /// A planned path that ends where the command is done.
+    Path,
+    /// `goahead` without a distance: extended as it goes, ended only by `break`.
+    Endless,
+    /// `followwall`: a leg re-planned every 2 m.
+    Wall { side: WallSide, distance: f64 },
+    /// `turn(left|right)` following the wall at `distance` until there is room.
+    TurnSide { side: Side, distance: f64 },
+    /// `followtarget`: re-planned as the target moves. `since`: seconds since
+    /// the last re-plan.
+    Target {
+        object: u32,
+        distance: f64,
+        target: Option<(f64, f64)>,
+        since: f64,
+    },
+}
+
+/// The running movement's reference and progress.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct Run {
+    pub path: Path,
+    /// Reference index, never decreasing (ilmr-motion's k).
+    pub k: usize,
+    /// Length of a linked predecessor's remainder at the path's start: this
+    /// command's distance starts after it.
+    pub offset: f64,
+    /// Distance driven on legs that were replaced by re-planning.
+    pub base: f64,
+    /// `advancestop(d)` in force for this movement, m.
+    pub advance: f64,
+    pub mode: Mode,
+    /// The avoider's path round an obstacle and its own index.
+    pub detour: Option<(Path, usize)>,
+}
+
+impl Run {
+    /// The command's `dist` with the robot at `at`: along the reference,
+    /// after any joined remainder.
+    pub fn dist(&self, at: &Point2<f64>) -> f64 {
+        let s = self.path.last().s - self.path.remaining_from(self.k, at);
+        (self.base + s - self.offset).max(0.0)
+    }
+
+    /// Replaces the reference (a re-planned leg) with the robot at `at`,
+    /// keeping the distance.
+    pub fn replan(&mut self, path: Path, at: &Point2<f64>) {
+        self.base = self.dist(at);
+        self.offset = 0.0;
+        self.path = path;
+        self.k = 0;
+    }
+
+    /// The command has a fixed end that a successor can be linked to.
+    pub fn ends(&self) -> bool {
+        self.mode == Mode::Path
+    }
+}
+
+#[derive(Debug)]
 pub(crate) struct Motion {
     pub queue: VecDeque<NodeRef>,
     pub head: Option<NodeRef>,
-    path: Path,
+    run: Option<Run>,
     /// The remainder of a linked predecessor, joined before the next path.
-    joined: Path,
-    plan: Path,
-    seg: usize,
-    s: f64,
-    /// Length of the joined remainder: the successor's distance starts after it.
-    offset: f64,
+    joined: Option<Path>,
     /// The running movement's goal pose (body heading).
-    goal: Pose,
-    pub last_goal: Option<Pose>,
+    goal: ilmr_hal::Pose,
+    pub last_goal: Option<ilmr_hal::Pose>,
     pub speed: f64,
     pub stopped: bool,
     pub use_goalpos: bool,
     pub advance_stop: Option<f64>,
-    /// `on`, `off` or `stop`; recorded for the obstacle behaviour.
-    pub obsavoid: String,
+    avoider: Avoider,
+    map: EnvMap,
+    /// Speed magnitude and curvature commanded last tick: the controller's
+    /// v and c_now.
+    v: f64,
+    c: f64,
     idle: bool,
 }
 
+fn avoid_params(cfg: &Config) -> AvoidParams {
+    AvoidParams {
+        area: AreaParams {
+            max_curvature: cfg.obstacle_curvature,
+            robot_width: cfg.robot_width,
+            front_offset: cfg.front_offset,
+        },
+        side: SideParams {
+            robot_width: cfg.robot_width,
+            robot_length: cfg.robot_length,
+            front_offset: cfg.front_offset,
+            margin: 0.1,
+            max_offset: 2.0,
+        },
+        security_wait: cfg.security_wait,
+        spacing: plan::SPACING,
+    }
+}
+
+pub(crate) fn mpose(p: ilmr_hal::Pose) -> Pose {
+    Pose::new(p.x, p.y, p.h)
+}
+
+fn hpose(p: Pose) -> ilmr_hal::Pose {
+    ilmr_hal::Pose::new(p.x, p.y, p.h)
+}
+
 impl Motion {
-    pub fn new(speed: f64) -> Motion {
+    pub fn new(cfg: &Config) -> Motion {
         Motion {
-            speed,
+            queue: VecDeque::new(),
+            head: None,
+            run: None,
+            joined: None,
+            goal: ilmr_hal::Pose::default(),
+            last_goal: None,
+            speed: cfg.default_speed,
+            stopped: false,
+            use_goalpos: false,
+            advance_stop: None,
+            avoider: Avoider::new(AvoidMode::Off, avoid_params(cfg)),
+            map: EnvMap::default(),
+            v: 0.0,
+            c: 0.0,
             idle: true,
-            ..Motion::default()
         }
+    }
+
+    /// `locate(..)` moved the robot's frame: the map's points are in the old one.
+    pub fn relocated(&mut self) {
+        self.map.clear();
+    }
+
+    /// `obsavoid(on|off|stop)`.
+    pub fn set_obsavoid(&mut self, word: &str) -> Result<(), String> {
+        let mode = [
+            ("on", AvoidMode::On),
+            ("off", AvoidMode::Off),
+            ("stop", AvoidMode::Stop),
+        ]
+        .into_iter()
+        .find(|(n, _)| n.eq_ignore_ascii_case(word))
+        .map(|(_, m)| m)
+        .ok_or_else(|| format!("obsavoid takes on, off or stop, not {word}"))?;
+        self.avoider.set_mode(mode);
+        Ok(())
     }
 }
 
@@ -70,8 +208,10 @@ impl<H: Hal, C: Clock> Vm<H, C> {
                 .copied()
                 .find(|r| self.nodes.alive(*r) && !self.nodes.get(r.idx).dying);
             let Some(next) = next else {
+                self.motion.joined = None;
                 if !self.motion.idle {
                     self.motion.idle = true;
+                    self.motion.v = 0.0;
                     if let Err(e) = self.hal.set_motion(0.0, 0.0) {
                         self.error(None, format!("stopping the robot failed: {e}"));
                     }
@@ -106,223 +246,42 @@ impl<H: Hal, C: Clock> Vm<H, C> {
             return Err("not a movement".into());
         };
         let current = self.snap.pose;
-        let start = if linked {
-            self.motion.goal
-        } else if self.motion.use_goalpos {
-            self.motion.last_goal.unwrap_or(current)
+        let joined = if linked {
+            self.motion.joined.take()
         } else {
-            current
+            None
         };
-        let dir = if self.motion.speed < 0.0 { -1.0 } else { 1.0 };
-        let travel = |dir: f64| {
-            if dir < 0.0 {
-                wrap(start.h + std::f64::consts::PI)
-            } else {
-                start.h
-            }
+        let start = match &joined {
+            Some(j) => j.end_pose(),
+            None if self.motion.use_goalpos => mpose(self.motion.last_goal.unwrap_or(current)),
+            None => mpose(current),
         };
-        let mut plan = std::mem::take(&mut self.motion.plan);
-        plan.reset(start.x, start.y, travel(dir), dir);
-        let target = |vm: &Self, var: u32| -> Result<(f64, f64), String> {
-            let r = vm.vars.get(var);
-            if r.status < 1.0 {
-                let name = vm
-                    .module
-                    .global(crate::bytecode::VarId(var))
-                    .map_or("?", |g| g.name.as_str());
-                return Err(format!("{name} holds no position yet"));
-            }
-            Ok((r.x, r.y))
+        self.update_map();
+        let planned = self.plan_spec(spec, start)?;
+        let (path, offset) = match joined {
+            Some(j) => match j.concat(&planned.path, JOIN_TOLERANCE) {
+                Ok(p) => (p, j.length()),
+                Err(_) => (planned.path, 0.0),
+            },
+            None => (planned.path, 0.0),
         };
-        let result = (|| -> Result<(), String> {
-            match spec {
-                MoveSpec::Goahead { d } => {
-                    let d = if d.is_nan() {
-                        f64::INFINITY
-                    } else {
-                        f64::from(d)
-                    };
-                    let eff = dir * d.signum();
-                    plan.reset(start.x, start.y, travel(eff), eff);
-                    plan.line(d.abs());
-                }
-                MoveSpec::TurnExact { deg, c } => {
-                    let (deg, c) = (f64::from(deg), f64::from(c));
-                    if c == 0.0 || !c.is_finite() {
-                        return Err("a turn needs a curvature other than 0".into());
-                    }
-                    let rad = deg.to_radians();
-                    plan.arc(rad.signum() * c.abs(), rad.abs() / c.abs());
-                }
-                MoveSpec::TurnSide { left } => {
-                    let rad = if left { 90f64 } else { -90f64 }.to_radians();
-                    let c = self.cfg.turn_curvature;
-                    plan.arc(rad.signum() * c, rad.abs() / c);
-                }
-                MoveSpec::To { x, y, h, rel } => {
-                    let (x, y) = (f64::from(x), f64::from(y));
-                    let h = (!h.is_nan()).then_some(f64::from(h));
-                    let (gx, gy) = if rel {
-                        (
-                            start.x + x * start.h.cos() - y * start.h.sin(),
-                            start.y + x * start.h.sin() + y * start.h.cos(),
-                        )
-                    } else {
-                        (x, y)
-                    };
-                    let gh = h.map(|h| {
-                        let body = if rel {
-                            start.h + h.to_radians()
-                        } else {
-                            h.to_radians()
-                        };
-                        if dir < 0.0 {
-                            body + std::f64::consts::PI
-                        } else {
-                            body
-                        }
-                    });
-                    goto(&mut plan, gx, gy, gh);
-                }
-                MoveSpec::ToVar { var, rel } => {
-                    let (x, y) = target(self, var)?;
-                    let (gx, gy) = if rel {
-                        (
-                            start.x + x * start.h.cos() - y * start.h.sin(),
-                            start.y + x * start.h.sin() + y * start.h.cos(),
-                        )
-                    } else {
-                        (x, y)
-                    };
-                    goto(&mut plan, gx, gy, None);
-                }
-                MoveSpec::ApproachVar { var, d } => {
-                    let (x, y) = target(self, var)?;
-                    approach(&mut plan, x, y, f64::from(d));
-                }
-                MoveSpec::ApproachObject { object, d } => {
-                    let name = self.module.name(crate::bytecode::NameId(object));
-                    let det = self
-                        .snap
-                        .detections
-                        .iter()
-                        .find(|o| o.object.eq_ignore_ascii_case(name))
-                        .ok_or_else(|| format!("no {name} in view"))?;
-                    approach(&mut plan, det.x, det.y, f64::from(d));
-                }
-                MoveSpec::FollowPath {
-                    name,
-                    reverse,
-                    backwards,
-                } => {
-                    let key = self
-                        .module
-                        .name(crate::bytecode::NameId(name))
-                        .to_lowercase();
-                    let pts = self
-                        .paths
-                        .get(&key)
-                        .ok_or_else(|| format!("no path {key}"))?;
-                    let d = if reverse { -dir } else { dir };
-                    plan.reset(start.x, start.y, travel(d), d);
-                    let mut add = |&(x, y): &(f64, f64)| plan.line_to(x, y);
-                    if backwards {
-                        pts.iter().rev().for_each(&mut add);
-                    } else {
-                        pts.iter().for_each(&mut add);
-                    }
-                }
-                MoveSpec::FollowWall => {
-                    return Err(
-                        "followwall needs the wall follower of ilmr-motion, not wired yet".into(),
-                    );
-                }
-                MoveSpec::FollowTarget => {
-                    return Err("followtarget needs target tracking, not available yet".into());
-                }
-            }
-            Ok(())
-        })();
-        if let Err(e) = result {
-            self.motion.plan = plan;
-            return Err(e);
+        if !linked {
+            // Start from what the drive does now (a broken movement may still roll).
+            self.motion.v = self.snap.speed.abs();
+            self.motion.c = self.snap.curvature;
         }
-        if let Some(by) = self.motion.advance_stop.take() {
-            plan.trim_end(by);
-        }
-        let m = &mut self.motion;
-        if linked && !m.joined.segs.is_empty() && m.joined.dir == plan.dir {
-            std::mem::swap(&mut m.path, &mut m.joined);
-            m.offset = m.path.total();
-            m.path.extend(&plan);
-        } else {
-            std::mem::swap(&mut m.path, &mut plan);
-            m.offset = 0.0;
-        }
-        m.joined.segs.clear();
-        m.plan = plan;
-        m.seg = 0;
-        m.s = 0.0;
-        let (x, y, th) = m.path.end();
-        let h = if m.path.dir < 0.0 {
-            wrap(th + std::f64::consts::PI)
-        } else {
-            wrap(th)
-        };
-        m.goal = Pose::new(x, y, h);
+        let advance = self.motion.advance_stop.take().unwrap_or(0.0).max(0.0);
+        self.motion.goal = hpose(path.end_pose());
+        self.motion.run = Some(Run {
+            path,
+            k: 0,
+            offset,
+            base: 0.0,
+            advance,
+            mode: planned.mode,
+            detour: None,
+        });
         Ok(())
-    }
-
-    /// Steps the running movement: setpoints, distance, arrival, linking.
-    pub(super) fn step_motion(&mut self) {
-        let Some(head) = self.motion.head else {
-            return;
-        };
-        if !self.nodes.alive(head) {
-            self.motion.head = None;
-            return;
-        }
-        let brake = !self.can_link(head);
-        let m = &mut self.motion;
-        let ctl = track::control(
-            &m.path,
-            &mut m.seg,
-            &mut m.s,
-            self.snap.pose,
-            m.speed,
-            &self.cfg,
-            brake,
-        );
-        let (v, c) = if self.motion.stopped {
-            (0.0, ctl.curvature)
-        } else {
-            (ctl.speed, ctl.curvature)
-        };
-        if let Err(e) = self.hal.set_motion(v, c) {
-            let stmt = stmt_of(self.nodes.get(head.idx).stmt);
-            self.error(stmt, format!("setting speed and curvature failed: {e}"));
-        }
-        let node = *self.nodes.get(head.idx);
-        if node.bind != NONE {
-            let d = (self.motion.s - self.motion.offset).max(0.0);
-            self.write_fields(
-                node.bind,
-                &[(ilmr_stdlib::Field::Dist, d)],
-                None,
-                node.stmt,
-                true,
-            );
-        }
-        if !ctl.remaining.is_finite() || self.motion.stopped {
-            return;
-        }
-        if ctl.remaining <= self.cfg.goal_tolerance {
-            self.end_node(head.idx, How::Completed, false, None, true);
-        } else if !brake && ctl.remaining <= self.cfg.link_distance {
-            let m = &mut self.motion;
-            m.path.remainder_into(m.s, &mut m.joined);
-            self.end_node(head.idx, How::Completed, true, None, true);
-        }
     }
 
     /// A successor is queued and nothing waits on the running movement's variable.
@@ -332,7 +291,7 @@ impl<H: Hal, C: Clock> Vm<H, C> {
             .queue
             .iter()
             .any(|r| self.nodes.alive(*r) && !self.nodes.get(r.idx).dying);
-        if !queued || !self.motion.path.total().is_finite() {
+        if !queued || !self.motion.run.as_ref().is_some_and(Run::ends) {
             return false;
         }
         let bind = self.nodes.get(head.idx).bind;
@@ -355,10 +314,9 @@ impl<H: Hal, C: Clock> Vm<H, C> {
             return None;
         }
         let p = self.snap.pose;
-        let d = if self.motion.head.is_some_and(|h| h.idx == idx) {
-            (self.motion.s - self.motion.offset).max(0.0)
-        } else {
-            0.0
+        let d = match (&self.motion.run, self.motion.head) {
+            (Some(run), Some(h)) if h.idx == idx => run.dist(&mpose(p).position()),
+            _ => 0.0,
         };
         Some((d, p.x, p.y, p.h))
     }
@@ -367,7 +325,12 @@ impl<H: Hal, C: Clock> Vm<H, C> {
     pub(super) fn motion_node_ended(&mut self, idx: u32) -> bool {
         if self.motion.head.is_some_and(|h| h.idx == idx) {
             self.motion.head = None;
-            self.motion.last_goal = Some(self.motion.goal);
+            let ended = self.motion.run.take();
+            // A behaviour has no planned end: the next plan starts where it stopped.
+            self.motion.last_goal = Some(match ended {
+                Some(run) if run.ends() => self.motion.goal,
+                _ => self.snap.pose,
+            });
             return true;
         }
         if matches!(self.nodes.get(idx).kind, Kind::Movement { .. }) {
@@ -375,22 +338,4 @@ impl<H: Hal, C: Clock> Vm<H, C> {
         }
         false
     }
-}
-
-fn goto(plan: &mut Path, gx: f64, gy: f64, gh: Option<f64>) {
-    let (x0, y0, _) = plan.end();
-    let h = gh.unwrap_or_else(|| (gy - y0).atan2(gx - x0));
-    if (gx - x0).hypot(gy - y0) > 1e-6 {
-        plan.bezier_to(gx, gy, h);
-    }
-}
-
-fn approach(plan: &mut Path, tx: f64, ty: f64, d: f64) {
-    let (x0, y0, _) = plan.end();
-    let dist = (tx - x0).hypot(ty - y0);
-    if dist <= d {
-        return;
-    }
-    let h = (ty - y0).atan2(tx - x0);
-    plan.bezier_to(tx - d * h.cos(), ty - d * h.sin(), h);
 }

@@ -1,0 +1,139 @@
+//! The behaviours that re-plan their reference while they run: `followwall`
+//! every 2 m, `turn(left|right)` until the turn fits, `followtarget` as the
+//! target moves, and an endless `goahead` extended before it runs out.
+
+use ilmr_hal::Hal;
+use ilmr_motion::path::straight;
+use ilmr_motion::wall::{FOLLOWWALL_REPLAN, turn_space_free};
+use ilmr_motion::{Path, Pose};
+
+use super::plan::{ENDLESS_LEG, SPACING, TURN_MARGIN};
+use super::{Mode, WallSide};
+use crate::runtime::Vm;
+use crate::runtime::clock::Clock;
+
+/// `followtarget` re-plans when the target has moved this far, m, or after
+/// `TARGET_REPLAN_S` seconds.
+const TARGET_MOVED: f64 = 0.3;
+const TARGET_REPLAN_S: f64 = 1.0;
+/// An endless `goahead` is extended when less than this remains, m.
+const ENDLESS_MARGIN: f64 = 10.0;
+
+impl<H: Hal, C: Clock> Vm<H, C> {
+    /// Re-plans the running behaviour's reference if it is due.
+    pub(super) fn update_behaviour(&mut self, pose: Pose) -> Result<(), String> {
+        let Some(run) = self.motion.run.as_ref() else {
+            return Ok(());
+        };
+        let s = run.path.points()[run.path.clamp_index(run.k)].s;
+        let next: Option<(Path, Mode)> = match run.mode {
+            Mode::Path => None,
+            Mode::Endless => {
+                if run.path.remaining(run.k) < ENDLESS_MARGIN {
+                    let end = run.path.end_pose();
+                    let dir = run.path.last().direction;
+                    let more = straight(end, dir.sign() * ENDLESS_LEG, SPACING)
+                        .map_err(|e| e.to_string())?;
+                    let path = run
+                        .path
+                        .tail_from(run.k)
+                        .concat(&more, ilmr_motion::path::JOIN_TOLERANCE)
+                        .map_err(|e| e.to_string())?;
+                    Some((path, Mode::Endless))
+                } else {
+                    None
+                }
+            }
+            Mode::Wall { side, distance } => (s >= FOLLOWWALL_REPLAN)
+                .then(|| self.wall_leg(pose, side, distance).map(|p| (p, run.mode)))
+                .transpose()?,
+            Mode::TurnSide { side, distance } => {
+                if turn_space_free(
+                    &pose,
+                    side,
+                    self.cfg.turn_curvature,
+                    self.cfg.robot_width,
+                    TURN_MARGIN,
+                    self.motion.map.points(),
+                ) {
+                    Some((self.quarter_turn(pose, side)?, Mode::Path))
+                } else if s >= FOLLOWWALL_REPLAN {
+                    Some((
+                        self.wall_leg(pose, WallSide::Side(side), distance)?,
+                        run.mode,
+                    ))
+                } else {
+                    None
+                }
+            }
+            Mode::Target {
+                object,
+                distance,
+                target,
+                since,
+            } => {
+                let since = since + self.cfg.period;
+                let seen = self.seen(object);
+                let due = match (seen, target) {
+                    (Some((x, y)), Some((tx, ty))) => {
+                        (x - tx).hypot(y - ty) >= TARGET_MOVED || since >= TARGET_REPLAN_S
+                    }
+                    (Some(_), None) => true,
+                    (None, _) => false,
+                };
+                match seen {
+                    Some((x, y)) if due => {
+                        let mode = Mode::Target {
+                            object,
+                            distance,
+                            target: Some((x, y)),
+                            since: 0.0,
+                        };
+                        // A target too close or too sharply placed for a
+                        // Bezier is followed by the old path until it moves.
+                        match self.approach_target(pose, x, y, distance) {
+                            Ok(p) => Some((p, mode)),
+                            Err(_) => {
+                                self.set_mode(mode);
+                                None
+                            }
+                        }
+                    }
+                    _ => {
+                        self.set_mode(Mode::Target {
+                            object,
+                            distance,
+                            target,
+                            since,
+                        });
+                        None
+                    }
+                }
+            }
+        };
+        if let (Some((path, mode)), Some(run)) = (next, self.motion.run.as_mut()) {
+            run.replan(path, &pose.position());
+            run.mode = mode;
+            if mode == Mode::Path {
+                self.motion.goal = super::hpose(run.path.end_pose());
+            }
+        }
+        Ok(())
+    }
+
+    fn set_mode(&mut self, mode: Mode) {
+        if let Some(run) = self.motion.run.as_mut() {
+            run.mode = mode;
+        }
+    }
+
+    fn approach_target(&self, pose: Pose, x: f64, y: f64, d: f64) -> Result<Path, String> {
+        let here = nalgebra::Point2::new(x, y);
+        if pose.distance_to(&here) <= d {
+            return straight(pose, 0.0, SPACING).map_err(|e| e.to_string());
+        }
+        let bearing = (y - pose.y).atan2(x - pose.x);
+        let goal = Pose::new(x - d * bearing.cos(), y - d * bearing.sin(), bearing);
+        self.bezier(pose, goal, self.travel_direction(), false)
+    }
+}

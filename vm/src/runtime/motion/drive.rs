@@ -1,0 +1,206 @@
+//! One control cycle of the running movement: the environmental map, the
+//! obstacle avoider (which suppresses the position controller while it
+//! drives round an obstacle), the predictive curvature controller, the speed
+//! profile, arrival and linking.
+
+use ilmr_hal::Hal;
+use ilmr_motion::controller::{
+    self, ControlInput, ControllerParams, SpeedLimits, has_arrived, link_distance, next_speed,
+    stop_in,
+};
+use ilmr_motion::obstacle::Observation;
+use ilmr_motion::{Path, Pose};
+
+use super::mpose;
+use crate::runtime::Vm;
+use crate::runtime::clock::Clock;
+use crate::runtime::stmt_of;
+use crate::runtime::vars::{How, NONE};
+
+/// At a cusp of an `r` manoeuvre the robot has stopped when this close, m,
+/// and this slow, m/s; the reference then moves on to the other direction.
+const CUSP_REACHED: f64 = 0.03;
+const CUSP_SPEED: f64 = 0.05;
+/// A movement has arrived when at its end and commanded no faster than this, m/s.
+const ARRIVED_SPEED: f64 = 0.05;
+
+/// The first point after a cusp right at `k`, if the robot stands at one.
+fn past_cusp(path: &Path, k: usize, pose: &Pose, v: f64) -> Option<usize> {
+    let pts = path.points();
+    let dir = pts.get(k)?.direction;
+    if v > CUSP_SPEED || path.distance_to_stop_from(k, Some(&pose.position())) > CUSP_REACHED {
+        return None;
+    }
+    pts.iter()
+        .enumerate()
+        .skip(k)
+        .find(|(_, p)| p.direction != dir)
+        .map(|(j, _)| j)
+}
+
+impl<H: Hal, C: Clock> Vm<H, C> {
+    pub(super) fn controller_params(&self) -> ControllerParams {
+        ControllerParams {
+            min_lookahead: self.cfg.lookahead,
+            max_lookahead: self.cfg.lookahead.max(3.0),
+            ..ControllerParams::new(self.cfg.max_curvature, self.cfg.curinc, self.cfg.period)
+        }
+    }
+
+    fn speed_limits(&self) -> SpeedLimits {
+        SpeedLimits {
+            max_accel: self.cfg.acceleration,
+            max_decel: self.cfg.deceleration,
+        }
+    }
+
+    /// Takes a new scan into the environmental map.
+    pub(super) fn update_map(&mut self) {
+        let pose = mpose(self.snap.pose);
+        self.motion
+            .map
+            .update(self.snap.scan.as_ref(), &pose, self.cfg.scanner_offset);
+    }
+
+    /// Steps the running movement: setpoints, distance, arrival, linking.
+    pub(in crate::runtime) fn step_motion(&mut self) {
+        self.update_map();
+        let Some(head) = self.motion.head else {
+            return;
+        };
+        if !self.nodes.alive(head) || self.motion.run.is_none() {
+            self.motion.head = None;
+            return;
+        }
+        let pose = mpose(self.snap.pose);
+        if let Err(why) = self.update_behaviour(pose) {
+            self.end_node(head.idx, How::Refused, false, Some(why), true);
+            return;
+        }
+        let linkable = self.can_link(head);
+        let params = self.controller_params();
+        let limits = self.speed_limits();
+        let dt = self.cfg.period;
+        let target_speed = self.motion.speed.abs();
+        let (v_now, c_now, stopped) = (self.motion.v, self.motion.c, self.motion.stopped);
+        let super::Motion {
+            run, avoider, map, ..
+        } = &mut self.motion;
+        let Some(run) = run.as_mut() else {
+            return;
+        };
+        let here = pose.position();
+        run.k = run.path.closest_index(&here, run.k, params.max_lookahead);
+        if let Some(j) = past_cusp(&run.path, run.k, &pose, v_now) {
+            run.k = j;
+        }
+        let direction = run.path.points()[run.path.clamp_index(run.k)].direction;
+
+        let decision = avoider.step(&Observation {
+            pose,
+            direction,
+            curvature: c_now,
+            speed: v_now,
+            reference: &run.path,
+            k: run.k,
+            points: map.points(),
+            dt,
+        });
+        let (halt, obs_control) = (decision.halt, decision.obs_control);
+        match decision.detour {
+            Some(d) if run.detour.as_ref().is_none_or(|(p, _)| p != d) => {
+                run.detour = Some((d.clone(), 0));
+            }
+            Some(_) => {}
+            None => run.detour = None,
+        }
+
+        let (path, k) = match (&run.detour, obs_control) {
+            (Some((p, k)), true) => (p, *k),
+            _ => (&run.path, run.k),
+        };
+        let out = controller::step(
+            &params,
+            &ControlInput {
+                path,
+                k,
+                pose,
+                curvature: c_now,
+                speed: direction.sign() * v_now,
+            },
+        );
+        let out = match out {
+            Ok(o) => o,
+            Err(e) => {
+                let why = format!("position control failed: {e}");
+                self.end_node(head.idx, How::Refused, false, Some(why), true);
+                return;
+            }
+        };
+        let sign = path.points()[out.k].direction.sign();
+        match (&mut run.detour, obs_control) {
+            (Some((_, dk)), true) => *dk = out.k,
+            _ => run.k = out.k,
+        }
+
+        let linked = linkable && run.ends();
+        let (target, stop) = if halt || stopped {
+            (0.0, None)
+        } else {
+            // Behaviours re-plan before their leg ends: never brake for it.
+            let drive_through = linked || !run.ends();
+            (
+                target_speed,
+                stop_in(&run.path, run.k, &pose, run.advance, drive_through),
+            )
+        };
+        let v = next_speed(v_now, target, stop, &limits, dt);
+        let c = out.curvature;
+        let dist = run.dist(&here);
+        // A movement that nothing is linked to ends standing: the next one
+        // starts from rest, as `wait(m)` between them asks.
+        let arrived = run.ends()
+            && !obs_control
+            && v <= ARRIVED_SPEED
+            && has_arrived(
+                &run.path,
+                run.k,
+                &pose,
+                run.advance,
+                self.cfg.goal_tolerance,
+            );
+        let link_now = linked
+            && !obs_control
+            && !stopped
+            && run.path.remaining_from(run.k, &here)
+                <= self.cfg.link_distance.max(link_distance(v, &limits, dt));
+        if link_now {
+            self.motion.joined = Some(run.path.tail_from(run.k));
+        }
+        self.motion.v = v;
+        self.motion.c = c;
+
+        if let Err(e) = self.hal.set_motion(sign * v, c) {
+            let stmt = stmt_of(self.nodes.get(head.idx).stmt);
+            self.error(stmt, format!("setting speed and curvature failed: {e}"));
+        }
+        let node = *self.nodes.get(head.idx);
+        if node.bind != NONE {
+            self.write_fields(
+                node.bind,
+                &[(ilmr_stdlib::Field::Dist, dist)],
+                None,
+                node.stmt,
+                true,
+            );
+        }
+        if stopped {
+            return;
+        }
+        if link_now {
+            self.end_node(head.idx, How::Completed, true, None, true);
+        } else if arrived {
+            self.end_node(head.idx, How::Completed, false, None, true);
+        }
+    }
+}
