@@ -1,8 +1,10 @@
 //! `ilmrc`: the ILMR toolchain's command line.
 
+mod build;
 mod check;
 mod fmt;
 mod inputs;
+mod run;
 
 use std::process::ExitCode;
 
@@ -25,6 +27,12 @@ enum Cmd {
     Check(check::CheckArgs),
     /// Rewrite files in canonical form (lower-case commands, `==` and `>=`, indented blocks).
     Fmt(fmt::FmtArgs),
+    /// Check a task and write it as a bytecode module (`.ilmb`).
+    Build(build::BuildArgs),
+    /// List a module's instructions with their source lines.
+    Disasm(build::DisasmArgs),
+    /// Run a task on a robot backend and write its trace.
+    Run(run::RunArgs),
     /// Print the syntax tree of a file, one node per line.
     Parse {
         /// The file to parse.
@@ -48,6 +56,9 @@ fn main() -> ExitCode {
     match cli.command {
         Cmd::Check(args) => check::run(args),
         Cmd::Fmt(args) => fmt::run(args),
+        Cmd::Build(args) => build::build(args),
+        Cmd::Disasm(args) => build::disasm(args),
+        Cmd::Run(args) => run::run(args),
         Cmd::Parse { file } => match inputs::read_source(&file) {
             Ok(source) => {
                 let parsed = ilmr_compiler::parser::parse(&source.text, ilmr_compiler::FileId(0));

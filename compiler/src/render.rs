@@ -30,6 +30,9 @@ impl Style {
 
 pub fn human(diagnostics: &[Diagnostic], files: &[RenderFile<'_>], style: Style) -> String {
     let mut out = Vec::new();
+    if diagnostics.is_empty() {
+        return String::new();
+    }
     let config = Config::default()
         .with_index_type(IndexType::Byte)
         .with_color(style.color)
@@ -38,10 +41,17 @@ pub fn human(diagnostics: &[Diagnostic], files: &[RenderFile<'_>], style: Style)
         } else {
             CharSet::Ascii
         });
+    // Only the files a diagnostic points into: ariadne indexes the lines of each.
+    let mut used: Vec<usize> = diagnostics
+        .iter()
+        .flat_map(|d| std::iter::once(d.file).chain(d.secondary.iter().map(|s| s.file)))
+        .map(|f| f.0 as usize)
+        .collect();
+    used.sort_unstable();
+    used.dedup();
     let mut cache = ariadne::sources(
-        files
-            .iter()
-            .map(|f| (f.path.to_string(), f.text.to_string())),
+        used.iter()
+            .map(|&i| (files[i].path.to_string(), files[i].text.to_string())),
     );
     for d in diagnostics {
         let path = |file: crate::FileId| files[file.0 as usize].path.to_string();

@@ -1083,6 +1083,17 @@ pub static CATALOGUE: [CommandSpec; Command::COUNT] = [
         &[
             form(
                 &[param(
+                    "variable",
+                    ParamKind::Variable,
+                    Occurs::One,
+                    "wait until this variable's status is 1 (a bare variable always means this)",
+                )],
+                1,
+                VarKind::Status,
+                "variable",
+            ),
+            form(
+                &[param(
                     "seconds",
                     value(Unit::Seconds, Range::NonNegative),
                     Occurs::One,
@@ -1091,17 +1102,6 @@ pub static CATALOGUE: [CommandSpec; Command::COUNT] = [
                 1,
                 VarKind::Status,
                 "time",
-            ),
-            form(
-                &[param(
-                    "variable",
-                    ParamKind::Variable,
-                    Occurs::One,
-                    "wait until this variable's status is 1",
-                )],
-                1,
-                VarKind::Status,
-                "variable",
             ),
         ],
         "Holds the rest of its block for a time, or until a variable's command has ended.",

@@ -322,9 +322,23 @@ impl CommandSpec {
             .flat_map(|p| kind_keywords(&p.kind))
     }
 
-    /// Whether `word` (any case) is a keyword somewhere in this command's grammar.
+    /// Whether `word` (any case) is a keyword somewhere in this command's grammar. The
+    /// checker asks this for every name argument, so it walks the table without
+    /// allocating.
     pub fn has_keyword(&self, word: &str) -> bool {
-        self.keywords().any(|k| k.eq_ignore_ascii_case(word))
+        fn in_kind(kind: &ParamKind, word: &str) -> bool {
+            match *kind {
+                ParamKind::Keyword { words } | ParamKind::Mode { words, .. } => {
+                    words.iter().any(|k| k.eq_ignore_ascii_case(word))
+                }
+                ParamKind::OneOf { kinds } => kinds.iter().any(|k| in_kind(k, word)),
+                _ => false,
+            }
+        }
+        self.forms
+            .iter()
+            .flat_map(|f| f.params)
+            .any(|p| in_kind(&p.kind, word))
     }
 
     /// Whether some form takes no arguments, so the command may be written bare.

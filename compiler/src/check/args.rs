@@ -38,12 +38,18 @@ impl<'m, 'v> Cx<'m, 'v> {
     ) -> FormMatch<'s> {
         let items: &[Arg<'s>] = args.map_or(&[], |a| &a.items);
         let mut best: Option<FormMatch<'s>> = None;
-        for (i, form) in spec.forms.iter().enumerate() {
+        // Forms whose shape fits the arguments first: a correct call then matches its
+        // form at the first try, and no messages are built for forms it never meant.
+        let mut order: Vec<usize> = (0..spec.forms.len()).collect();
+        order.sort_by_key(|&i| !self.plausible(spec, &spec.forms[i], items));
+        for i in order {
+            let form = &spec.forms[i];
             let m = self.match_form(spec, i, form, items, at);
             if m.cost == 0 {
                 return m;
             }
-            if best.as_ref().is_none_or(|b| m.cost < b.cost) {
+            // Ties go to the catalogue's order, not to the order of trying.
+            if best.as_ref().is_none_or(|b| (m.cost, m.form) < (b.cost, b.form)) {
                 best = Some(m);
             }
         }
@@ -146,6 +152,49 @@ impl<'m, 'v> Cx<'m, 'v> {
             ));
         }
         m
+    }
+
+    /// Whether the arguments have the shape of this form: their count, their setting
+    /// keys and, for the required parameters, names where names belong.
+    fn plausible(&mut self, spec: &CommandSpec, form: &Form, items: &[Arg<'_>]) -> bool {
+        let mut positional = items.iter().filter_map(|a| match a {
+            Arg::Positional(e) => Some(e),
+            Arg::Setting { .. } => None,
+        });
+        let settings_fit = items.iter().all(|a| match a {
+            Arg::Setting { key, .. } => form
+                .params
+                .iter()
+                .any(|p| matches!(p.kind, ParamKind::Setting { key: k, .. } if key.is(k))),
+            Arg::Positional(_) => true,
+        });
+        let required_settings = form.params.iter().all(|p| match p.kind {
+            ParamKind::Setting { key, .. } if p.occurs == Occurs::One => items
+                .iter()
+                .any(|a| matches!(a, Arg::Setting { key: k, .. } if k.is(key))),
+            _ => true,
+        });
+        if !settings_fit || !required_settings {
+            return false;
+        }
+        let mut max = 0usize;
+        let mut unbounded = false;
+        for p in form
+            .params
+            .iter()
+            .filter(|p| !matches!(p.kind, ParamKind::Setting { .. }))
+        {
+            match p.occurs {
+                Occurs::One => match positional.next() {
+                    Some(e) if self.fits(spec, &p.kind, e) => max += 1,
+                    _ => return false,
+                },
+                Occurs::Optional => max += 1,
+                Occurs::Many | Occurs::Pairs => unbounded = true,
+            }
+        }
+        let given = items.iter().filter(|a| matches!(a, Arg::Positional(_))).count();
+        unbounded || given <= max
     }
 
     fn count_error(&self, spec: &CommandSpec, span: Span, message: String) -> Diagnostic {

@@ -61,6 +61,9 @@ pub fn check_patterns(files: &[FileEntry<'_>], skills: &Skills, diags: &mut Vec<
                     .any(|b| b.start <= span.start && span.end <= b.end)
         });
     }
+    if patterns.is_empty() {
+        return;
+    }
     for (file, pattern) in patterns {
         let needle = needle(&pattern);
         let hits: Vec<&(FileId, Span, &str)> = statements

@@ -87,11 +87,8 @@ impl Cx<'_, '_> {
     }
 
     /// `[PARAMETERS]` (with their defaults), `[IDENTIFIERS]` and `[COLORS]` are constants.
-    pub fn model_constant(&self, name: &str) -> Option<f64> {
-        self.model
-            .parameter_or_default(name)
-            .or_else(|| self.model.identifier(name))
-            .or_else(|| self.model.color(name))
+    pub fn model_constant(&mut self, name: &str) -> Option<f64> {
+        self.constants.get(name, self.buf)
     }
 
     pub fn unbound(&mut self, name: &Name<'_>) -> Diagnostic {

@@ -5,6 +5,7 @@
 
 mod args;
 mod breaks;
+pub mod constants;
 mod expr;
 mod scope;
 mod skills;
@@ -20,6 +21,7 @@ use crate::diagnostic::{Code, Diagnostic, FileId};
 use crate::parser;
 use crate::span::Span;
 
+pub use constants::Constants;
 pub use scope::{Var, VarId, Vars};
 pub use skills::SkillId;
 
@@ -122,8 +124,10 @@ pub struct Findings {
 /// The checking context of one unit.
 pub struct Cx<'m, 'v> {
     pub model: &'m RobotModel,
+    pub constants: &'m constants::Constants,
     pub vars: &'v mut Vars,
     pub file: FileId,
+    pub buf: &'v mut String,
 }
 
 pub fn analyze<'s>(sources: &'s [Source], model: &RobotModel) -> Analysis<'s> {
@@ -149,7 +153,8 @@ pub fn analyze<'s>(sources: &'s [Source], model: &RobotModel) -> Analysis<'s> {
         });
     }
 
-    let skills = skills::Skills::collect(&files, model, &mut diagnostics);
+    let mut skills = skills::Skills::collect(&files, model, &mut diagnostics);
+    let constants = constants::Constants::new(model);
     let mut units = Vec::new();
     let mut globals: Vec<(String, VarKind)> = skills.all_binds();
 
@@ -164,31 +169,56 @@ pub fn analyze<'s>(sources: &'s [Source], model: &RobotModel) -> Analysis<'s> {
             refs: Vec::new(),
             targets: HashMap::new(),
         };
-        Walker::new(model, &skills, &mut unit, &mut diagnostics).blocks(&entry.tree.blocks);
+        Walker::new(model, &constants, &skills, &mut unit, &mut diagnostics)
+            .blocks(&entry.tree.blocks);
         globals.extend(unit.vars.iter().map(|(_, v)| (v.spelling.clone(), v.kind)));
         units.push(unit);
     }
 
-    for (id, skill) in skills.iter() {
-        let entry = &files[skill.file.0 as usize];
-        if entry.library && !skills.is_called(id) {
-            continue;
+    let globals: std::rc::Rc<HashMap<String, VarKind>> = std::rc::Rc::new(
+        globals
+            .into_iter()
+            .map(|(name, kind)| (name.to_lowercase(), kind))
+            .collect(),
+    );
+    // Skills of the files given to check first; then the library skills that anything
+    // checked so far calls (library skills are checked only where called).
+    for library in [false, true] {
+        if library {
+            let called: Vec<SkillId> = units
+                .iter()
+                .flat_map(|u| u.targets.values())
+                .filter_map(|t| match t {
+                    Target::Skill(id) => Some(*id),
+                    _ => None,
+                })
+                .collect();
+            for id in called {
+                skills.mark_called(id);
+            }
         }
-        let mut vars = Vars::default();
-        for (name, kind) in &globals {
-            vars.bind(name, *kind, skill.file, Span::default());
+        let ids: Vec<SkillId> = skills
+            .iter()
+            .filter(|(id, s)| {
+                let entry = &files[s.file.0 as usize];
+                entry.library == library && (!library || skills.is_called(*id))
+            })
+            .map(|(id, _)| id)
+            .collect();
+        for id in ids {
+            let skill = skills.get(id);
+            let entry = &files[skill.file.0 as usize];
+            let mut unit = Unit {
+                file: skill.file,
+                skill: Some(id),
+                vars: Vars::with_globals(globals.clone()),
+                refs: Vec::new(),
+                targets: HashMap::new(),
+            };
+            let blocks = &entry.tree.skills[skill.index].blocks;
+            Walker::new(model, &constants, &skills, &mut unit, &mut diagnostics).blocks(blocks);
+            units.push(unit);
         }
-        vars.bind_all();
-        let mut unit = Unit {
-            file: skill.file,
-            skill: Some(id),
-            vars,
-            refs: Vec::new(),
-            targets: HashMap::new(),
-        };
-        let blocks = &entry.tree.skills[skill.index].blocks;
-        Walker::new(model, &skills, &mut unit, &mut diagnostics).blocks(blocks);
-        units.push(unit);
     }
 
     breaks::check_patterns(&files, &skills, &mut diagnostics);
@@ -206,7 +236,7 @@ pub fn analyze<'s>(sources: &'s [Source], model: &RobotModel) -> Analysis<'s> {
 
 /// W0502: a task variable that nothing reads, in the task or in any skill.
 fn unused_variables(files: &[FileEntry<'_>], units: &[Unit], diagnostics: &mut Vec<Diagnostic>) {
-    let skill_reads: Vec<String> = units
+    let skill_reads: std::collections::HashSet<String> = units
         .iter()
         .filter(|u| u.skill.is_some())
         .flat_map(|u| u.vars.iter().filter(|(_, v)| !v.uses.is_empty()))
@@ -236,31 +266,38 @@ fn unused_variables(files: &[FileEntry<'_>], units: &[Unit], diagnostics: &mut V
 /// Walks the statements of one unit in text order.
 struct Walker<'a, 'm> {
     model: &'m RobotModel,
+    constants: &'m constants::Constants,
     skills: &'a skills::Skills,
     unit: &'a mut Unit,
     diagnostics: &'a mut Vec<Diagnostic>,
+    buf: String,
 }
 
 impl<'a, 'm> Walker<'a, 'm> {
     fn new(
         model: &'m RobotModel,
+        constants: &'m constants::Constants,
         skills: &'a skills::Skills,
         unit: &'a mut Unit,
         diagnostics: &'a mut Vec<Diagnostic>,
     ) -> Self {
         Walker {
             model,
+            constants,
             skills,
             unit,
             diagnostics,
+            buf: String::new(),
         }
     }
 
     fn cx(&mut self) -> Cx<'m, '_> {
         Cx {
             model: self.model,
+            constants: self.constants,
             vars: &mut self.unit.vars,
             file: self.unit.file,
+            buf: &mut self.buf,
         }
     }
 
@@ -375,13 +412,8 @@ impl<'a, 'm> Walker<'a, 'm> {
         Some(kind.unwrap_or(VarKind::Number))
     }
 
-    fn model_constant(&self, name: &str) -> Option<f64> {
-        Cx {
-            model: self.model,
-            vars: &mut Vars::default(),
-            file: self.unit.file,
-        }
-        .model_constant(name)
+    fn model_constant(&mut self, name: &str) -> Option<f64> {
+        self.constants.get(name, &mut self.buf)
     }
 
     /// Checks a call and returns what a variable bound to it would hold.
@@ -434,7 +466,7 @@ impl<'a, 'm> Walker<'a, 'm> {
                 );
             }
             for (name, kind) in self.skills.transitive_binds(id) {
-                self.unit.vars.bind(&name, kind, file, call.name.span);
+                self.unit.vars.bind(name, *kind, file, call.name.span);
             }
             self.unit.targets.insert(stmt, Target::Skill(id));
             return Some(VarKind::Status);
@@ -470,10 +502,7 @@ impl<'a, 'm> Walker<'a, 'm> {
             Some("a command")
         } else if self.skills.find(name.text).is_some() {
             Some("a skill")
-        } else if self.model.parameter(name.text).is_some()
-            || self.model.identifier(name.text).is_some()
-            || self.model.color(name.text).is_some()
-        {
+        } else if self.model_constant(name.text).is_some() {
             Some("a constant of the robot model")
         } else {
             None

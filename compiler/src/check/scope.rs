@@ -3,6 +3,9 @@
 //! statement in the text.
 
 use std::collections::HashMap;
+use std::rc::Rc;
+
+use rustc_hash::FxHashMap;
 
 use ilmr_stdlib::VarKind;
 
@@ -24,22 +27,45 @@ pub struct Var {
 #[derive(Debug, Default, Clone)]
 pub struct Vars {
     vars: Vec<Var>,
-    index: HashMap<String, VarId>,
+    index: FxHashMap<String, VarId>,
     /// Whether a binding of each variable precedes the statement being checked.
     bound: Vec<bool>,
+    /// Variables bound anywhere in the program, which a skill may use: consulted on a
+    /// miss rather than copied into every skill's table.
+    globals: Option<Rc<HashMap<String, VarKind>>>,
     key: String,
 }
 
 impl Vars {
     pub fn find(&mut self, name: &str) -> Option<VarId> {
-        self.key.clear();
-        self.key.extend(name.chars().flat_map(char::to_lowercase));
+        super::constants::key(name, &mut self.key);
         self.index.get(self.key.as_str()).copied()
     }
 
-    /// A variable bound before this point of the text.
+    /// A table for a skill body, which sees the program's variables as bound.
+    pub fn with_globals(globals: Rc<HashMap<String, VarKind>>) -> Vars {
+        Vars {
+            globals: Some(globals),
+            ..Vars::default()
+        }
+    }
+
+    /// A variable bound before this point of the text (or, in a skill, anywhere).
     pub fn bound(&mut self, name: &str) -> Option<VarId> {
-        self.find(name).filter(|id| self.bound[id.0 as usize])
+        if let Some(id) = self.find(name).filter(|id| self.bound[id.0 as usize]) {
+            return Some(id);
+        }
+        let kind = *self.globals.as_ref()?.get(self.key.as_str())?;
+        let id = VarId(self.vars.len() as u32);
+        self.index.insert(self.key.clone(), id);
+        self.vars.push(Var {
+            spelling: name.to_string(),
+            kind,
+            defs: Vec::new(),
+            uses: Vec::new(),
+        });
+        self.bound.push(true);
+        Some(id)
     }
 
     pub fn bind(&mut self, name: &str, kind: VarKind, file: FileId, span: Span) -> VarId {
@@ -100,10 +126,5 @@ impl Vars {
         let len = self.bound.len();
         self.bound = snapshot;
         self.bound.resize(len, false);
-    }
-
-    /// Marks every variable as bound: the program-wide view a skill body starts from.
-    pub fn bind_all(&mut self) {
-        self.bound.iter_mut().for_each(|b| *b = true);
     }
 }

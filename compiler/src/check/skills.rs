@@ -26,6 +26,8 @@ pub struct SkillInfo {
     calls: Vec<(SkillId, Span)>,
     /// Variables bound directly in the body.
     binds: Vec<(String, VarKind)>,
+    /// Variables bound by a call: its own and those of the skills it calls.
+    transitive: Vec<(String, VarKind)>,
 }
 
 #[derive(Debug, Default)]
@@ -95,6 +97,7 @@ impl Skills {
                     header: skill.header,
                     calls: Vec::new(),
                     binds: Vec::new(),
+                    transitive: Vec::new(),
                 });
             }
         }
@@ -108,22 +111,16 @@ impl Skills {
             skills.list[i].calls = calls;
             skills.list[i].binds = binds;
         }
-        for entry in files.iter().filter(|f| !f.library) {
-            let mut calls = Vec::new();
-            let mut binds = Vec::new();
-            scan(&entry.tree.blocks, &skills, model, &mut calls, &mut binds);
-            for skill in &entry.tree.skills {
-                scan(&skill.blocks, &skills, model, &mut calls, &mut binds);
-            }
-            for (id, _) in calls {
-                skills.mark_called(id);
-            }
-        }
         skills.report_recursion(diags);
+        for i in 0..skills.list.len() {
+            skills.list[i].transitive = skills.reach_binds(SkillId(i as u32));
+        }
         skills
     }
 
-    fn mark_called(&mut self, id: SkillId) {
+    /// Marks a skill, and the skills it calls, as called: a library skill is checked only
+    /// then.
+    pub fn mark_called(&mut self, id: SkillId) {
         if std::mem::replace(&mut self.called[id.0 as usize], true) {
             return;
         }
@@ -141,7 +138,8 @@ impl Skills {
         if self.index.is_empty() {
             return None;
         }
-        self.index.get(&name.to_lowercase()).copied()
+        let mut buf = String::with_capacity(name.len());
+        self.index.get(super::constants::key(name, &mut buf)).copied()
     }
 
     pub fn get(&self, id: SkillId) -> &SkillInfo {
@@ -168,7 +166,11 @@ impl Skills {
     }
 
     /// The variables a call of this skill binds, through the skills it calls.
-    pub fn transitive_binds(&self, id: SkillId) -> Vec<(String, VarKind)> {
+    pub fn transitive_binds(&self, id: SkillId) -> &[(String, VarKind)] {
+        &self.list[id.0 as usize].transitive
+    }
+
+    fn reach_binds(&self, id: SkillId) -> Vec<(String, VarKind)> {
         let mut seen = vec![false; self.list.len()];
         let mut stack = vec![id];
         let mut out = Vec::new();

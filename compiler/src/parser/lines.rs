@@ -2,7 +2,9 @@
 //! `endif` on its own line), so the parser reads a flat sequence of lines and recovers
 //! from an error by skipping to the end of the broken line; `blocks.rs` nests the lines.
 
+use chumsky::extra::ParserExtra;
 use chumsky::input::{Input, ValueInput};
+use chumsky::label::LabelError;
 use chumsky::prelude::*;
 
 use crate::ast::{Arg, Args, BinOp, Call, CmpOp, Expr, ExprKind, Name, Pattern, StmtKind};
@@ -10,7 +12,6 @@ use crate::lexer::Token;
 use crate::span::Span;
 
 pub type ParseError<'t, 's> = Rich<'t, Token<'s>, Span>;
-type Extra<'t, 's> = extra::Err<ParseError<'t, 's>>;
 
 /// What one line holds before lines are nested into blocks.
 #[derive(Debug, Clone)]
@@ -41,22 +42,33 @@ pub struct ParsedLine<'s> {
 }
 
 /// Parses a token stream that ends with a `Newline` (the lexer guarantees it).
+///
+/// Most files parse without error, and building chumsky's rich errors for every
+/// alternative a `choice` rejects on the way costs more than the parse itself. So the
+/// file is first parsed with errors that cost nothing, and parsed again with rich ones
+/// only when something failed.
 pub fn parse_lines<'t, 's: 't>(
     tokens: &'t [(Token<'s>, Span)],
     source: &'s str,
 ) -> (Vec<ParsedLine<'s>>, Vec<ParseError<'t, 's>>) {
     let eoi = Span::empty(source.len());
-    let (lines, errors) = file_parser(source)
+    let (lines, errors) = file_parser::<_, extra::Default>(source)
+        .parse(tokens.map(eoi, |(t, s)| (t, s)))
+        .into_output_errors();
+    if let (Some(lines), true) = (lines, errors.is_empty()) {
+        return (lines, Vec::new());
+    }
+    let (lines, errors) = file_parser::<_, extra::Err<ParseError<'t, 's>>>(source)
         .parse(tokens.map(eoi, |(t, s)| (t, s)))
         .into_output_errors();
     (lines.unwrap_or_default(), errors)
 }
 
-fn file_parser<'t, 's: 't, I>(
-    source: &'s str,
-) -> impl Parser<'t, I, Vec<ParsedLine<'s>>, Extra<'t, 's>>
+fn file_parser<'t, 's: 't, I, E>(source: &'s str) -> impl Parser<'t, I, Vec<ParsedLine<'s>>, E>
 where
     I: ValueInput<'t, Token = Token<'s>, Span = Span>,
+    E: ParserExtra<'t, I> + 't,
+    E::Error: LabelError<'t, I, &'static str>,
 {
     let content = line_content(source)
         .or_not()
@@ -113,16 +125,20 @@ fn error_expr<'s>(span: Span) -> Expr<'s> {
     }
 }
 
-fn name<'t, 's: 't, I>() -> impl Parser<'t, I, Name<'s>, Extra<'t, 's>> + Clone
+fn name<'t, 's: 't, I, E>() -> impl Parser<'t, I, Name<'s>, E> + Clone
 where
     I: ValueInput<'t, Token = Token<'s>, Span = Span>,
+    E: ParserExtra<'t, I> + 't,
+    E::Error: LabelError<'t, I, &'static str>,
 {
     select! { Token::Ident(text) = e => Name { text, span: e.span() } }.labelled("name")
 }
 
-fn line_content<'t, 's: 't, I>(source: &'s str) -> impl Parser<'t, I, Line<'s>, Extra<'t, 's>>
+fn line_content<'t, 's: 't, I, E>(source: &'s str) -> impl Parser<'t, I, Line<'s>, E>
 where
     I: ValueInput<'t, Token = Token<'s>, Span = Span>,
+    E: ParserExtra<'t, I> + 't,
+    E::Error: LabelError<'t, I, &'static str>,
 {
     let expr = expression();
     let condition = condition(expr.clone())
@@ -204,13 +220,15 @@ where
     .labelled("statement")
 }
 
-/// `name` or `name(args)`. An unclosed argument list is reported but still yields the call,
-/// so that an editor can complete inside it.
-fn call<'t, 's: 't, I>(
-    expr: impl Parser<'t, I, Expr<'s>, Extra<'t, 's>> + Clone,
-) -> impl Parser<'t, I, Call<'s>, Extra<'t, 's>> + Clone
+/// `name` or `name(args)`. An unclosed argument list still yields the call, so that an
+/// editor can complete inside it; `parser::parse` reports it.
+fn call<'t, 's: 't, I, E>(
+    expr: impl Parser<'t, I, Expr<'s>, E> + Clone,
+) -> impl Parser<'t, I, Call<'s>, E> + Clone
 where
     I: ValueInput<'t, Token = Token<'s>, Span = Span>,
+    E: ParserExtra<'t, I> + 't,
+    E::Error: LabelError<'t, I, &'static str>,
 {
     let setting = name()
         .then_ignore(just(Token::Assign))
@@ -220,14 +238,8 @@ where
     let args = just(Token::LParen)
         .ignore_then(arg.separated_by(just(Token::Comma)).collect::<Vec<_>>())
         .then(just(Token::RParen).or_not())
-        .validate(|(items, close), e, emitter| {
+        .map_with(|(items, close), e| {
             let span: Span = e.span();
-            if close.is_none() {
-                emitter.emit(Rich::custom(
-                    Span::empty(span.end as usize),
-                    "this argument list has no closing `)`",
-                ));
-            }
             Args {
                 items,
                 span,
@@ -239,11 +251,13 @@ where
         .map(|(name, args)| Call { name, args })
 }
 
-fn condition<'t, 's: 't, I>(
-    expr: impl Parser<'t, I, Expr<'s>, Extra<'t, 's>> + Clone,
-) -> impl Parser<'t, I, Expr<'s>, Extra<'t, 's>> + Clone
+fn condition<'t, 's: 't, I, E>(
+    expr: impl Parser<'t, I, Expr<'s>, E> + Clone,
+) -> impl Parser<'t, I, Expr<'s>, E> + Clone
 where
     I: ValueInput<'t, Token = Token<'s>, Span = Span>,
+    E: ParserExtra<'t, I> + 't,
+    E::Error: LabelError<'t, I, &'static str>,
 {
     // Section 4.5.5 writes `=` and `=>` in conditions; inside a condition they can only
     // mean comparison, so they are read as `==` and `>=`.
@@ -276,9 +290,11 @@ where
 }
 
 /// Arithmetic: `+ - * /`, unary minus and parentheses over numbers and names.
-fn expression<'t, 's: 't, I>() -> impl Parser<'t, I, Expr<'s>, Extra<'t, 's>> + Clone
+fn expression<'t, 's: 't, I, E>() -> impl Parser<'t, I, Expr<'s>, E> + Clone
 where
     I: ValueInput<'t, Token = Token<'s>, Span = Span>,
+    E: ParserExtra<'t, I> + 't,
+    E::Error: LabelError<'t, I, &'static str>,
 {
     recursive(|expr| {
         let atom = select! {

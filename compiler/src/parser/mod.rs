@@ -6,7 +6,7 @@ mod lines;
 
 use chumsky::error::{RichPattern, RichReason};
 
-use crate::ast::SourceFile;
+use crate::ast::{SourceFile, StmtKind};
 use crate::diagnostic::{Code, Diagnostic, FileId};
 use crate::lexer::{self, Token};
 use crate::span::Span;
@@ -42,6 +42,23 @@ pub fn parse(source: &str, file: FileId) -> Parsed<'_> {
     let (lines, errors) = lines::parse_lines(&tokens, source);
     diagnostics.extend(errors.into_iter().map(|e| syntax_diagnostic(e, file)));
     let tree = blocks::build(lines, source, lexed.comments, file, &mut diagnostics);
+    tree.for_each_stmt(&mut |stmt| {
+        if let StmtKind::Call { call, .. } = &stmt.kind {
+            if let Some(args) = call.args.as_ref().filter(|a| !a.closed) {
+                let at = Span::empty(args.span.end as usize);
+                diagnostics.push(
+                    Diagnostic::new(
+                        Code::UnclosedArgs,
+                        file,
+                        at,
+                        "this argument list has no closing `)`",
+                    )
+                    .with_label("`)` expected here")
+                    .with_fix("insert `)`", at, ")"),
+                );
+            }
+        }
+    });
     diagnostics.sort_by_key(|d| (d.span.start, d.code));
     Parsed {
         file: tree,
@@ -52,11 +69,7 @@ pub fn parse(source: &str, file: FileId) -> Parsed<'_> {
 fn syntax_diagnostic(error: lines::ParseError<'_, '_>, file: FileId) -> Diagnostic {
     let span = *error.span();
     match error.reason() {
-        RichReason::Custom(message) => {
-            Diagnostic::new(Code::UnclosedArgs, file, span, message.clone())
-                .with_label("`)` expected here")
-                .with_fix("insert `)`", span, ")")
-        }
+        RichReason::Custom(message) => Diagnostic::new(Code::Syntax, file, span, message.clone()),
         RichReason::ExpectedFound { found, .. } => {
             let found = found.as_deref().map_or("end of file".to_string(), describe);
             let mut expected: Vec<String> = error

@@ -1,0 +1,192 @@
+//! Lowering: a checked program to the VM's bytecode (`docs/bytecode.md`), through
+//! `ilmr_vm::ModuleBuilder`. Every instruction carries its statement (file, line, span,
+//! trimmed text); numbers keep the units the source writes, because the VM converts
+//! degrees itself (`turn(d=..)`, `gotoxy(..,h)`, `locate(..,h)`); model constants are
+//! folded; device numbers become device names; defaults the catalogue leaves to the
+//! model (`approach` distance, `followwall` distance) are filled in from it.
+//!
+//! [`lower`] lowers a whole task with the skills it reaches; [`lower_line`] checks and
+//! lowers one interactive line (or block) against a live module.
+
+mod args;
+mod expr;
+mod line;
+mod robotless;
+mod scope;
+mod stmt;
+
+use std::collections::HashMap;
+
+use ilmr_model::RobotModel;
+use ilmr_vm::Module;
+use ilmr_vm::bytecode::{BuildError, UnitId};
+
+use crate::ast::{Block, StmtKind};
+use crate::check::{Analysis, SkillId};
+use crate::diagnostic::{Code, Diagnostic, FileId};
+use crate::span::Span;
+
+pub use line::{LineOptions, lower_line};
+pub use robotless::robot_uses;
+
+use scope::Scope;
+use stmt::Lowerer;
+
+/// Lowers the task in `task_file` and every skill it reaches. Refuses a program with
+/// errors (returning them); warnings do not stop it.
+pub fn lower(
+    analysis: &Analysis<'_>,
+    model: &RobotModel,
+    task_file: FileId,
+) -> Result<Module, Vec<Diagnostic>> {
+    let errors: Vec<Diagnostic> = analysis
+        .diagnostics
+        .iter()
+        .filter(|d| d.is_error())
+        .cloned()
+        .collect();
+    if !errors.is_empty() {
+        return Err(errors);
+    }
+    let fail = |message: String| vec![*internal(task_file, Span::default(), message)];
+    let Some(entry) = analysis.files.get(task_file.0 as usize) else {
+        return Err(fail(format!("no file {} in the analysis", task_file.0)));
+    };
+    let Some(task) = analysis
+        .units
+        .iter()
+        .find(|u| u.file == task_file && u.skill.is_none())
+    else {
+        return Err(fail(format!("`{}` is not a checked task file", entry.path)));
+    };
+
+    let mut low = Lowerer::new(model);
+    // Files keep the checker's numbering, so a statement's file is a diagnostic's file.
+    for f in &analysis.files {
+        low.b.file(f.path).map_err(|e| fail(e.to_string()))?;
+    }
+    let main = low
+        .b
+        .declare_unit(entry.path, false)
+        .map_err(|e| fail(e.to_string()))?;
+    low.b.set_main(main);
+
+    let reached = reachable(analysis, task);
+    let mut units: HashMap<SkillId, UnitId> = HashMap::new();
+    for &id in &reached {
+        let name = &analysis.skills.get(id).name;
+        let unit = low
+            .b
+            .declare_unit(name, true)
+            .map_err(|e| fail(e.to_string()))?;
+        units.insert(id, unit);
+    }
+    let skill_unit = |id: SkillId| units.get(&id).copied();
+
+    let scope = Scope::new(analysis, task, &skill_unit);
+    let blocks = low.blocks(&scope, &entry.tree.blocks);
+    low.b.define_unit(main, &blocks);
+    for &id in &reached {
+        let info = analysis.skills.get(id);
+        let (Some(unit), Some(checked)) = (
+            units.get(&id).copied(),
+            analysis.units.iter().find(|u| u.skill == Some(id)),
+        ) else {
+            low.diags.push(*internal(
+                info.file,
+                info.header,
+                format!("skill `{}` was not checked", info.name),
+            ));
+            continue;
+        };
+        let Some(body) = analysis
+            .files
+            .get(info.file.0 as usize)
+            .and_then(|f| f.tree.skills.get(info.index))
+        else {
+            continue;
+        };
+        let scope = Scope::new(analysis, checked, &skill_unit);
+        let blocks = low.blocks(&scope, &body.blocks);
+        low.b.define_unit(unit, &blocks);
+    }
+    low.finish(task_file)
+}
+
+/// The skills a task calls, directly or through other skills, in the order first
+/// reached (depth first, calls in text order), so that module layout is stable. Calls
+/// inside `check` blocks never run and reach nothing.
+fn reachable(analysis: &Analysis<'_>, task: &crate::check::Unit) -> Vec<SkillId> {
+    fn calls(analysis: &Analysis<'_>, unit: &crate::check::Unit) -> Vec<SkillId> {
+        let Some(entry) = analysis.files.get(unit.file.0 as usize) else {
+            return Vec::new();
+        };
+        let blocks = match unit.skill {
+            None => &entry.tree.blocks,
+            Some(id) => match entry.tree.skills.get(analysis.skills.get(id).index) {
+                Some(s) => &s.blocks,
+                None => return Vec::new(),
+            },
+        };
+        let mut out = Vec::new();
+        walk(blocks, unit, &mut out);
+        out
+    }
+    fn walk(blocks: &[Block<'_>], unit: &crate::check::Unit, out: &mut Vec<SkillId>) {
+        for stmt in blocks.iter().flat_map(|b| &b.stmts) {
+            if let Some(crate::check::Target::Skill(id)) = unit.targets.get(&stmt.span) {
+                out.push(*id);
+            }
+            match &stmt.kind {
+                StmtKind::If(c) | StmtKind::While { body: c, .. } => walk(&c.body, unit, out),
+                _ => {}
+            }
+        }
+    }
+    let mut order = Vec::new();
+    let mut stack: Vec<SkillId> = calls(analysis, task).into_iter().rev().collect();
+    while let Some(id) = stack.pop() {
+        if order.contains(&id) {
+            continue;
+        }
+        order.push(id);
+        if let Some(unit) = analysis.units.iter().find(|u| u.skill == Some(id)) {
+            stack.extend(calls(analysis, unit).into_iter().rev());
+        }
+    }
+    order
+}
+
+/// A failure of the lowering itself on a program the checker accepted. It has no code
+/// of its own in the catalogue of diagnostics, so it travels as a syntax error whose
+/// message says what happened.
+pub(crate) fn internal(file: FileId, span: Span, message: impl Into<String>) -> Box<Diagnostic> {
+    Box::new(
+        Diagnostic::new(
+            Code::Syntax,
+            file,
+            span,
+            format!("cannot lower this statement: {}", message.into()),
+        )
+        .with_label("the checker accepted it, but it has no bytecode"),
+    )
+}
+
+pub(crate) fn build_error(file: FileId, span: Span, e: BuildError) -> Box<Diagnostic> {
+    match e {
+        BuildError::KindConflict { name, was, now } => Box::new(
+            Diagnostic::new(
+                Code::WrongVariableKind,
+                file,
+                span,
+                format!(
+                    "`{name}` is {} and cannot also be {}",
+                    was.describe(),
+                    now.describe()
+                ),
+            )
+            .with_label("bound with another kind"),
+        ),
+        other => internal(file, span, other.to_string()),
+    }
+}

@@ -1,0 +1,165 @@
+//! `ilmrc build` and `ilmrc disasm`: a checked task to an `.ilmb` module, and a module
+//! back to a readable listing.
+
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+use ilmr_compiler::check::{Analysis, Source, analyze};
+use ilmr_compiler::render::{self, RenderFile, Style};
+use ilmr_compiler::{Diagnostic, FileId};
+use ilmr_vm::Module;
+
+use crate::check::{CheckArgs, Format};
+use crate::inputs;
+
+#[derive(clap::Args)]
+pub struct BuildArgs {
+    /// Robot model: `moro`, `workpartner`, or a path to a ROBO.INI file.
+    #[arg(long, default_value = "moro")]
+    pub robot: String,
+    /// A directory of skill files (`*.ilms`) the task may call.
+    #[arg(long)]
+    pub skills: Option<PathBuf>,
+    /// Where to write the module.
+    #[arg(short, long)]
+    pub output: PathBuf,
+    /// The task file.
+    pub task: PathBuf,
+}
+
+#[derive(clap::Args)]
+pub struct DisasmArgs {
+    /// An `.ilmb` module written by `ilmrc build`.
+    pub file: PathBuf,
+}
+
+/// What `check` and the lowering made of a task.
+pub enum Compiled {
+    Module(Box<Module>),
+    /// Diagnostics were printed; the task has errors.
+    Rejected,
+}
+
+/// Checks the task exactly as `ilmrc check` does (printing what it prints when there is
+/// anything to say), then lowers it. `extra` adds problems found in the lowered module
+/// (`--robot none`); they are rendered in the same way.
+pub fn compile(
+    task: &Path,
+    robot: &str,
+    skills: Option<&Path>,
+    extra: impl Fn(&Module) -> Vec<Diagnostic>,
+) -> Result<Compiled, String> {
+    let report = crate::check::check(&CheckArgs {
+        robot: robot.to_string(),
+        skills: skills.map(Path::to_path_buf),
+        format: Format::Human,
+        files: vec![task.to_path_buf()],
+    })?;
+    let model = inputs::load_robot(robot)?.model;
+    let mut sources: Vec<Source> = vec![inputs::read_source(task)?];
+    if let Some(dir) = skills {
+        sources.extend(inputs::read_skill_dir(dir)?);
+    }
+    let analysis = analyze(&sources, &model);
+    let quiet = analysis.diagnostics.is_empty() && !report.errors;
+    if !quiet {
+        print!("{}", report.output);
+    }
+    if report.errors {
+        return Ok(Compiled::Rejected);
+    }
+    let problems = match ilmr_compiler::lower::lower(&analysis, &model, FileId(0)) {
+        Ok(module) => {
+            let problems = extra(&module);
+            if problems.is_empty() {
+                return Ok(Compiled::Module(Box::new(module)));
+            }
+            problems
+        }
+        Err(problems) => problems,
+    };
+    print!("{}", render_diagnostics(&analysis, &problems));
+    Ok(Compiled::Rejected)
+}
+
+/// Diagnostics as `ilmrc check` shows them (colour only on a terminal).
+pub fn render_diagnostics(analysis: &Analysis<'_>, diagnostics: &[Diagnostic]) -> String {
+    use std::io::IsTerminal;
+    let files: Vec<RenderFile<'_>> = analysis
+        .files
+        .iter()
+        .map(|f| RenderFile {
+            path: f.path,
+            text: f.text,
+        })
+        .collect();
+    let terminal = std::io::stdout().is_terminal();
+    let style = Style {
+        color: terminal && std::env::var_os("NO_COLOR").is_none(),
+        unicode: terminal,
+    };
+    render::human(diagnostics, &files, style)
+}
+
+pub fn build(args: BuildArgs) -> ExitCode {
+    let compiled = compile(&args.task, &args.robot, args.skills.as_deref(), |_| {
+        Vec::new()
+    });
+    match compiled {
+        Ok(Compiled::Module(module)) => {
+            let bytes = module.to_bytes();
+            if let Err(e) = std::fs::write(&args.output, &bytes) {
+                eprintln!("error: cannot write `{}`: {e}", args.output.display());
+                return ExitCode::from(crate::EXIT_USAGE);
+            }
+            println!(
+                "built {}: {} statement(s), {} instruction(s), {} skill(s), {} byte(s)",
+                args.output.display(),
+                module.stmts.len(),
+                module.code.len(),
+                module.units.iter().filter(|u| u.skill).count(),
+                bytes.len()
+            );
+            ExitCode::SUCCESS
+        }
+        Ok(Compiled::Rejected) => ExitCode::from(crate::EXIT_ERRORS),
+        Err(message) => {
+            eprintln!("error: {message}");
+            ExitCode::from(crate::EXIT_USAGE)
+        }
+    }
+}
+
+pub fn disasm(args: DisasmArgs) -> ExitCode {
+    let bytes = match std::fs::read(&args.file) {
+        Ok(b) => b,
+        Err(e) => {
+            eprintln!("error: cannot read `{}`: {e}", args.file.display());
+            return ExitCode::from(crate::EXIT_USAGE);
+        }
+    };
+    match Module::from_bytes(&bytes) {
+        Ok(module) => {
+            print!("{}", listing(&module));
+            ExitCode::SUCCESS
+        }
+        Err(e) => {
+            eprintln!(
+                "error: `{}` is not a valid ILMR module: {e}",
+                args.file.display()
+            );
+            ExitCode::from(crate::EXIT_USAGE)
+        }
+    }
+}
+
+/// The source files, then the VM's listing (one instruction per line with its source
+/// line and statement text).
+pub fn listing(module: &Module) -> String {
+    let mut out = String::new();
+    for (i, f) in module.files.iter().enumerate() {
+        out.push_str(&format!("file {i:>3} {f}\n"));
+    }
+    out.push_str(&ilmr_vm::bytecode::disassemble(module));
+    out
+}

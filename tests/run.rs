@@ -1,0 +1,347 @@
+//! Lowering, `ilmrc build`/`disasm`/`run`, and interactive lines.
+//!
+//! The run cases are data: every `tests/run/NAME.args` holds the arguments of one
+//! `ilmrc run` (one per line); its trace and summary are a snapshot, and the run is
+//! repeated to show the trace is byte-identical. The dissertation's Figures 20, 27, 52,
+//! 56 and 58 run on the scripted robot with the scenarios beside their `.args`.
+
+mod support;
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+use ilmr_compiler::check::analyze;
+use ilmr_compiler::lower::{LineOptions, lower, lower_line};
+use ilmr_hal::{Limits, ScriptedRobot};
+use ilmr_vm::{Config, Module, SimClock, Vm};
+use support::*;
+
+fn ilmrc(args: &[&str]) -> (i32, String, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_ilmrc"))
+        .args(args)
+        .current_dir(root())
+        .env("NO_COLOR", "1")
+        .output()
+        .expect("ilmrc runs");
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+/// A scratch path unique to this test process and `name`.
+fn scratch(name: &str) -> PathBuf {
+    std::env::temp_dir().join(format!("ilmr-run-{}-{name}", std::process::id()))
+}
+
+fn files_in(dir: &str, ext: &str) -> Vec<PathBuf> {
+    let mut files: Vec<PathBuf> = std::fs::read_dir(root().join(dir))
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|x| x == ext))
+        .collect();
+    files.sort();
+    files
+}
+
+fn stem(p: &Path) -> String {
+    p.file_stem().unwrap().to_string_lossy().into_owned()
+}
+
+/// An example lowered for the robot it was written for.
+fn lowered(path: &Path) -> Module {
+    let sources = program(path);
+    let robot = intended_robot(&sources[0].text).to_string();
+    let m = model(&robot);
+    let analysis = analyze(&sources, &m);
+    lower(&analysis, &m, ilmr_compiler::FileId(0))
+        .unwrap_or_else(|d| panic!("{} does not lower: {d:?}", path.display()))
+}
+
+#[test]
+fn every_dissertation_example_lowers_and_its_listing_is_a_snapshot() {
+    let examples = files_in("examples", "ilmr");
+    assert_eq!(examples.len(), 5, "Figures 20, 27, 52, 56 and 58");
+    for path in examples {
+        let module = lowered(&path);
+        let again = Module::from_bytes(&module.to_bytes()).expect("a built module reads back");
+        assert_eq!(again, module, "{}: serde round trip", path.display());
+        insta::assert_snapshot!(
+            format!("disasm_{}", stem(&path)),
+            ilmr_vm::bytecode::disassemble(&module)
+        );
+    }
+}
+
+#[test]
+fn every_statement_maps_back_to_its_source_text() {
+    for path in files_in("examples", "ilmr") {
+        let sources = program(&path);
+        let module = lowered(&path);
+        for instr in &module.code {
+            let stmt = module
+                .stmt(instr.stmt)
+                .expect("every instruction has a statement");
+            let path = &module.files[stmt.file.0 as usize];
+            let text = sources
+                .iter()
+                .find(|s| &s.path == path)
+                .map(|s| s.text.as_str())
+                .or_else(|| {
+                    ilmr_stdlib::skills::BUILTIN_SKILL_FILES
+                        .iter()
+                        .find(|b| b.path == path)
+                        .map(|b| b.source)
+                })
+                .expect("the statement's file is a source");
+            let slice = &text[stmt.span.0 as usize..stmt.span.1 as usize];
+            assert_eq!(slice.trim(), stmt.text);
+            let line = text[..stmt.span.0 as usize].matches('\n').count() + 1;
+            assert_eq!(line as u32, stmt.line, "{}", stmt.text);
+        }
+    }
+}
+
+#[test]
+fn only_the_skills_a_task_reaches_are_lowered() {
+    let module = lowered(&root().join("examples/short_task.ilmr"));
+    assert_eq!(module.units.len(), 1, "{:?}", module.units);
+    let module = lowered(&root().join("examples/fetch_boxes.ilmr"));
+    let skills: Vec<&str> = module
+        .units
+        .iter()
+        .filter(|u| u.skill)
+        .map(|u| u.name.as_str())
+        .collect();
+    assert_eq!(skills, ["Takebox", "go_charger"]);
+}
+
+#[test]
+fn run_cases_give_deterministic_traces() {
+    let cases = files_in("tests/run", "args");
+    assert!(cases.len() >= 6, "five figures and the robotless case");
+    for case in cases {
+        let name = stem(&case);
+        let text = std::fs::read_to_string(&case).unwrap();
+        let mut args: Vec<&str> = vec!["run"];
+        args.extend(text.lines().map(str::trim).filter(|l| !l.is_empty()));
+        let run = |n: u32| {
+            let trace = scratch(&format!("{name}-{n}.jsonl"));
+            let trace_arg = trace.display().to_string();
+            let mut a = args.clone();
+            a.extend(["--trace", &trace_arg]);
+            let (code, out, err) = ilmrc(&a);
+            assert_eq!(code, 0, "{name}: {out}{err}");
+            let bytes = std::fs::read(&trace).expect("the trace is written");
+            let _ = std::fs::remove_file(&trace);
+            (bytes, out)
+        };
+        let (one, summary) = run(1);
+        let (two, _) = run(2);
+        assert!(one == two, "{name}: two runs gave different traces");
+        let trace = String::from_utf8(one).expect("UTF-8");
+        for line in trace.lines() {
+            let v: serde_json::Value = serde_json::from_str(line).expect("one JSON event a line");
+            assert!(v["t"].is_number() && v["event"].is_string(), "{line}");
+        }
+        let times: Vec<f64> = trace
+            .lines()
+            .map(|l| {
+                serde_json::from_str::<serde_json::Value>(l).unwrap()["t"]
+                    .as_f64()
+                    .unwrap()
+            })
+            .collect();
+        assert!(times.windows(2).all(|w| w[0] <= w[1]), "{name}: time order");
+        insta::assert_snapshot!(format!("trace_{name}"), format!("{trace}---\n{summary}"));
+    }
+}
+
+#[test]
+fn build_writes_a_module_that_disasm_lists_with_source_lines() {
+    let out = scratch("short.ilmb");
+    let out_arg = out.display().to_string();
+    let (code, stdout, err) = ilmrc(&["build", "examples/short_task.ilmr", "-o", &out_arg]);
+    assert_eq!(code, 0, "{stdout}{err}");
+    assert!(stdout.contains("built"), "{stdout}");
+    let (code, listing, err) = ilmrc(&["disasm", &out_arg]);
+    let _ = std::fs::remove_file(&out);
+    assert_eq!(code, 0, "{err}");
+    assert!(
+        listing.contains("file   0 examples/short_task.ilmr"),
+        "{listing}"
+    );
+    assert!(listing.contains("ISSUE     turn d=90, c=0.5"), "{listing}");
+    assert!(listing.contains("; turn(d=90,c=0.5)"), "{listing}");
+}
+
+#[test]
+fn build_exits_like_check() {
+    let out = scratch("broken.ilmb");
+    let out_arg = out.display().to_string();
+    let (code, stdout, _) = ilmrc(&["build", "tests/check/broken/commands.ilmr", "-o", &out_arg]);
+    assert_eq!(code, 1, "{stdout}");
+    assert!(stdout.contains("error(s)"), "{stdout}");
+    assert!(!out.exists(), "nothing is written for a task with errors");
+    assert_eq!(
+        ilmrc(&["build", "examples/short_task.ilmr"]).0,
+        2,
+        "-o is required"
+    );
+    let (code, _, err) = ilmrc(&["build", "no/such.ilmr", "-o", &out_arg]);
+    assert_eq!(code, 2);
+    assert!(err.contains("cannot read"), "{err}");
+}
+
+#[test]
+fn disasm_refuses_corrupt_and_foreign_files_without_panicking() {
+    let good = lowered(&root().join("examples/short_task.ilmr")).to_bytes();
+    let text = String::from_utf8(good.clone()).unwrap();
+    let cases: Vec<(&str, Vec<u8>)> = vec![
+        ("empty", Vec::new()),
+        ("binary", vec![0xff, 0x00, 0x13, 0x37]),
+        ("truncated", good[..good.len() / 2].to_vec()),
+        ("foreign json", br#"{"hello":"world"}"#.to_vec()),
+        (
+            "magic",
+            text.replacen("\"ILMB\"", "\"ELF!\"", 1).into_bytes(),
+        ),
+        (
+            "version",
+            text.replacen("\"version\":1", "\"version\":99", 1)
+                .into_bytes(),
+        ),
+        (
+            "index",
+            text.replacen("\"main\":0", "\"main\":4000000", 1)
+                .into_bytes(),
+        ),
+    ];
+    for (what, bytes) in cases {
+        let path = scratch(&format!("corrupt-{}.ilmb", what.replace(' ', "_")));
+        std::fs::write(&path, &bytes).unwrap();
+        let (code, out, err) = ilmrc(&["disasm", &path.display().to_string()]);
+        let _ = std::fs::remove_file(&path);
+        assert_eq!(code, 2, "{what}: {out}{err}");
+        assert!(err.contains("is not a valid ILMR module"), "{what}: {err}");
+        assert!(!err.contains("panicked"), "{what}: {err}");
+    }
+    assert_eq!(ilmrc(&["disasm", "no/such.ilmb"]).0, 2);
+}
+
+#[test]
+fn robot_none_refuses_robot_commands_with_their_lines() {
+    let (code, out, _) = ilmrc(&["run", "--robot", "none", "examples/short_task.ilmr"]);
+    assert_eq!(code, 1, "{out}");
+    for cmd in [
+        "`speed` needs a robot",
+        "`goahead` needs a robot",
+        "`use` needs a robot",
+    ] {
+        assert!(out.contains(cmd), "{cmd}: {out}");
+    }
+    assert!(
+        out.contains("E0407") && out.contains("short_task.ilmr:4:1"),
+        "{out}"
+    );
+    let (code, _, err) = ilmrc(&["run", "--robot", "r2d2", "examples/short_task.ilmr"]);
+    assert_eq!(code, 2, "{err}");
+}
+
+#[test]
+fn a_run_ends_at_max_time_when_commands_are_left() {
+    let (code, out, _) = ilmrc(&[
+        "run",
+        "--robot",
+        "scripted",
+        "--max-time",
+        "3",
+        "examples/short_task.ilmr",
+    ]);
+    assert_eq!(code, 0, "{out}");
+    assert!(out.contains("max-time: stopped at --max-time 3"), "{out}");
+    assert!(out.contains("simulated time  3 s (300 ticks)"), "{out}");
+}
+
+/// Figure 52 on the scripted robot, two seconds in.
+fn running() -> (Vm<ScriptedRobot, SimClock>, ilmr_model::RobotModel) {
+    let module = lowered(&root().join("examples/short_task.ilmr"));
+    let mut vm = Vm::new(
+        module,
+        ScriptedRobot::new(Limits::default()),
+        SimClock,
+        Config::default(),
+    )
+    .unwrap();
+    vm.run_for(2.0);
+    (vm, model("moro"))
+}
+
+#[test]
+fn an_interactive_line_joins_the_running_task_and_sees_its_variables() {
+    let (mut vm, m) = running();
+    let fragment = lower_line(
+        "if(m)\n    seen = m + 1\nendif",
+        vm.module(),
+        &m,
+        LineOptions::default(),
+    )
+    .expect("m is a variable of the task");
+    vm.add_block(&fragment).unwrap();
+    vm.run_for(30.0);
+    let seen = vm.var("seen").expect("the line bound a new variable");
+    assert_eq!(seen.status, 1.0, "the guard fired when m's movement ended");
+    assert!((seen.value - 1.0 - vm.var("m").unwrap().dist).abs() < 1e-9);
+    let stmt = vm.module().stmts.last().unwrap();
+    assert_eq!((stmt.text.as_str(), stmt.line), ("seen = m + 1", 2));
+}
+
+#[test]
+fn a_bad_line_is_rejected_with_its_diagnostic_and_changes_nothing() {
+    let (vm, m) = running();
+    let before = vm.module().clone();
+    let cases = [
+        ("goahed(1)", "E0301"),
+        ("wait(nosuch)", "E0501"),
+        ("speed(5)", "E0404"),
+        ("m = 3", "E0502"),
+        ("if(m\n", "E0"),
+        ("TURN1:\nstop", "E0209"),
+    ];
+    for (line, code) in cases {
+        let Err(diags) = lower_line(line, vm.module(), &m, LineOptions::default()) else {
+            panic!("{line:?} was accepted");
+        };
+        assert!(
+            diags.iter().any(|d| d.code.as_str().starts_with(code)),
+            "{line:?}: {diags:?}"
+        );
+    }
+    assert_eq!(vm.module(), &before);
+    let refused = lower_line(
+        "goahead(1)",
+        vm.module(),
+        &m,
+        LineOptions { robotless: true },
+    );
+    assert!(refused.is_err_and(|d| d[0].code.as_str() == "E0407"));
+}
+
+#[test]
+fn a_line_calls_the_skills_of_the_running_task() {
+    let module = lowered(&root().join("examples/fetch_boxes.ilmr"));
+    let m = model("workpartner");
+    let fragment = lower_line("again = Takebox", &module, &m, LineOptions::default())
+        .expect("Takebox is a skill of the task");
+    let mut joined = module.clone();
+    joined.append(&fragment).unwrap();
+    let listing = ilmr_vm::bytecode::disassemble(&joined);
+    assert!(listing.contains("CALL      Takebox => again"), "{listing}");
+    let err = lower_line("make_a_bow", &module, &m, LineOptions::default()).unwrap_err();
+    assert_eq!(
+        err[0].code.as_str(),
+        "E0301",
+        "make_a_bow is not part of this task"
+    );
+}
