@@ -1,0 +1,134 @@
+//! Latency of the engine on a 10,000-line task with a skill file: a full re-check after a
+//! one-character edit (what every keystroke costs), completion and hover. Figures in
+//! `lsp/PERFORMANCE.md`. Run with `cargo bench -p ilmr-lsp`.
+
+use divan::{Bencher, black_box};
+use ilmr_lsp::{Engine, Settings};
+use tower_lsp_server::ls_types::{Position, Range, TextDocumentContentChangeEvent, Uri};
+
+fn main() {
+    divan::main();
+}
+
+const SKILLS: usize = 50;
+
+/// Task blocks of the shape real tasks have (searches, guards, waits, counting loops,
+/// skill calls), twelve lines each, with Finnish names.
+fn task(lines: usize) -> String {
+    let mut task = String::new();
+    let mut i = 0;
+    while i * 12 < lines {
+        let k = i % SKILLS;
+        task.push_str(&format!(
+            "ovi_ö{i} = sensor(scanner,door,left)\nif(ovi_ö{i})\n    speed(0.3)\n    g{i} = gotoxy(ovi_ö{i})\n    wait(g{i})\n    taito{k}\nendif\nkäännös{i} = 0\nwhile(käännös{i} < 3)\n    käännös{i} = käännös{i} + 1\nendwhile\n\n"
+        ));
+        i += 1;
+    }
+    task
+}
+
+fn skills() -> String {
+    (0..SKILLS)
+        .map(|k| format!("taito{k}:\nspeed(-0.3)\nt{k}=turn(d=90,c=0.5)\nwait(t{k})\n\n"))
+        .collect()
+}
+
+struct Setup {
+    engine: Engine,
+    task: Uri,
+    /// A line in the middle of the task: `    g416 = gotoxy(ovi_ö416)`.
+    middle: u32,
+}
+
+fn setup() -> Setup {
+    let mut engine = Engine::new(
+        Vec::new(),
+        Settings {
+            robot: Some("moro".into()),
+            snippets: true,
+        },
+    );
+    let task: Uri = "file:///bench/task.ilmr".parse().expect("a URI");
+    let text = task_text();
+    assert!(text.lines().count() >= 10_000);
+    engine.open(
+        "file:///bench/skills.ilms".parse().expect("a URI"),
+        1,
+        skills(),
+    );
+    engine.open(task.clone(), 1, text);
+    let errors: Vec<_> = engine
+        .diagnostics(&task)
+        .into_iter()
+        .filter(|d| d.severity == Some(tower_lsp_server::ls_types::DiagnosticSeverity::ERROR))
+        .take(3)
+        .collect();
+    assert!(
+        errors.is_empty(),
+        "the corpus is a valid program: {errors:?}"
+    );
+    Setup {
+        engine,
+        task,
+        middle: 5_000 / 12 * 12 + 3,
+    }
+}
+
+fn task_text() -> String {
+    task(10_000)
+}
+
+#[divan::bench(sample_count = 20)]
+fn recheck_after_an_edit(bencher: Bencher) {
+    let mut s = setup();
+    let mut version = 1;
+    // Replaces one character by itself: the text stays valid, the work is all there.
+    let at = Range::new(Position::new(s.middle, 4), Position::new(s.middle, 5));
+    bencher.bench_local(|| {
+        version += 1;
+        let change = TextDocumentContentChangeEvent {
+            range: Some(at),
+            range_length: None,
+            text: "g".into(),
+        };
+        black_box(s.engine.change(&s.task, version, vec![change]))
+    });
+}
+
+#[divan::bench(sample_count = 100)]
+fn completion_in_arguments(bencher: Bencher) {
+    let s = setup();
+    // After `gotoxy(`: the variables holding positions, then numbers.
+    let at = Position::new(s.middle, 18);
+    assert!(!s.engine.completion(&s.task, at).is_empty());
+    bencher.bench_local(|| black_box(s.engine.completion(&s.task, at)));
+}
+
+#[divan::bench(sample_count = 100)]
+fn completion_at_statement_start(bencher: Bencher) {
+    let s = setup();
+    let at = Position::new(s.middle, 4);
+    bencher.bench_local(|| black_box(s.engine.completion(&s.task, at)));
+}
+
+#[divan::bench(sample_count = 100)]
+fn hover_on_a_variable(bencher: Bencher) {
+    let s = setup();
+    let at = Position::new(s.middle, 20);
+    assert!(s.engine.hover(&s.task, at).is_some());
+    bencher.bench_local(|| black_box(s.engine.hover(&s.task, at)));
+}
+
+#[divan::bench(sample_count = 100)]
+fn hover_on_a_command(bencher: Bencher) {
+    let s = setup();
+    let at = Position::new(s.middle, 11);
+    assert!(s.engine.hover(&s.task, at).is_some());
+    bencher.bench_local(|| black_box(s.engine.hover(&s.task, at)));
+}
+
+#[divan::bench(sample_count = 20)]
+fn semantic_tokens(bencher: Bencher) {
+    let s = setup();
+    bencher.bench_local(|| black_box(s.engine.semantic_tokens(&s.task)));
+}

@@ -1,0 +1,25 @@
+//! The ILMR language server. An engine that works on the checked program and answers
+//! each LSP feature (`engine.rs` and the feature modules), and a thin protocol layer
+//! over stdio (`server.rs`, the only file that knows tower-lsp-server).
+//!
+//! Invariants: the server checks with the compiler's own `check::analyze` and formats
+//! with its `format::format`, so the editor and `ilmrc` never disagree; byte offsets
+//! become LSP positions (UTF-16) only through `line_index`.
+
+pub mod analysis;
+pub mod completion;
+pub mod context;
+pub mod diagnostics;
+pub mod docs;
+pub mod engine;
+pub mod hover;
+pub mod line_index;
+pub mod navigation;
+pub mod outline;
+pub mod robot;
+pub mod semantic;
+pub mod server;
+pub mod signature;
+pub mod workspace;
+
+pub use engine::{Engine, Publish, Settings};

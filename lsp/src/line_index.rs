@@ -1,0 +1,153 @@
+//! The one place byte offsets meet LSP positions. The compiler's spans are bytes; LSP
+//! counts lines and UTF-16 code units. Lines holding only ASCII (nearly all of them)
+//! convert by arithmetic; the rest walk their characters.
+
+use ilmr_compiler::Span;
+use tower_lsp_server::ls_types::{Position, Range};
+
+#[derive(Debug, Clone, Default)]
+pub struct LineIndex {
+    /// Byte offset where each line starts; the first is 0.
+    starts: Vec<u32>,
+    /// Whether each line is pure ASCII, where bytes and UTF-16 units coincide.
+    ascii: Vec<bool>,
+    len: u32,
+}
+
+impl LineIndex {
+    pub fn new(text: &str) -> LineIndex {
+        let mut starts = vec![0];
+        let mut ascii = Vec::new();
+        let mut line_ascii = true;
+        for (i, b) in text.bytes().enumerate() {
+            if b == b'\n' {
+                ascii.push(line_ascii);
+                line_ascii = true;
+                starts.push(i as u32 + 1);
+            } else if !b.is_ascii() {
+                line_ascii = false;
+            }
+        }
+        ascii.push(line_ascii);
+        LineIndex {
+            starts,
+            ascii,
+            len: text.len() as u32,
+        }
+    }
+
+    pub fn line_count(&self) -> usize {
+        self.starts.len()
+    }
+
+    /// 0-based line holding a byte offset.
+    pub fn line_of(&self, offset: usize) -> usize {
+        self.starts.partition_point(|&s| s as usize <= offset) - 1
+    }
+
+    /// The byte range of a line without its line break.
+    pub fn line_span(&self, text: &str, line: usize) -> Span {
+        let start = self.starts.get(line).map_or(self.len, |&s| s) as usize;
+        let end = self
+            .starts
+            .get(line + 1)
+            .map_or(self.len as usize, |&s| s as usize - 1);
+        let end = end.max(start);
+        // A CRLF file keeps its `\r` out of the line's text.
+        let end = if text.as_bytes().get(end.wrapping_sub(1)) == Some(&b'\r') && end > start {
+            end - 1
+        } else {
+            end
+        };
+        Span::new(start, end)
+    }
+
+    pub fn position(&self, text: &str, offset: usize) -> Position {
+        let offset = offset.min(self.len as usize);
+        let line = self.line_of(offset);
+        let start = self.starts[line] as usize;
+        let character = if self.ascii[line] {
+            offset - start
+        } else {
+            // An offset inside a character counts up to that character's start.
+            let mut end = offset;
+            while !text.is_char_boundary(end) {
+                end -= 1;
+            }
+            text[start..end].chars().map(char::len_utf16).sum()
+        };
+        Position::new(line as u32, character as u32)
+    }
+
+    /// The byte offset of a position, clamped to its line: clients may send a column past
+    /// the end of the line, or a line past the end of the text.
+    pub fn offset(&self, text: &str, position: Position) -> usize {
+        let line = position.line as usize;
+        if line >= self.starts.len() {
+            return self.len as usize;
+        }
+        let span = self.line_span(text, line);
+        let wanted = position.character as usize;
+        if self.ascii[line] {
+            return (span.start as usize + wanted).min(span.end as usize);
+        }
+        let mut units = 0;
+        for (i, c) in span.slice(text).char_indices() {
+            if units >= wanted {
+                return span.start as usize + i;
+            }
+            units += c.len_utf16();
+        }
+        span.end as usize
+    }
+
+    pub fn range(&self, text: &str, span: Span) -> Range {
+        Range::new(
+            self.position(text, span.start as usize),
+            self.position(text, span.end as usize),
+        )
+    }
+
+    pub fn span(&self, text: &str, range: Range) -> Span {
+        let start = self.offset(text, range.start);
+        let end = self.offset(text, range.end).max(start);
+        Span::new(start, end)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn finnish_names_count_utf16_units() {
+        let text = "a=1\nkäännös=turn(left)\novi_ö=𝔸\n";
+        let idx = LineIndex::new(text);
+        let eq = text.find("=turn").unwrap();
+        assert_eq!(idx.position(text, eq), Position::new(1, 7));
+        assert_eq!(idx.offset(text, Position::new(1, 7)), eq);
+        // U+1D538 takes two UTF-16 units and four bytes.
+        let end = text.rfind('\n').unwrap();
+        assert_eq!(idx.position(text, end), Position::new(2, 8));
+        assert_eq!(idx.offset(text, Position::new(2, 8)), end);
+        // A column in the middle of a surrogate pair lands on the character after it.
+        assert_eq!(idx.offset(text, Position::new(2, 7)), end);
+    }
+
+    #[test]
+    fn out_of_range_positions_are_clamped() {
+        let text = "ab\ncd";
+        let idx = LineIndex::new(text);
+        assert_eq!(idx.offset(text, Position::new(0, 99)), 2);
+        assert_eq!(idx.offset(text, Position::new(9, 0)), 5);
+        assert_eq!(idx.position(text, 99), Position::new(1, 2));
+    }
+
+    #[test]
+    fn crlf_lines_end_before_the_carriage_return() {
+        let text = "ab\r\ncd";
+        let idx = LineIndex::new(text);
+        assert_eq!(idx.line_span(text, 0), Span::new(0, 2));
+        assert_eq!(idx.offset(text, Position::new(0, 5)), 2);
+    }
+}

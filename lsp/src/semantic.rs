@@ -1,0 +1,166 @@
+//! Semantic tokens: the lexer gives keywords, numbers, operators and comments; the
+//! checker's resolutions tell commands, skills, variables, grammar keywords, model
+//! names and paths apart, which no TextMate grammar can.
+
+use std::collections::BTreeMap;
+
+use ilmr_compiler::Span;
+use ilmr_compiler::check::Resolved;
+use ilmr_compiler::diagnostic::FileId;
+use ilmr_compiler::lexer::{Token, lex};
+use tower_lsp_server::ls_types::{
+    SemanticToken, SemanticTokenModifier, SemanticTokenType, SemanticTokensLegend,
+};
+
+use crate::analysis::Program;
+use crate::line_index::LineIndex;
+
+/// Indexes into `legend().token_types`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[repr(u32)]
+enum Kind {
+    Keyword,
+    Function,
+    Method,
+    Variable,
+    EnumMember,
+    Property,
+    Namespace,
+    Number,
+    Comment,
+    Operator,
+    String,
+}
+
+const DECLARATION: u32 = 1;
+const READONLY: u32 = 2;
+const DEFAULT_LIBRARY: u32 = 4;
+
+pub fn legend() -> SemanticTokensLegend {
+    SemanticTokensLegend {
+        token_types: vec![
+            SemanticTokenType::KEYWORD,
+            SemanticTokenType::FUNCTION,
+            SemanticTokenType::METHOD,
+            SemanticTokenType::VARIABLE,
+            SemanticTokenType::ENUM_MEMBER,
+            SemanticTokenType::PROPERTY,
+            SemanticTokenType::NAMESPACE,
+            SemanticTokenType::NUMBER,
+            SemanticTokenType::COMMENT,
+            SemanticTokenType::OPERATOR,
+            SemanticTokenType::STRING,
+        ],
+        token_modifiers: vec![
+            SemanticTokenModifier::DECLARATION,
+            SemanticTokenModifier::READONLY,
+            SemanticTokenModifier::DEFAULT_LIBRARY,
+        ],
+    }
+}
+
+pub fn tokens(program: &Program, file: FileId, index: &LineIndex) -> Vec<SemanticToken> {
+    let text = program.text(file);
+    // By start offset: a name the checker resolved replaces what the lexer saw there.
+    let mut marks: BTreeMap<u32, (Span, Kind, u32)> = BTreeMap::new();
+    let lexed = lex(text);
+    for (token, span) in &lexed.tokens {
+        let kind = match token {
+            Token::If
+            | Token::EndIf
+            | Token::While
+            | Token::EndWhile
+            | Token::Check
+            | Token::Checkend
+            | Token::Priority
+            | Token::Highest => Kind::Keyword,
+            Token::Break(p) => {
+                let word = Span::new(span.start as usize, span.start as usize + 5);
+                marks.insert(word.start, (word, Kind::Keyword, 0));
+                if let Some(inner) = p.inner.filter(|s| !s.is_empty()) {
+                    marks.insert(inner.start, (inner, Kind::String, 0));
+                }
+                continue;
+            }
+            Token::Number(_) => Kind::Number,
+            Token::Assign
+            | Token::EqEq
+            | Token::NotEq
+            | Token::Lt
+            | Token::Le
+            | Token::Gt
+            | Token::Ge
+            | Token::GeAlt
+            | Token::Plus
+            | Token::Minus
+            | Token::Star
+            | Token::Slash => Kind::Operator,
+            _ => continue,
+        };
+        marks.insert(span.start, (*span, kind, 0));
+    }
+    for c in &lexed.comments {
+        marks.insert(c.start, (*c, Kind::Comment, 0));
+    }
+    for unit in program.units_of(file) {
+        for &(span, resolved) in &unit.refs {
+            let (kind, mods) = match resolved {
+                Resolved::Command(_) => (Kind::Function, DEFAULT_LIBRARY),
+                Resolved::Skill(_) => (Kind::Method, 0),
+                Resolved::Variable(id) => {
+                    let var = unit.vars.get(id);
+                    let def = var.defs.iter().any(|&(f, s)| f == file && s == span);
+                    (Kind::Variable, if def { DECLARATION } else { 0 })
+                }
+                Resolved::Keyword => (Kind::EnumMember, 0),
+                Resolved::Model => (Kind::Property, READONLY),
+                Resolved::Path => (Kind::Namespace, 0),
+            };
+            marks.insert(span.start, (span, kind, mods));
+        }
+    }
+    for skill in &program.tree(file).skills {
+        let span = skill.name.span;
+        marks.insert(span.start, (span, Kind::Method, DECLARATION));
+    }
+    encode(marks.into_values(), text, index)
+}
+
+fn encode(
+    marks: impl Iterator<Item = (Span, Kind, u32)>,
+    text: &str,
+    index: &LineIndex,
+) -> Vec<SemanticToken> {
+    let mut out = Vec::new();
+    let (mut line, mut col) = (0, 0);
+    let mut covered = 0;
+    for (span, kind, mods) in marks {
+        // Overlaps (a ref inside a comment cannot happen, but a pattern could be lexed
+        // oddly) keep the first token.
+        if span.start < covered || span.is_empty() {
+            continue;
+        }
+        covered = span.end;
+        let start = index.position(text, span.start as usize);
+        let end = index.position(text, span.end as usize);
+        if end.line != start.line {
+            continue;
+        }
+        let delta_line = start.line - line;
+        let delta_start = if delta_line == 0 {
+            start.character - col
+        } else {
+            start.character
+        };
+        out.push(SemanticToken {
+            delta_line,
+            delta_start,
+            length: end.character - start.character,
+            token_type: kind as u32,
+            token_modifiers_bitset: mods,
+        });
+        line = start.line;
+        col = start.character;
+    }
+    out
+}

@@ -1,0 +1,421 @@
+//! The protocol layer, the only file that knows tower-lsp-server: a route table from
+//! LSP methods to the engine's methods, and the engine's thread.
+//!
+//! The engine lives on a thread of its own and takes jobs in the order the handlers
+//! send them. Each handler sends its job before its first `await`, and the transport
+//! starts handlers in the order messages arrive, so a completion that follows a
+//! `didChange` always sees the change.
+
+use std::panic::AssertUnwindSafe;
+use std::path::PathBuf;
+use std::process::ExitCode;
+use std::sync::mpsc;
+
+use serde_json::Value;
+use tower_lsp_server::jsonrpc::{Error, Result};
+use tower_lsp_server::ls_types::*;
+use tower_lsp_server::{Client, LanguageServer, LspService, Server};
+
+use crate::engine::{Engine, Publish, Settings};
+use crate::semantic;
+
+type Job = Box<dyn FnOnce(&mut Engine) + Send>;
+
+/// Sends jobs to the engine's thread.
+#[derive(Clone)]
+struct EngineHandle {
+    jobs: mpsc::Sender<Job>,
+}
+
+impl EngineHandle {
+    fn spawn() -> EngineHandle {
+        let (jobs, queue) = mpsc::channel::<Job>();
+        std::thread::Builder::new()
+            .name("ilmr-engine".into())
+            .spawn(move || {
+                let mut engine = Engine::default();
+                while let Ok(job) = queue.recv() {
+                    // A bug in one feature must not take the server down with it; the
+                    // next change rebuilds the analysis anyway.
+                    if std::panic::catch_unwind(AssertUnwindSafe(|| job(&mut engine))).is_err() {
+                        eprintln!("ilmr-lsp: a request failed inside the engine");
+                    }
+                }
+            })
+            .ok();
+        EngineHandle { jobs }
+    }
+
+    /// Queues `f` now; the reply is `None` if the engine failed on it.
+    fn run<R: Send + 'static>(
+        &self,
+        f: impl FnOnce(&mut Engine) -> R + Send + 'static,
+    ) -> Reply<R> {
+        let (tx, rx) = tokio::sync::oneshot::channel();
+        let _ = self.jobs.send(Box::new(move |engine| {
+            let _ = tx.send(f(engine));
+        }));
+        Reply(rx)
+    }
+}
+
+struct Reply<R>(tokio::sync::oneshot::Receiver<R>);
+
+impl<R> Reply<R> {
+    async fn get(self) -> Option<R> {
+        self.0.await.ok()
+    }
+}
+
+struct Backend {
+    client: Client,
+    engine: EngineHandle,
+}
+
+impl Backend {
+    async fn publish(&self, publishes: Option<Vec<Publish>>) {
+        for p in publishes.unwrap_or_default() {
+            self.client
+                .publish_diagnostics(p.uri, p.diagnostics, p.version)
+                .await;
+        }
+    }
+
+    fn position_query<R: Send + 'static>(
+        &self,
+        doc: TextDocumentPositionParams,
+        f: impl FnOnce(&Engine, &Uri, Position) -> R + Send + 'static,
+    ) -> Reply<R> {
+        self.engine
+            .run(move |e| f(e, &doc.text_document.uri, doc.position))
+    }
+}
+
+pub fn run_stdio() -> ExitCode {
+    let runtime = match tokio::runtime::Builder::new_current_thread()
+        .enable_all()
+        .build()
+    {
+        Ok(rt) => rt,
+        Err(e) => {
+            eprintln!("ilmr-lsp: cannot start: {e}");
+            return ExitCode::FAILURE;
+        }
+    };
+    runtime.block_on(async {
+        let (service, socket) = LspService::new(|client| Backend {
+            client,
+            engine: EngineHandle::spawn(),
+        });
+        Server::new(tokio::io::stdin(), tokio::io::stdout(), socket)
+            .serve(service)
+            .await;
+    });
+    ExitCode::SUCCESS
+}
+
+/// `{"robot": "workpartner"}` in initialization options, or `{"ilmr": {"robot": ..}}`
+/// in a configuration change.
+fn robot_setting(value: &Value) -> Option<String> {
+    let v = value.get("ilmr").unwrap_or(value);
+    v.get("robot").and_then(Value::as_str).map(str::to_string)
+}
+
+fn roots(params: &InitializeParams) -> Vec<PathBuf> {
+    let folders = params.workspace_folders.iter().flatten().map(|f| &f.uri);
+    #[allow(deprecated)]
+    let root = params.root_uri.iter();
+    let mut out: Vec<PathBuf> = folders
+        .chain(root)
+        .filter_map(|u| u.to_file_path().map(|p| p.into_owned()))
+        .collect();
+    out.dedup();
+    out
+}
+
+impl LanguageServer for Backend {
+    async fn initialize(&self, params: InitializeParams) -> Result<InitializeResult> {
+        let settings = Settings {
+            robot: params
+                .initialization_options
+                .as_ref()
+                .and_then(robot_setting),
+            snippets: params
+                .capabilities
+                .text_document
+                .as_ref()
+                .and_then(|t| t.completion.as_ref())
+                .and_then(|c| c.completion_item.as_ref())
+                .and_then(|i| i.snippet_support)
+                .unwrap_or(false),
+        };
+        let roots = roots(&params);
+        let note = self
+            .engine
+            .run(move |e| {
+                *e = Engine::new(roots, settings);
+                e.robot().note.clone()
+            })
+            .get()
+            .await
+            .flatten();
+        if let Some(note) = note {
+            self.client.show_message(MessageType::WARNING, note).await;
+        }
+        Ok(InitializeResult {
+            server_info: Some(ServerInfo {
+                name: "ilmr-lsp".into(),
+                version: Some(env!("CARGO_PKG_VERSION").into()),
+            }),
+            capabilities: capabilities(),
+            offset_encoding: None,
+        })
+    }
+
+    async fn initialized(&self, _: InitializedParams) {
+        let watchers = [
+            "**/*.ilmr",
+            "**/*.ilms",
+            "**/ROBO.INI",
+            "**/robo.ini",
+            "**/Robo.ini",
+        ]
+        .into_iter()
+        .map(|glob| FileSystemWatcher {
+            glob_pattern: GlobPattern::String(glob.into()),
+            kind: None,
+        })
+        .collect();
+        let options = DidChangeWatchedFilesRegistrationOptions { watchers };
+        let registration = Registration {
+            id: "ilmr-files".into(),
+            method: "workspace/didChangeWatchedFiles".into(),
+            register_options: serde_json::to_value(options).ok(),
+        };
+        // Clients without dynamic registration refuse; the server then sees only what
+        // the editor opens, which is still correct.
+        let _ = self.client.register_capability(vec![registration]).await;
+    }
+
+    async fn shutdown(&self) -> Result<()> {
+        Ok(())
+    }
+
+    async fn did_open(&self, params: DidOpenTextDocumentParams) {
+        let d = params.text_document;
+        let out = self.engine.run(move |e| e.open(d.uri, d.version, d.text));
+        self.publish(out.get().await).await;
+    }
+
+    async fn did_change(&self, params: DidChangeTextDocumentParams) {
+        let d = params.text_document;
+        let changes = params.content_changes;
+        let out = self
+            .engine
+            .run(move |e| e.change(&d.uri, d.version, changes));
+        self.publish(out.get().await).await;
+    }
+
+    async fn did_close(&self, params: DidCloseTextDocumentParams) {
+        let uri = params.text_document.uri;
+        let out = self.engine.run(move |e| e.close(&uri));
+        self.publish(out.get().await).await;
+    }
+
+    async fn did_change_configuration(&self, params: DidChangeConfigurationParams) {
+        let robot = robot_setting(&params.settings);
+        let out = self.engine.run(move |e| {
+            let out = e.configure(robot);
+            (out, e.robot().note.clone())
+        });
+        if let Some((out, note)) = out.get().await {
+            if let Some(note) = note {
+                self.client.show_message(MessageType::WARNING, note).await;
+            }
+            self.publish(Some(out)).await;
+        }
+    }
+
+    async fn did_change_watched_files(&self, params: DidChangeWatchedFilesParams) {
+        let uris: Vec<Uri> = params.changes.into_iter().map(|c| c.uri).collect();
+        let out = self.engine.run(move |e| e.files_changed(&uris));
+        self.publish(out.get().await).await;
+    }
+
+    async fn completion(&self, params: CompletionParams) -> Result<Option<CompletionResponse>> {
+        let items = self
+            .position_query(params.text_document_position, |e, u, p| e.completion(u, p))
+            .get()
+            .await;
+        Ok(items.map(CompletionResponse::Array))
+    }
+
+    async fn hover(&self, params: HoverParams) -> Result<Option<Hover>> {
+        let hover = self
+            .position_query(params.text_document_position_params, |e, u, p| {
+                e.hover(u, p)
+            })
+            .get()
+            .await;
+        Ok(hover.flatten())
+    }
+
+    async fn signature_help(&self, params: SignatureHelpParams) -> Result<Option<SignatureHelp>> {
+        let help = self
+            .position_query(params.text_document_position_params, |e, u, p| {
+                e.signature_help(u, p)
+            })
+            .get()
+            .await;
+        Ok(help.flatten())
+    }
+
+    async fn goto_definition(
+        &self,
+        params: GotoDefinitionParams,
+    ) -> Result<Option<GotoDefinitionResponse>> {
+        let defs = self
+            .position_query(params.text_document_position_params, |e, u, p| {
+                e.definition(u, p)
+            })
+            .get()
+            .await
+            .unwrap_or_default();
+        Ok((!defs.is_empty()).then_some(GotoDefinitionResponse::Array(defs)))
+    }
+
+    async fn references(&self, params: ReferenceParams) -> Result<Option<Vec<Location>>> {
+        let declaration = params.context.include_declaration;
+        let refs = self
+            .position_query(params.text_document_position, move |e, u, p| {
+                e.references(u, p, declaration)
+            })
+            .get()
+            .await;
+        Ok(refs)
+    }
+
+    async fn prepare_rename(
+        &self,
+        params: TextDocumentPositionParams,
+    ) -> Result<Option<PrepareRenameResponse>> {
+        let answer = self
+            .position_query(params, |e, u, p| e.prepare_rename(u, p))
+            .get()
+            .await;
+        Ok(answer.flatten())
+    }
+
+    async fn rename(&self, params: RenameParams) -> Result<Option<WorkspaceEdit>> {
+        let name = params.new_name;
+        let edit = self
+            .position_query(params.text_document_position, move |e, u, p| {
+                e.rename(u, p, &name)
+            })
+            .get()
+            .await;
+        match edit {
+            Some(Ok(edit)) => Ok(Some(edit)),
+            Some(Err(e)) => Err(Error::invalid_params(e.to_string())),
+            None => Err(Error::internal_error()),
+        }
+    }
+
+    async fn document_symbol(
+        &self,
+        params: DocumentSymbolParams,
+    ) -> Result<Option<DocumentSymbolResponse>> {
+        let uri = params.text_document.uri;
+        let symbols = self
+            .engine
+            .run(move |e| e.document_symbols(&uri))
+            .get()
+            .await;
+        Ok(symbols.map(DocumentSymbolResponse::Nested))
+    }
+
+    async fn folding_range(&self, params: FoldingRangeParams) -> Result<Option<Vec<FoldingRange>>> {
+        let uri = params.text_document.uri;
+        Ok(self.engine.run(move |e| e.folding_ranges(&uri)).get().await)
+    }
+
+    async fn semantic_tokens_full(
+        &self,
+        params: SemanticTokensParams,
+    ) -> Result<Option<SemanticTokensResult>> {
+        let uri = params.text_document.uri;
+        let data = self
+            .engine
+            .run(move |e| e.semantic_tokens(&uri))
+            .get()
+            .await;
+        Ok(data.map(|data| {
+            SemanticTokensResult::Tokens(SemanticTokens {
+                result_id: None,
+                data,
+            })
+        }))
+    }
+
+    async fn formatting(&self, params: DocumentFormattingParams) -> Result<Option<Vec<TextEdit>>> {
+        let uri = params.text_document.uri;
+        Ok(self
+            .engine
+            .run(move |e| e.formatting(&uri))
+            .get()
+            .await
+            .flatten())
+    }
+
+    async fn code_action(&self, params: CodeActionParams) -> Result<Option<CodeActionResponse>> {
+        let uri = params.text_document.uri;
+        let range = params.range;
+        let actions = self
+            .engine
+            .run(move |e| e.code_actions(&uri, range))
+            .get()
+            .await;
+        Ok(actions)
+    }
+}
+
+fn capabilities() -> ServerCapabilities {
+    ServerCapabilities {
+        position_encoding: Some(PositionEncodingKind::UTF16),
+        text_document_sync: Some(TextDocumentSyncCapability::Kind(
+            TextDocumentSyncKind::INCREMENTAL,
+        )),
+        completion_provider: Some(CompletionOptions {
+            trigger_characters: Some(vec!["(".into(), ",".into(), "=".into()]),
+            ..Default::default()
+        }),
+        hover_provider: Some(HoverProviderCapability::Simple(true)),
+        signature_help_provider: Some(SignatureHelpOptions {
+            trigger_characters: Some(vec!["(".into(), ",".into()]),
+            retrigger_characters: Some(vec!["=".into()]),
+            work_done_progress_options: Default::default(),
+        }),
+        definition_provider: Some(OneOf::Left(true)),
+        references_provider: Some(OneOf::Left(true)),
+        rename_provider: Some(OneOf::Right(RenameOptions {
+            prepare_provider: Some(true),
+            work_done_progress_options: Default::default(),
+        })),
+        document_symbol_provider: Some(OneOf::Left(true)),
+        folding_range_provider: Some(FoldingRangeProviderCapability::Simple(true)),
+        semantic_tokens_provider: Some(SemanticTokensServerCapabilities::SemanticTokensOptions(
+            SemanticTokensOptions {
+                legend: semantic::legend(),
+                full: Some(SemanticTokensFullOptions::Bool(true)),
+                range: None,
+                work_done_progress_options: Default::default(),
+            },
+        )),
+        document_formatting_provider: Some(OneOf::Left(true)),
+        code_action_provider: Some(CodeActionProviderCapability::Options(CodeActionOptions {
+            code_action_kinds: Some(vec![CodeActionKind::QUICKFIX]),
+            ..Default::default()
+        })),
+        ..Default::default()
+    }
+}

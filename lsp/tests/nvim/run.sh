@@ -1,0 +1,14 @@
+#!/usr/bin/env bash
+# Drives the built server with headless Neovim (Debian's 0.7.2 works) as the client.
+# Usage: lsp/tests/nvim/run.sh   (from anywhere; builds ilmr-lsp first)
+set -euo pipefail
+here="$(cd "$(dirname "$0")" && pwd)"
+repo="$(cd "$here/../../.." && pwd)"
+command -v nvim >/dev/null || { echo "nvim not found (apt-get install neovim)"; exit 2; }
+cargo build -q -p ilmr-lsp --manifest-path "$repo/Cargo.toml"
+ws="$(mktemp -d)"
+trap 'rm -rf "$ws"' EXIT
+printf '%s\n' 'käännös = turn(left)' 'wait(käännös)' 'kääntö = followwall(lft)' 't = turn(' 'KIERROS' > "$ws/task.ilmr"
+printf '%s\n' 'KIERROS:' 'speed(0.3)' > "$ws/skills.ilms"
+ILMR_LSP="$repo/target/debug/ilmr-lsp" ILMR_WS="$ws" \
+  timeout 60 nvim --headless --clean -u NONE -S "$here/e2e.lua"

@@ -1,0 +1,362 @@
+//! The built server driven over real JSON-RPC on stdio, as an editor drives it: one
+//! session from `initialize` to `exit`, each answer snapshotted as JSON with the
+//! workspace's path replaced by `ROOT`. Columns are UTF-16: the files use Finnish names.
+
+use std::io::{BufRead, BufReader, Write};
+use std::path::{Path, PathBuf};
+use std::process::{Child, ChildStdin, Command, Stdio};
+use std::sync::mpsc::{Receiver, channel};
+use std::time::Duration;
+
+use serde_json::{Value, json};
+
+const TIMEOUT: Duration = Duration::from_secs(20);
+
+struct Server {
+    child: Child,
+    stdin: ChildStdin,
+    messages: Receiver<Value>,
+    next_id: i64,
+    root_uri: String,
+    /// Notifications received while waiting for something else.
+    notifications: Vec<Value>,
+}
+
+fn read_message(reader: &mut impl BufRead) -> Option<Value> {
+    let mut length = None;
+    loop {
+        let mut line = String::new();
+        if reader.read_line(&mut line).ok()? == 0 {
+            return None;
+        }
+        let line = line.trim_end();
+        if line.is_empty() {
+            break;
+        }
+        if let Some(v) = line.strip_prefix("Content-Length: ") {
+            length = v.parse::<usize>().ok();
+        }
+    }
+    let mut body = vec![0; length?];
+    reader.read_exact(&mut body).ok()?;
+    serde_json::from_slice(&body).ok()
+}
+
+impl Server {
+    fn start(root: &Path) -> Server {
+        let mut child = Command::new(env!("CARGO_BIN_EXE_ilmr-lsp"))
+            .stdin(Stdio::piped())
+            .stdout(Stdio::piped())
+            .stderr(Stdio::inherit())
+            .spawn()
+            .expect("the server starts");
+        let stdin = child.stdin.take().expect("piped stdin");
+        let stdout = child.stdout.take().expect("piped stdout");
+        let (tx, messages) = channel();
+        std::thread::spawn(move || {
+            let mut reader = BufReader::new(stdout);
+            while let Some(m) = read_message(&mut reader) {
+                if tx.send(m).is_err() {
+                    break;
+                }
+            }
+        });
+        Server {
+            child,
+            stdin,
+            messages,
+            next_id: 0,
+            root_uri: uri(root, ""),
+            notifications: Vec::new(),
+        }
+    }
+
+    fn send(&mut self, message: Value) {
+        let body = message.to_string();
+        write!(self.stdin, "Content-Length: {}\r\n\r\n{body}", body.len()).expect("server reads");
+        self.stdin.flush().expect("server reads");
+    }
+
+    fn notify(&mut self, method: &str, params: Value) {
+        self.send(json!({"jsonrpc": "2.0", "method": method, "params": params}));
+    }
+
+    /// Sends a request and returns its response, answering the server's own requests
+    /// (`client/registerCapability`) and keeping notifications for later.
+    fn request(&mut self, method: &str, params: Value) -> Value {
+        self.next_id += 1;
+        let id = self.next_id;
+        self.send(json!({"jsonrpc": "2.0", "id": id, "method": method, "params": params}));
+        loop {
+            let m = self.receive();
+            if m.get("id") == Some(&json!(id)) && m.get("method").is_none() {
+                return m;
+            }
+        }
+    }
+
+    fn receive(&mut self) -> Value {
+        let m = self
+            .messages
+            .recv_timeout(TIMEOUT)
+            .expect("the server answers in time");
+        if m.get("method").is_some() && m.get("id").is_some() {
+            // A request from the server: accept it.
+            let id = m["id"].clone();
+            self.send(json!({"jsonrpc": "2.0", "id": id, "result": null}));
+        } else if m.get("method").is_some() {
+            self.notifications.push(m.clone());
+        }
+        m
+    }
+
+    /// The next `publishDiagnostics` for `uri`, waiting for it if need be.
+    fn diagnostics(&mut self, uri: &str) -> Value {
+        loop {
+            let found = self.notifications.iter().position(|n| {
+                n["method"] == "textDocument/publishDiagnostics" && n["params"]["uri"] == uri
+            });
+            if let Some(i) = found {
+                return self.notifications.remove(i)["params"].clone();
+            }
+            self.receive();
+        }
+    }
+
+    /// The response's `result` as JSON text with the workspace's URI made stable.
+    fn show(&self, response: &Value) -> String {
+        assert!(response.get("error").is_none(), "{response}");
+        let text = serde_json::to_string_pretty(&response["result"]).expect("JSON prints");
+        text.replace(&self.root_uri, "file:///ROOT/")
+    }
+
+    fn show_params(&self, params: &Value) -> String {
+        let text = serde_json::to_string_pretty(params).expect("JSON prints");
+        text.replace(&self.root_uri, "file:///ROOT/")
+    }
+}
+
+fn uri(root: &Path, name: &str) -> String {
+    let root = root.to_string_lossy();
+    format!("file://{}/{name}", root.trim_end_matches('/'))
+}
+
+fn workspace(name: &str) -> PathBuf {
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(name);
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).expect("a scratch workspace");
+    dir
+}
+
+const TASK: &str = "// Finnish names: columns count UTF-16 units.
+käännös = turn(left)
+wait(käännös)
+ovi_ö = sensor(scanner,door)
+wait(ovi_ö)
+speed(0.6)
+gotoxy(ovi_ö)
+KIERROS
+";
+
+const SKILLS: &str = "KIERROS:
+t1 = turn(d=180,c=1)
+wait(t1)
+";
+
+/// MoRo's devices with a slow top speed, so that `speed(0.6)` is refused.
+const ROBO_INI: &str = "[SENSORSANDACTUATORS]
+scanner 1 0 30000 361
+battery 6 0 30 1
+[OBJECTS]
+door 0.8 1.2
+[PARAMETERS]
+max_speed 0.5
+max_curvature 1.333333
+[END]
+";
+
+fn position(line: u32, character: u32) -> Value {
+    json!({"line": line, "character": character})
+}
+
+#[test]
+fn a_session_over_stdio() {
+    let root = workspace("session");
+    std::fs::write(root.join("skills.ilms"), SKILLS).unwrap();
+    std::fs::write(root.join("ROBO.INI"), ROBO_INI).unwrap();
+    let task = uri(&root, "task.ilmr");
+    let skills = uri(&root, "skills.ilms");
+    let mut s = Server::start(&root);
+
+    let init = s.request(
+        "initialize",
+        json!({
+            "processId": null,
+            "rootUri": s.root_uri.trim_end_matches('/'),
+            "capabilities": {
+                "textDocument": {"completion": {"completionItem": {"snippetSupport": true}}}
+            },
+            "initializationOptions": {"robot": "workpartner"}
+        }),
+    );
+    insta::assert_snapshot!("initialize", s.show(&init));
+    s.notify("initialized", json!({}));
+
+    s.notify(
+        "textDocument/didOpen",
+        json!({"textDocument": {"uri": task, "languageId": "ilmr", "version": 1, "text": TASK}}),
+    );
+    let opened = s.diagnostics(&task);
+    insta::assert_snapshot!("open_diagnostics", s.show_params(&opened));
+
+    // A half-typed line: the diagnostics of the rest of the file stay.
+    s.notify(
+        "textDocument/didChange",
+        json!({
+            "textDocument": {"uri": task, "version": 2},
+            "contentChanges": [{
+                "range": {"start": position(8, 0), "end": position(8, 0)},
+                "text": "n = turn("
+            }]
+        }),
+    );
+    let changed = s.diagnostics(&task);
+    assert_eq!(changed["version"], 2);
+    insta::assert_snapshot!("change_diagnostics", s.show_params(&changed));
+
+    let completion = s.request(
+        "textDocument/completion",
+        json!({"textDocument": {"uri": task}, "position": position(8, 9)}),
+    );
+    insta::assert_snapshot!("completion_in_turn", s.show(&completion));
+
+    let signature = s.request(
+        "textDocument/signatureHelp",
+        json!({"textDocument": {"uri": task}, "position": position(8, 9)}),
+    );
+    insta::assert_snapshot!("signature_in_turn", s.show(&signature));
+
+    // `ovi_ö` on line 7 starts at UTF-16 column 7: `gotoxy(` is seven units.
+    let hover = s.request(
+        "textDocument/hover",
+        json!({"textDocument": {"uri": task}, "position": position(6, 11)}),
+    );
+    insta::assert_snapshot!("hover_variable", s.show(&hover));
+
+    let definition = s.request(
+        "textDocument/definition",
+        json!({"textDocument": {"uri": task}, "position": position(7, 3)}),
+    );
+    insta::assert_snapshot!("definition_skill", s.show(&definition));
+    assert!(s.show(&definition).contains("skills.ilms"), "{skills}");
+
+    let references = s.request(
+        "textDocument/references",
+        json!({
+            "textDocument": {"uri": task},
+            "position": position(2, 6),
+            "context": {"includeDeclaration": true}
+        }),
+    );
+    insta::assert_snapshot!("references_variable", s.show(&references));
+
+    let rename = s.request(
+        "textDocument/rename",
+        json!({"textDocument": {"uri": task}, "position": position(3, 2), "newName": "ovi_ä"}),
+    );
+    insta::assert_snapshot!("rename_variable", s.show(&rename));
+
+    let refused = s.request(
+        "textDocument/rename",
+        json!({"textDocument": {"uri": task}, "position": position(3, 2), "newName": "turn"}),
+    );
+    assert_eq!(refused["error"]["message"], "`turn` is a command");
+
+    // Finish the half-typed line (in capitals, for the formatter) and add a typo.
+    s.notify(
+        "textDocument/didChange",
+        json!({
+            "textDocument": {"uri": task, "version": 3},
+            "contentChanges": [{
+                "range": {"start": position(8, 9), "end": position(8, 9)},
+                "text": "LEFT)\nwait(n)\nfollowwall(lft)\n"
+            }]
+        }),
+    );
+    let finished = s.diagnostics(&task);
+    assert_eq!(finished["version"], 3);
+    let formatting = s.request(
+        "textDocument/formatting",
+        json!({"textDocument": {"uri": task}, "options": {"tabSize": 4, "insertSpaces": true}}),
+    );
+    insta::assert_snapshot!("formatting", s.show(&formatting));
+
+    let actions = s.request(
+        "textDocument/codeAction",
+        json!({
+            "textDocument": {"uri": task},
+            "range": {"start": position(0, 0), "end": position(12, 0)},
+            "context": {"diagnostics": []}
+        }),
+    );
+    insta::assert_snapshot!("code_actions", s.show(&actions));
+
+    // The model file changes on disk: open documents are checked again.
+    std::fs::write(
+        root.join("ROBO.INI"),
+        ROBO_INI.replace("max_speed 0.5", "max_speed 1.0"),
+    )
+    .unwrap();
+    s.notify(
+        "workspace/didChangeWatchedFiles",
+        json!({"changes": [{"uri": uri(&root, "ROBO.INI"), "type": 2}]}),
+    );
+    let rechecked = s.diagnostics(&task);
+    insta::assert_snapshot!("model_change_diagnostics", s.show_params(&rechecked));
+
+    let shutdown = s.request("shutdown", Value::Null);
+    assert_eq!(shutdown["result"], Value::Null);
+    s.notify("exit", Value::Null);
+    let status = s.child.wait().expect("the server exits");
+    assert!(status.success(), "{status}");
+}
+
+#[test]
+fn without_a_workspace_the_setting_names_the_robot() {
+    let root = workspace("no-model");
+    let task = uri(&root, "t.ilmr");
+    let mut s = Server::start(&root);
+    s.request(
+        "initialize",
+        json!({"processId": null, "rootUri": null, "capabilities": {},
+               "initializationOptions": {"robot": "moro"}}),
+    );
+    s.notify("initialized", json!({}));
+    s.notify(
+        "textDocument/didOpen",
+        json!({"textDocument": {"uri": task, "languageId": "ilmr", "version": 1,
+                                "text": "movemode(wheels)\n"}}),
+    );
+    let d = s.diagnostics(&task);
+    assert_eq!(
+        d["diagnostics"][0]["code"], "E0403",
+        "MoRo has no movement modes: {d}"
+    );
+    s.notify(
+        "workspace/didChangeConfiguration",
+        json!({"settings": {"ilmr": {"robot": "workpartner"}}}),
+    );
+    let d = s.diagnostics(&task);
+    assert_eq!(d["diagnostics"], json!([]), "Workpartner has them: {d}");
+    // Without snippet support, completion inserts plain names.
+    let completion = s.request(
+        "textDocument/completion",
+        json!({"textDocument": {"uri": task}, "position": position(1, 0)}),
+    );
+    let items = completion["result"].as_array().expect("a list");
+    let turn = items.iter().find(|i| i["label"] == "turn").expect("turn");
+    assert_eq!(turn["textEdit"]["newText"], "turn");
+    s.request("shutdown", Value::Null);
+    s.notify("exit", Value::Null);
+    assert!(s.child.wait().expect("exits").success());
+}
