@@ -20,7 +20,11 @@ fn check_100k_lines(bencher: Bencher) {
     ];
     let model = RobotModel::builtin("moro").unwrap();
     let analysis = analyze(&sources, &model);
-    assert!(!analysis.has_errors(), "{:?}", &analysis.diagnostics[..3.min(analysis.diagnostics.len())]);
+    assert!(
+        !analysis.has_errors(),
+        "{:?}",
+        &analysis.diagnostics[..3.min(analysis.diagnostics.len())]
+    );
     drop(analysis);
     bencher
         .counter(ItemsCount::new(corpus.lines))
@@ -30,15 +34,19 @@ fn check_100k_lines(bencher: Bencher) {
 #[divan::bench(sample_count = 10)]
 fn parse_100k_lines(bencher: Bencher) {
     let corpus = corpus::generate(100_000);
-    bencher
-        .counter(ItemsCount::new(corpus.lines))
-        .bench(|| ilmr_compiler::parser::parse(black_box(&corpus.task), ilmr_compiler::FileId(0)).diagnostics.len());
+    bencher.counter(ItemsCount::new(corpus.lines)).bench(|| {
+        ilmr_compiler::parser::parse(black_box(&corpus.task), ilmr_compiler::FileId(0))
+            .diagnostics
+            .len()
+    });
 }
 
 #[divan::bench(sample_count = 10)]
 fn lex_100k_lines(bencher: Bencher) {
     let corpus = corpus::generate(100_000);
-    bencher
-        .counter(ItemsCount::new(corpus.lines))
-        .bench(|| ilmr_compiler::lexer::lex(black_box(&corpus.task)).tokens.len());
+    bencher.counter(ItemsCount::new(corpus.lines)).bench(|| {
+        ilmr_compiler::lexer::lex(black_box(&corpus.task))
+            .tokens
+            .len()
+    });
 }

@@ -5,12 +5,21 @@
 mod corpus;
 
 fn main() -> std::io::Result<()> {
-    let dir = std::path::PathBuf::from(std::env::args().nth(1).unwrap_or_else(|| "bench-corpus".into()));
+    let dir = std::path::PathBuf::from(
+        std::env::args()
+            .nth(1)
+            .unwrap_or_else(|| "bench-corpus".into()),
+    );
     std::fs::create_dir_all(&dir)?;
     let c = corpus::generate(100_000);
     std::fs::write(dir.join("task.ilmr"), &c.task)?;
     std::fs::write(dir.join("skills.ilms"), &c.skills)?;
     std::fs::write(dir.join("task.lua"), &c.lua)?;
-    println!("{} lines of ILMR, {} of Lua in {}", c.lines, c.lua.lines().count(), dir.display());
+    println!(
+        "{} lines of ILMR, {} of Lua in {}",
+        c.lines,
+        c.lua.lines().count(),
+        dir.display()
+    );
     Ok(())
 }

@@ -6,10 +6,51 @@ use ilmr_model::RobotModel;
 use proptest::prelude::*;
 
 const PIECES: &[&str] = &[
-    "goahead", "turn", "sensor", "speed", "if", "endif", "while", "endwhile", "check",
-    "checkend", "break", "priority", "highest", "wait", "(", ")", ",", "=", "==", "=>", "<",
-    "+", "-", "*", "/", ":", "d=", "c=", "left", "door", "scanner", "forever", "x", "1",
-    "0.5", "-3", "\n", "\n\n", " ", "//c", "käännös", "$", "break(", "Takebox", "TURN1:",
+    "goahead",
+    "turn",
+    "sensor",
+    "speed",
+    "if",
+    "endif",
+    "while",
+    "endwhile",
+    "check",
+    "checkend",
+    "break",
+    "priority",
+    "highest",
+    "wait",
+    "(",
+    ")",
+    ",",
+    "=",
+    "==",
+    "=>",
+    "<",
+    "+",
+    "-",
+    "*",
+    "/",
+    ":",
+    "d=",
+    "c=",
+    "left",
+    "door",
+    "scanner",
+    "forever",
+    "x",
+    "1",
+    "0.5",
+    "-3",
+    "\n",
+    "\n\n",
+    " ",
+    "//c",
+    "käännös",
+    "$",
+    "break(",
+    "Takebox",
+    "TURN1:",
 ];
 
 const EXAMPLES: &[&str] = &[
@@ -21,7 +62,10 @@ const EXAMPLES: &[&str] = &[
 ];
 
 fn run(text: &str) {
-    let sources = [Source::new("fuzz.ilmr", text), Source::library("lib.ilms", "TURN1:\nturn(left)\n")];
+    let sources = [
+        Source::new("fuzz.ilmr", text),
+        Source::library("lib.ilms", "TURN1:\nturn(left)\n"),
+    ];
     for robot in ["moro", "workpartner"] {
         let model = RobotModel::builtin(robot).unwrap();
         let analysis = analyze(&sources, &model);
@@ -32,7 +76,9 @@ fn run(text: &str) {
         }
         let _ = ilmr_compiler::format::format(text, &model);
     }
-    let _ = ilmr_compiler::tree::render(&ilmr_compiler::parser::parse(text, ilmr_compiler::FileId(0)).file);
+    let _ = ilmr_compiler::tree::render(
+        &ilmr_compiler::parser::parse(text, ilmr_compiler::FileId(0)).file,
+    );
 }
 
 fn mutate(base: &str, cuts: &[(usize, usize, usize)]) -> String {

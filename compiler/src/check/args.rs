@@ -49,7 +49,10 @@ impl<'m, 'v> Cx<'m, 'v> {
                 return m;
             }
             // Ties go to the catalogue's order, not to the order of trying.
-            if best.as_ref().is_none_or(|b| (m.cost, m.form) < (b.cost, b.form)) {
+            if best
+                .as_ref()
+                .is_none_or(|b| (m.cost, m.form) < (b.cost, b.form))
+            {
                 best = Some(m);
             }
         }
@@ -193,7 +196,10 @@ impl<'m, 'v> Cx<'m, 'v> {
                 Occurs::Many | Occurs::Pairs => unbounded = true,
             }
         }
-        let given = items.iter().filter(|a| matches!(a, Arg::Positional(_))).count();
+        let given = items
+            .iter()
+            .filter(|a| matches!(a, Arg::Positional(_)))
+            .count();
         unbounded || given <= max
     }
 
@@ -233,25 +239,8 @@ impl<'m, 'v> Cx<'m, 'v> {
         .with_label("one argument too many")
     }
 
-    /// Whether an optional parameter should take this argument (by its shape only).
-    fn fits(&mut self, spec: &CommandSpec, kind: &ParamKind, e: &Expr<'_>) -> bool {
-        let name = match &e.kind {
-            ExprKind::Name(n) => Some(n.text),
-            _ => None,
-        };
-        match kind {
-            ParamKind::Keyword { words } | ParamKind::Mode { words, .. } => {
-                name.is_some_and(|n| words.iter().any(|w| w.eq_ignore_ascii_case(n)))
-            }
-            ParamKind::OneOf { kinds } => kinds.iter().any(|k| self.fits(spec, k, e)),
-            ParamKind::Model {
-                names: ModelNames::Device,
-            } => {
-                matches!(e.kind, ExprKind::Number(_)) || name.is_some_and(|n| !spec.has_keyword(n))
-            }
-            ParamKind::Value { .. } => name.is_none_or(|n| !spec.has_keyword(n)),
-            _ => name.is_some_and(|n| !spec.has_keyword(n)),
-        }
+    fn fits(&self, spec: &CommandSpec, kind: &ParamKind, e: &Expr<'_>) -> bool {
+        fits(spec, kind, e)
     }
 
     fn accept<'s>(
@@ -731,6 +720,26 @@ impl<'m, 'v> Cx<'m, 'v> {
             )
             .with_label(format!("needs `{param}` in [PARAMETERS]")),
         );
+    }
+}
+
+/// Whether an optional parameter takes this argument, by its shape only. The lowering
+/// uses the same rule to pair arguments with the parameters they filled.
+pub fn fits(spec: &CommandSpec, kind: &ParamKind, e: &Expr<'_>) -> bool {
+    let name = match &e.kind {
+        ExprKind::Name(n) => Some(n.text),
+        _ => None,
+    };
+    match kind {
+        ParamKind::Keyword { words } | ParamKind::Mode { words, .. } => {
+            name.is_some_and(|n| words.iter().any(|w| w.eq_ignore_ascii_case(n)))
+        }
+        ParamKind::OneOf { kinds } => kinds.iter().any(|k| fits(spec, k, e)),
+        ParamKind::Model {
+            names: ModelNames::Device,
+        } => matches!(e.kind, ExprKind::Number(_)) || name.is_some_and(|n| !spec.has_keyword(n)),
+        ParamKind::Value { .. } => name.is_none_or(|n| !spec.has_keyword(n)),
+        _ => name.is_some_and(|n| !spec.has_keyword(n)),
     }
 }
 

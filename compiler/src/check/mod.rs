@@ -21,6 +21,8 @@ use crate::diagnostic::{Code, Diagnostic, FileId};
 use crate::parser;
 use crate::span::Span;
 
+pub use args::fits;
+pub use breaks::needle;
 pub use constants::Constants;
 pub use scope::{Var, VarId, Vars};
 pub use skills::SkillId;
@@ -232,6 +234,37 @@ pub fn analyze<'s>(sources: &'s [Source], model: &RobotModel) -> Analysis<'s> {
         units,
         diagnostics,
     }
+}
+
+/// Checks a fragment (an interactive line or block) that joins a running program: the
+/// program's variables are bound and keep their kinds, its skills can be called. The
+/// same walker as for files, so a line and a file get the same diagnostics.
+pub fn check_fragment<'n>(
+    tree: &SourceFile<'_>,
+    file: FileId,
+    model: &RobotModel,
+    globals: impl IntoIterator<Item = (&'n str, VarKind)>,
+    skill_names: impl IntoIterator<Item = &'n str>,
+) -> (Unit, Vec<Diagnostic>) {
+    let skills = skills::Skills::from_names(skill_names);
+    let constants = constants::Constants::new(model);
+    let globals = std::rc::Rc::new(
+        globals
+            .into_iter()
+            .map(|(name, kind)| (name.to_lowercase(), kind))
+            .collect(),
+    );
+    let mut unit = Unit {
+        file,
+        skill: None,
+        vars: Vars::with_fixed_globals(globals),
+        refs: Vec::new(),
+        targets: HashMap::new(),
+    };
+    let mut diagnostics = Vec::new();
+    Walker::new(model, &constants, &skills, &mut unit, &mut diagnostics).blocks(&tree.blocks);
+    diagnostics.sort_by_key(|d| (d.span.start, d.code));
+    (unit, diagnostics)
 }
 
 /// W0502: a task variable that nothing reads, in the task or in any skill.
@@ -516,6 +549,23 @@ impl<'a, 'm> Walker<'a, 'm> {
                     format!("`{}` is {what} and cannot be a variable", name.text),
                 )
                 .with_label("choose another name"),
+            );
+            return;
+        }
+        if let Some(fixed) = self.unit.vars.fixed_kind(name.text).filter(|k| *k != kind) {
+            self.diagnostics.push(
+                Diagnostic::new(
+                    Code::WrongVariableKind,
+                    file,
+                    name.span,
+                    format!(
+                        "`{}` is {} in the running task and cannot become {}",
+                        name.text,
+                        fixed.describe(),
+                        kind.describe()
+                    ),
+                )
+                .with_label("bound with another kind"),
             );
             return;
         }

@@ -33,6 +33,9 @@ pub struct Vars {
     /// Variables bound anywhere in the program, which a skill may use: consulted on a
     /// miss rather than copied into every skill's table.
     globals: Option<Rc<HashMap<String, VarKind>>>,
+    /// The globals are a running program's: compiled code reads them by kind, so a new
+    /// binding cannot change one's kind.
+    fixed: bool,
     key: String,
 }
 
@@ -48,6 +51,23 @@ impl Vars {
             globals: Some(globals),
             ..Vars::default()
         }
+    }
+
+    /// A table for a line joining a running program, whose variables keep their kinds.
+    pub fn with_fixed_globals(globals: Rc<HashMap<String, VarKind>>) -> Vars {
+        Vars {
+            fixed: true,
+            ..Vars::with_globals(globals)
+        }
+    }
+
+    /// The kind a running program's variable must keep, if `name` is one.
+    pub fn fixed_kind(&mut self, name: &str) -> Option<VarKind> {
+        if !self.fixed {
+            return None;
+        }
+        super::constants::key(name, &mut self.key);
+        self.globals.as_ref()?.get(self.key.as_str()).copied()
     }
 
     /// A variable bound before this point of the text (or, in a skill, anywhere).

@@ -118,6 +118,27 @@ impl Skills {
         skills
     }
 
+    /// The skills of a running program, known by name only (a line joining it may call
+    /// them; their bodies were checked when the program was). `SkillId(i)` is the i-th.
+    pub fn from_names<'n>(names: impl IntoIterator<Item = &'n str>) -> Skills {
+        let mut skills = Skills::default();
+        for name in names {
+            let id = SkillId(skills.list.len() as u32);
+            skills.index.insert(name.to_lowercase(), id);
+            skills.list.push(SkillInfo {
+                name: name.to_string(),
+                file: FileId(u32::MAX),
+                index: usize::MAX,
+                header: Span::default(),
+                calls: Vec::new(),
+                binds: Vec::new(),
+                transitive: Vec::new(),
+            });
+        }
+        skills.called = vec![true; skills.list.len()];
+        skills
+    }
+
     /// Marks a skill, and the skills it calls, as called: a library skill is checked only
     /// then.
     pub fn mark_called(&mut self, id: SkillId) {
@@ -139,7 +160,9 @@ impl Skills {
             return None;
         }
         let mut buf = String::with_capacity(name.len());
-        self.index.get(super::constants::key(name, &mut buf)).copied()
+        self.index
+            .get(super::constants::key(name, &mut buf))
+            .copied()
     }
 
     pub fn get(&self, id: SkillId) -> &SkillInfo {

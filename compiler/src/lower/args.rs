@@ -13,25 +13,8 @@ use crate::ast::{self, Call, ExprKind};
 use crate::check::Resolved;
 use crate::span::Span;
 
-/// Whether an optional parameter takes this argument, by its shape only. The same rule
-/// as the checker's matcher (`check/args.rs`, `fits`), which it keeps private.
 fn fits(command: Command, kind: &ParamKind, e: &ast::Expr<'_>) -> bool {
-    let spec = command.spec();
-    let name = match &e.kind {
-        ExprKind::Name(n) => Some(n.text),
-        _ => None,
-    };
-    match kind {
-        ParamKind::Keyword { words } | ParamKind::Mode { words, .. } => {
-            name.is_some_and(|n| words.iter().any(|w| w.eq_ignore_ascii_case(n)))
-        }
-        ParamKind::OneOf { kinds } => kinds.iter().any(|k| fits(command, k, e)),
-        ParamKind::Model {
-            names: ModelNames::Device,
-        } => matches!(e.kind, ExprKind::Number(_)) || name.is_some_and(|n| !spec.has_keyword(n)),
-        ParamKind::Value { .. } => name.is_none_or(|n| !spec.has_keyword(n)),
-        _ => name.is_some_and(|n| !spec.has_keyword(n)),
-    }
+    crate::check::fits(command.spec(), kind, e)
 }
 
 /// Pairs each positional argument with the kind of the parameter it fills.

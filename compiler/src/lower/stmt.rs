@@ -8,7 +8,8 @@ use ilmr_vm::bytecode::{BlockId, Instr, ModuleBuilder, Op, StmtId, VarId};
 
 use super::scope::Scope;
 use super::{build_error, internal};
-use crate::ast::{self, Call, ExprKind, Name, Pattern, Stmt, StmtKind};
+use crate::ast::{self, Call, ExprKind, Name, Stmt, StmtKind};
+use crate::check::needle;
 use crate::check::{Resolved, Target};
 use crate::diagnostic::{Diagnostic, FileId};
 use crate::span::Span;
@@ -32,13 +33,6 @@ pub fn issuable(command: Command) -> bool {
             spec.category,
             Category::Define | Category::Movement | Category::Action
         )
-}
-
-/// The text `break(pattern)` searches for: the pattern ends at its first `)`, as the
-/// checker reads it (`check/breaks.rs`, which the checker keeps private).
-pub fn needle<'s>(pattern: &Pattern<'s>) -> &'s str {
-    let text = pattern.text;
-    text.find(')').map_or(text, |i| &text[..i]).trim()
 }
 
 impl<'m> Lowerer<'m> {
