@@ -7,9 +7,12 @@ use logos::Logos;
 
 use crate::span::Span;
 
-#[derive(Logos, Debug, Clone, Copy, PartialEq)]
+/// A token is only its kind: the text of a name or number is read from the source at
+/// its span when needed. That keeps a token and its span to 12 bytes, which matters
+/// when a large task has a million of them.
+#[derive(Logos, Debug, Clone, Copy, PartialEq, Eq, Hash)]
 #[logos(skip r"[ \t\f\r]+")]
-pub enum Token<'s> {
+pub enum Token {
     /// A line break: statements are one per line and an empty line separates blocks.
     #[token("\n")]
     Newline,
@@ -17,11 +20,11 @@ pub enum Token<'s> {
     #[regex(r"//[^\n]*", allow_greedy = true)]
     Comment,
 
-    #[regex(r"[0-9]+(\.[0-9]*)?|\.[0-9]+", |lex| lex.slice().parse::<f64>().ok())]
-    Number(f64),
+    #[regex(r"[0-9]+(\.[0-9]*)?|\.[0-9]+")]
+    Number,
 
     #[regex(r"[\p{L}_][\p{L}\p{N}_]*")]
-    Ident(&'s str),
+    Ident,
 
     #[token("if", ignore(case))]
     If,
@@ -39,10 +42,11 @@ pub enum Token<'s> {
     Priority,
     #[token("highest", ignore(case))]
     Highest,
-    /// `break` with its raw pattern: section 4.5.5 matches it as text against the
-    /// commands' source, so `break(turn(d=))` must not be read as an expression.
+    /// `break` with its raw pattern (the token spans both; see [`break_pattern`]):
+    /// section 4.5.5 matches the pattern as text against the commands' source, so
+    /// `break(turn(d=))` must not be read as an expression.
     #[token("break", lex_break, ignore(case))]
-    Break(BreakPattern),
+    Break,
 
     #[token("(")]
     LParen,
@@ -90,22 +94,20 @@ pub struct BreakPattern {
     pub closed: bool,
 }
 
-fn lex_break<'s>(lex: &mut logos::Lexer<'s, Token<'s>>) -> BreakPattern {
-    let rest = lex.remainder();
+/// What follows `break` on its line: the length to take into the token (0 for a bare
+/// `break`), the pattern's range relative to the text after `break`, and whether its
+/// parenthesis closes.
+fn scan_break(rest: &str) -> (usize, Option<(usize, usize)>, bool) {
     let bytes = rest.as_bytes();
     let mut i = 0;
     while i < bytes.len() && matches!(bytes[i], b' ' | b'\t') {
         i += 1;
     }
     if i >= bytes.len() || bytes[i] != b'(' {
-        return BreakPattern {
-            inner: None,
-            closed: true,
-        };
+        return (0, None, true);
     }
     let open = i;
     let mut depth = 0usize;
-    let mut end = None;
     while i < bytes.len() && bytes[i] != b'\n' {
         if bytes[i] == b'/' && bytes.get(i + 1) == Some(&b'/') {
             break;
@@ -115,40 +117,50 @@ fn lex_break<'s>(lex: &mut logos::Lexer<'s, Token<'s>>) -> BreakPattern {
             b')' => {
                 depth -= 1;
                 if depth == 0 {
-                    end = Some(i);
-                    break;
+                    return (i + 1, Some((open + 1, i)), true);
                 }
             }
             _ => {}
         }
         i += 1;
     }
-    let base = lex.span().end;
-    let (inner_end, consumed, closed) = match end {
-        Some(close) => (close, close + 1, true),
-        None => {
-            // Unclosed: take the rest of the line (without trailing blanks) as the pattern.
-            let mut e = i;
-            while e > open + 1 && matches!(bytes[e - 1], b' ' | b'\t' | b'\r') {
-                e -= 1;
-            }
-            (e, e, false)
-        }
-    };
+    // Unclosed: the pattern is the rest of the line, without trailing blanks.
+    let mut end = i;
+    while end > open + 1 && matches!(bytes[end - 1], b' ' | b'\t' | b'\r') {
+        end -= 1;
+    }
+    (end, Some((open + 1, end)), false)
+}
+
+fn lex_break(lex: &mut logos::Lexer<'_, Token>) {
+    let (consumed, _, _) = scan_break(lex.remainder());
     lex.bump(consumed);
+}
+
+/// The pattern of the `break` token at `span` of `source`.
+pub fn break_pattern(source: &str, span: Span) -> BreakPattern {
+    let after_keyword = span.start as usize + "break".len();
+    let rest = &source[after_keyword..span.end as usize];
+    let (_, inner, closed) = scan_break(rest);
     BreakPattern {
-        inner: Some(Span::new(base + open + 1, base + inner_end)),
+        inner: inner.map(|(a, b)| Span::new(after_keyword + a, after_keyword + b)),
         closed,
     }
 }
 
-impl fmt::Display for Token<'_> {
+/// The value of a `Number` token's text.
+pub fn number(text: &str) -> f64 {
+    // The token's pattern is digits with at most one point: always a valid f64.
+    text.parse().unwrap_or(0.0)
+}
+
+impl fmt::Display for Token {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let text = match self {
             Token::Newline => "end of line",
             Token::Comment => "comment",
-            Token::Number(_) => "number",
-            Token::Ident(_) => "name",
+            Token::Number => "number",
+            Token::Ident => "name",
             Token::If => "`if`",
             Token::EndIf => "`endif`",
             Token::While => "`while`",
@@ -157,7 +169,7 @@ impl fmt::Display for Token<'_> {
             Token::Checkend => "`checkend`",
             Token::Priority => "`priority`",
             Token::Highest => "`highest`",
-            Token::Break(_) => "`break`",
+            Token::Break => "`break`",
             Token::LParen => "`(`",
             Token::RParen => "`)`",
             Token::Comma => "`,`",
@@ -182,12 +194,12 @@ impl fmt::Display for Token<'_> {
 
 /// The tokens of a file, with comments split off (the formatter and the language server
 /// keep them; the parser never sees them).
-pub struct Lexed<'s> {
-    pub tokens: Vec<(Token<'s>, Span)>,
+pub struct Lexed {
+    pub tokens: Vec<(Token, Span)>,
     pub comments: Vec<Span>,
 }
 
-pub fn lex(source: &str) -> Lexed<'_> {
+pub fn lex(source: &str) -> Lexed {
     let mut tokens = Vec::with_capacity(source.len() / 3);
     let mut comments = Vec::new();
     let mut lexer = Token::lexer(source);
@@ -206,31 +218,34 @@ pub fn lex(source: &str) -> Lexed<'_> {
 mod tests {
     use super::*;
 
-    fn kinds(src: &str) -> Vec<Token<'_>> {
+    fn kinds(src: &str) -> Vec<Token> {
         lex(src).tokens.into_iter().map(|(t, _)| t).collect()
     }
 
     #[test]
     fn keywords_are_case_insensitive_and_names_keep_their_spelling() {
+        let src = "If(MyDoor) ENDIF";
+        let lexed = lex(src);
+        let kinds: Vec<Token> = lexed.tokens.iter().map(|(t, _)| *t).collect();
         assert_eq!(
-            kinds("If(MyDoor) ENDIF"),
+            kinds,
             vec![
                 Token::If,
                 Token::LParen,
-                Token::Ident("MyDoor"),
+                Token::Ident,
                 Token::RParen,
                 Token::EndIf
             ]
         );
+        assert_eq!(lexed.tokens[2].1.slice(src), "MyDoor");
     }
 
     #[test]
     fn break_takes_its_pattern_as_raw_text() {
         let src = "break(turn(d=)) // stop turning";
         let lexed = lex(src);
-        let Token::Break(p) = lexed.tokens[0].0 else {
-            panic!("{:?}", lexed.tokens)
-        };
+        assert_eq!(lexed.tokens[0].0, Token::Break);
+        let p = break_pattern(src, lexed.tokens[0].1);
         assert_eq!(p.inner.unwrap().slice(src), "turn(d=)");
         assert!(p.closed);
         assert_eq!(lexed.tokens.len(), 1);
@@ -239,20 +254,17 @@ mod tests {
 
     #[test]
     fn bare_break_and_names_that_start_with_break() {
-        assert!(matches!(
-            kinds("break")[0],
-            Token::Break(BreakPattern { inner: None, .. })
-        ));
-        assert_eq!(kinds("breakfast")[0], Token::Ident("breakfast"));
+        let lexed = lex("break");
+        assert_eq!(lexed.tokens[0].0, Token::Break);
+        assert_eq!(break_pattern("break", lexed.tokens[0].1).inner, None);
+        assert_eq!(kinds("breakfast")[0], Token::Ident);
     }
 
     #[test]
     fn unclosed_break_pattern_runs_to_the_end_of_the_line() {
         let src = "break(while(c \nstop";
         let lexed = lex(src);
-        let Token::Break(p) = lexed.tokens[0].0 else {
-            panic!()
-        };
+        let p = break_pattern(src, lexed.tokens[0].1);
         assert_eq!(p.inner.unwrap().slice(src), "while(c");
         assert!(!p.closed);
         assert_eq!(lexed.tokens[1].0, Token::Newline);
@@ -260,17 +272,23 @@ mod tests {
 
     #[test]
     fn numbers_names_and_unicode() {
+        let src = "käännös = -0.4 + .5";
+        let lexed = lex(src);
+        let kinds: Vec<Token> = lexed.tokens.iter().map(|(t, _)| *t).collect();
         assert_eq!(
-            kinds("käännös = -0.4 + .5"),
+            kinds,
             vec![
-                Token::Ident("käännös"),
+                Token::Ident,
                 Token::Assign,
                 Token::Minus,
-                Token::Number(0.4),
+                Token::Number,
                 Token::Plus,
-                Token::Number(0.5)
+                Token::Number
             ]
         );
+        assert_eq!(lexed.tokens[0].1.slice(src), "käännös");
+        assert_eq!(number(lexed.tokens[3].1.slice(src)), 0.4);
+        assert_eq!(number(lexed.tokens[5].1.slice(src)), 0.5);
     }
 
     #[test]
@@ -278,18 +296,18 @@ mod tests {
         assert_eq!(
             kinds("a=>b a>=b a==b a=b"),
             vec![
-                Token::Ident("a"),
+                Token::Ident,
                 Token::GeAlt,
-                Token::Ident("b"),
-                Token::Ident("a"),
+                Token::Ident,
+                Token::Ident,
                 Token::Ge,
-                Token::Ident("b"),
-                Token::Ident("a"),
+                Token::Ident,
+                Token::Ident,
                 Token::EqEq,
-                Token::Ident("b"),
-                Token::Ident("a"),
+                Token::Ident,
+                Token::Ident,
                 Token::Assign,
-                Token::Ident("b")
+                Token::Ident
             ]
         );
     }

@@ -69,10 +69,10 @@ fn classify(before: &str, base: usize) -> Context {
     if !lexed.comments.is_empty() {
         return Context::Nothing;
     }
-    let tokens: Vec<(Token<'_>, Span)> = lexed.tokens;
+    let tokens: Vec<(Token, Span)> = lexed.tokens;
     if tokens
         .iter()
-        .any(|(t, _)| matches!(t, Token::Break(_) | Token::Colon))
+        .any(|(t, _)| matches!(t, Token::Break | Token::Colon))
     {
         return Context::Nothing;
     }
@@ -90,37 +90,38 @@ fn classify(before: &str, base: usize) -> Context {
     // Only the outermost parenthesis of a line opens arguments or a condition; inner ones
     // group arithmetic.
     if let Some(&first) = open.first() {
-        let opener = first.checked_sub(1).map(|i| &tokens[i].0);
+        let opener = first.checked_sub(1).map(|i| tokens[i]);
         let inner = &tokens[first + 1..];
         return match opener {
-            Some(Token::If | Token::While) => Context::Condition,
-            Some(Token::Ident(name)) if open.len() == 1 => args(name, inner, tokens[first].1, base),
-            Some(Token::Ident(_)) => Context::Expression,
+            Some((Token::If | Token::While, _)) => Context::Condition,
+            Some((Token::Ident, name)) if open.len() == 1 => {
+                args(name.slice(before), inner, before, tokens[first].1, base)
+            }
             _ => Context::Expression,
         };
     }
     match tokens.as_slice() {
         [] => Context::Statement,
-        [(Token::Ident(_), _), (Token::Assign, _)] => Context::AfterAssign,
+        [(Token::Ident, _), (Token::Assign, _)] => Context::AfterAssign,
         [(Token::Priority, _), (Token::Assign, _)] => Context::Priority,
         _ if tokens.iter().any(|(t, _)| *t == Token::Assign) => Context::Expression,
         _ => Context::Nothing,
     }
 }
 
-fn args(name: &str, inner: &[(Token<'_>, Span)], open: Span, base: usize) -> Context {
+fn args(name: &str, inner: &[(Token, Span)], text: &str, open: Span, base: usize) -> Context {
     let mut previous = Vec::new();
-    let mut current: Vec<&Token<'_>> = Vec::new();
-    for (t, _) in inner {
+    let mut current: Vec<(Token, &str)> = Vec::new();
+    for (t, span) in inner {
         if *t == Token::Comma {
             previous.push(shape(&current));
             current.clear();
         } else {
-            current.push(t);
+            current.push((*t, span.slice(text)));
         }
     }
     let setting = match current.as_slice() {
-        [Token::Ident(key), Token::Assign, ..] => Some(key.to_lowercase()),
+        [(Token::Ident, key), (Token::Assign, _), ..] => Some(key.to_lowercase()),
         _ => None,
     };
     Context::Args {
@@ -131,11 +132,11 @@ fn args(name: &str, inner: &[(Token<'_>, Span)], open: Span, base: usize) -> Con
     }
 }
 
-fn shape(tokens: &[&Token<'_>]) -> ArgShape {
+fn shape(tokens: &[(Token, &str)]) -> ArgShape {
     match tokens {
-        [Token::Ident(w)] => ArgShape::Word(w.to_lowercase()),
-        [Token::Number(_)] | [Token::Minus, Token::Number(_)] => ArgShape::Number,
-        [Token::Ident(k), Token::Assign, ..] => ArgShape::Setting(k.to_lowercase()),
+        [(Token::Ident, w)] => ArgShape::Word(w.to_lowercase()),
+        [(Token::Number, _)] | [(Token::Minus, _), (Token::Number, _)] => ArgShape::Number,
+        [(Token::Ident, k), (Token::Assign, _), ..] => ArgShape::Setting(k.to_lowercase()),
         _ => ArgShape::Other,
     }
 }

@@ -183,17 +183,17 @@ fn structural(
         Token::If | Token::EndIf => Command::If,
         Token::While | Token::EndWhile => Command::While,
         Token::Check | Token::Checkend => Command::Check,
-        Token::Break(_) => Command::Break,
+        Token::Break => Command::Break,
         Token::Priority | Token::Highest => {
             let doc = "**priority = highest** — first in a block: when the block starts, every other command of the task ends (section 4.3).";
             return Some((doc.to_string(), shift(span, line_start)));
         }
-        Token::Number(_) => return number(program, model, file, stmt, shift(span, line_start)),
+        Token::Number => return number(program, model, file, stmt, shift(span, line_start)),
         _ => return None,
     };
     let spec: &CommandSpec = command.spec();
     let span = match token {
-        Token::Break(_) => Span::new(span.start as usize, span.start as usize + 5),
+        Token::Break => Span::new(span.start as usize, span.start as usize + 5),
         _ => span,
     };
     Some((docs::command(spec, model), shift(span, line_start)))

@@ -74,15 +74,16 @@ pub fn tokens(program: &Program, file: FileId, index: &LineIndex) -> Vec<Semanti
             | Token::Checkend
             | Token::Priority
             | Token::Highest => Kind::Keyword,
-            Token::Break(p) => {
+            Token::Break => {
                 let word = Span::new(span.start as usize, span.start as usize + 5);
                 marks.insert(word.start, (word, Kind::Keyword, 0));
+                let p = ilmr_compiler::lexer::break_pattern(text, *span);
                 if let Some(inner) = p.inner.filter(|s| !s.is_empty()) {
                     marks.insert(inner.start, (inner, Kind::String, 0));
                 }
                 continue;
             }
-            Token::Number(_) => Kind::Number,
+            Token::Number => Kind::Number,
             Token::Assign
             | Token::EqEq
             | Token::NotEq

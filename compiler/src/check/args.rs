@@ -40,8 +40,15 @@ impl<'m, 'v> Cx<'m, 'v> {
         let mut best: Option<FormMatch<'s>> = None;
         // Forms whose shape fits the arguments first: a correct call then matches its
         // form at the first try, and no messages are built for forms it never meant.
-        let mut order: Vec<usize> = (0..spec.forms.len()).collect();
-        order.sort_by_key(|&i| !self.plausible(spec, &spec.forms[i], items));
+        let plausible: Vec<bool> = spec
+            .forms
+            .iter()
+            .map(|f| self.plausible(spec, f, items))
+            .collect();
+        let plausible = &plausible;
+        let order = [true, false]
+            .into_iter()
+            .flat_map(|wanted| (0..spec.forms.len()).filter(move |&i| plausible[i] == wanted));
         for i in order {
             let form = &spec.forms[i];
             let m = self.match_form(spec, i, form, items, at);

@@ -15,6 +15,7 @@ use std::collections::HashMap;
 
 use ilmr_model::RobotModel;
 use ilmr_stdlib::{Command, Syntax, VarKind};
+use rustc_hash::FxHashMap;
 
 use crate::ast::{Block, Call, ExprKind, FileKind, Name, SourceFile, Stmt, StmtKind};
 use crate::diagnostic::{Code, Diagnostic, FileId};
@@ -96,7 +97,7 @@ pub struct Unit {
     pub skill: Option<SkillId>,
     pub vars: Vars,
     pub refs: Vec<(Span, Resolved)>,
-    pub targets: HashMap<Span, Target>,
+    pub targets: FxHashMap<Span, Target>,
 }
 
 #[derive(Debug)]
@@ -169,7 +170,7 @@ pub fn analyze<'s>(sources: &'s [Source], model: &RobotModel) -> Analysis<'s> {
             skill: None,
             vars: Vars::default(),
             refs: Vec::new(),
-            targets: HashMap::new(),
+            targets: FxHashMap::default(),
         };
         Walker::new(model, &constants, &skills, &mut unit, &mut diagnostics)
             .blocks(&entry.tree.blocks);
@@ -215,7 +216,7 @@ pub fn analyze<'s>(sources: &'s [Source], model: &RobotModel) -> Analysis<'s> {
                 skill: Some(id),
                 vars: Vars::with_globals(globals.clone()),
                 refs: Vec::new(),
-                targets: HashMap::new(),
+                targets: FxHashMap::default(),
             };
             let blocks = &entry.tree.skills[skill.index].blocks;
             Walker::new(model, &constants, &skills, &mut unit, &mut diagnostics).blocks(blocks);
@@ -259,7 +260,7 @@ pub fn check_fragment<'n>(
         skill: None,
         vars: Vars::with_fixed_globals(globals),
         refs: Vec::new(),
-        targets: HashMap::new(),
+        targets: FxHashMap::default(),
     };
     let mut diagnostics = Vec::new();
     Walker::new(model, &constants, &skills, &mut unit, &mut diagnostics).blocks(&tree.blocks);

@@ -2,7 +2,7 @@
 //! recursion) and which variables each binds (so that a task sees the variables of the
 //! skills it has called).
 
-use std::collections::HashMap;
+use rustc_hash::FxHashMap as HashMap;
 
 use ilmr_model::RobotModel;
 use ilmr_stdlib::{Command, VarKind};

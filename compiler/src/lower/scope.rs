@@ -19,7 +19,7 @@ pub struct Scope<'a> {
     pub lines: LineIndex,
     /// The last resolution recorded for each span (a name is resolved once per role).
     pub refs: HashMap<Span, Resolved>,
-    pub targets: &'a HashMap<Span, Target>,
+    pub targets: &'a rustc_hash::FxHashMap<Span, Target>,
     pub vars: &'a Vars,
     pub skill_unit: &'a dyn Fn(SkillId) -> Option<UnitId>,
 }
@@ -50,7 +50,7 @@ impl<'a> Scope<'a> {
         module_file: ilmr_vm::bytecode::FileId,
         text: &'a str,
         refs: &[(Span, Resolved)],
-        targets: &'a HashMap<Span, Target>,
+        targets: &'a rustc_hash::FxHashMap<Span, Target>,
         vars: &'a Vars,
         skill_unit: &'a dyn Fn(SkillId) -> Option<UnitId>,
     ) -> Scope<'a> {

@@ -11,7 +11,7 @@ use crate::ast::{Arg, Args, BinOp, Call, CmpOp, Expr, ExprKind, Name, Pattern, S
 use crate::lexer::Token;
 use crate::span::Span;
 
-pub type ParseError<'t, 's> = Rich<'t, Token<'s>, Span>;
+pub type ParseError<'t> = Rich<'t, Token, Span>;
 
 /// What one line holds before lines are nested into blocks.
 #[derive(Debug, Clone)]
@@ -48,9 +48,9 @@ pub struct ParsedLine<'s> {
 /// file is first parsed with errors that cost nothing, and parsed again with rich ones
 /// only when something failed.
 pub fn parse_lines<'t, 's: 't>(
-    tokens: &'t [(Token<'s>, Span)],
+    tokens: &'t [(Token, Span)],
     source: &'s str,
-) -> (Vec<ParsedLine<'s>>, Vec<ParseError<'t, 's>>) {
+) -> (Vec<ParsedLine<'s>>, Vec<ParseError<'t>>) {
     let eoi = Span::empty(source.len());
     let (lines, errors) = file_parser::<_, extra::Default>(source)
         .parse(tokens.map(eoi, |(t, s)| (t, s)))
@@ -58,7 +58,7 @@ pub fn parse_lines<'t, 's: 't>(
     if let (Some(lines), true) = (lines, errors.is_empty()) {
         return (lines, Vec::new());
     }
-    let (lines, errors) = file_parser::<_, extra::Err<ParseError<'t, 's>>>(source)
+    let (lines, errors) = file_parser::<_, extra::Err<ParseError<'t>>>(source)
         .parse(tokens.map(eoi, |(t, s)| (t, s)))
         .into_output_errors();
     (lines.unwrap_or_default(), errors)
@@ -66,7 +66,7 @@ pub fn parse_lines<'t, 's: 't>(
 
 fn file_parser<'t, 's: 't, I, E>(source: &'s str) -> impl Parser<'t, I, Vec<ParsedLine<'s>>, E>
 where
-    I: ValueInput<'t, Token = Token<'s>, Span = Span>,
+    I: ValueInput<'t, Token = Token, Span = Span>,
     E: ParserExtra<'t, I> + 't,
     E::Error: LabelError<'t, I, &'static str>,
 {
@@ -80,9 +80,7 @@ where
     // A line that does not parse is kept, as an error node spanning the line, so that the
     // next lines are read as if nothing had happened. A broken `if(` or `while(` line still
     // opens its block, or its `endif` would be reported a second time as stray.
-    let rest = any()
-        .filter(|t: &Token<'s>| *t != Token::Newline)
-        .repeated();
+    let rest = any().filter(|t: &Token| *t != Token::Newline).repeated();
     let broken_if = just(Token::If)
         .map_with(|_, e| e.span())
         .then_ignore(rest)
@@ -90,7 +88,7 @@ where
             keyword,
             cond: error_expr(e.span()),
         });
-    let broken_while = name()
+    let broken_while = name(source)
         .then_ignore(just(Token::Assign))
         .or_not()
         .then(just(Token::While).map_with(|_, e| e.span()))
@@ -125,22 +123,30 @@ fn error_expr<'s>(span: Span) -> Expr<'s> {
     }
 }
 
-fn name<'t, 's: 't, I, E>() -> impl Parser<'t, I, Name<'s>, E> + Clone
+fn name<'t, 's: 't, I, E>(source: &'s str) -> impl Parser<'t, I, Name<'s>, E> + Clone
 where
-    I: ValueInput<'t, Token = Token<'s>, Span = Span>,
+    I: ValueInput<'t, Token = Token, Span = Span>,
     E: ParserExtra<'t, I> + 't,
     E::Error: LabelError<'t, I, &'static str>,
 {
-    select! { Token::Ident(text) = e => Name { text, span: e.span() } }.labelled("name")
+    just(Token::Ident)
+        .map_with(move |_, e| {
+            let span: Span = e.span();
+            Name {
+                text: span.slice(source),
+                span,
+            }
+        })
+        .labelled("name")
 }
 
 fn line_content<'t, 's: 't, I, E>(source: &'s str) -> impl Parser<'t, I, Line<'s>, E>
 where
-    I: ValueInput<'t, Token = Token<'s>, Span = Span>,
+    I: ValueInput<'t, Token = Token, Span = Span>,
     E: ParserExtra<'t, I> + 't,
     E::Error: LabelError<'t, I, &'static str>,
 {
-    let expr = expression();
+    let expr = expression(source);
     let condition = condition(expr.clone())
         .delimited_by(just(Token::LParen), just(Token::RParen))
         .labelled("condition in parentheses");
@@ -150,16 +156,14 @@ where
         .then(condition.clone())
         .map(|(keyword, cond)| Line::IfHead { keyword, cond });
 
-    let while_head = name()
-        .then_ignore(just(Token::Assign))
-        .or_not()
-        .then(just(Token::While).map_with(|_, e| e.span()))
-        .then(condition)
-        .map(|((bind, keyword), cond)| Line::WhileHead {
-            bind,
-            keyword,
-            cond,
-        });
+    let while_head = just(Token::While)
+        .map_with(|_, e| e.span())
+        .then(condition.clone());
+    let unbound_while = while_head.clone().map(|(keyword, cond)| Line::WhileHead {
+        bind: None,
+        keyword,
+        cond,
+    });
 
     let simple_keywords = select! {
         Token::EndIf => Line::EndIf,
@@ -168,7 +172,8 @@ where
         Token::Checkend => Line::Checkend,
     };
 
-    let break_stmt = select! { Token::Break(p) => p }.map(move |p| {
+    let break_stmt = just(Token::Break).map_with(move |_, e| {
+        let p = crate::lexer::break_pattern(source, e.span());
         Line::Stmt(StmtKind::Break {
             pattern: p.inner.map(|span| Pattern {
                 text: span.slice(source),
@@ -183,79 +188,107 @@ where
         .then(just(Token::Highest).labelled("`highest`"))
         .to(Line::Stmt(StmtKind::Priority));
 
-    let skill_header = name()
-        .then_ignore(just(Token::Colon))
-        .map(Line::SkillHeader);
+    let args = args(source, expr.clone());
 
-    let call = call(expr.clone());
-
-    let bound_call = name()
-        .then_ignore(just(Token::Assign))
-        .then(call.clone().filter(|c: &Call<'s>| c.args.is_some()))
-        .map(|(bind, call)| {
-            Line::Stmt(StmtKind::Call {
-                bind: Some(bind),
-                call,
+    // Most lines start with a name (`v = ...`, `name(...)`, `NAME:`): read it once and
+    // decide by what follows.
+    let after_assign = choice((
+        while_head.map(|(keyword, cond)| Rhs::While(keyword, cond)),
+        name(source).then(args.clone()).map(|(name, args)| {
+            Rhs::Call(Call {
+                name,
+                args: Some(args),
             })
+        }),
+        expr.labelled("expression").map(Rhs::Expr),
+    ));
+    let after_name = choice((
+        just(Token::Colon).to(Tail::Header),
+        just(Token::Assign)
+            .ignore_then(after_assign)
+            .map(Tail::Assign),
+        args.or_not().map(Tail::Call),
+    ));
+    let named = name(source)
+        .then(after_name)
+        .map(|(name, tail)| match tail {
+            Tail::Header => Line::SkillHeader(name),
+            Tail::Call(args) => Line::Stmt(StmtKind::Call {
+                bind: None,
+                call: Call { name, args },
+            }),
+            Tail::Assign(Rhs::While(keyword, cond)) => Line::WhileHead {
+                bind: Some(name),
+                keyword,
+                cond,
+            },
+            Tail::Assign(Rhs::Call(call)) => Line::Stmt(StmtKind::Call {
+                bind: Some(name),
+                call,
+            }),
+            Tail::Assign(Rhs::Expr(value)) => Line::Stmt(StmtKind::Assign {
+                target: name,
+                value,
+            }),
         });
 
-    let assign = name()
-        .then_ignore(just(Token::Assign))
-        .then(expr.labelled("expression"))
-        .map(|(target, value)| Line::Stmt(StmtKind::Assign { target, value }));
-
-    let plain_call = call.map(|call| Line::Stmt(StmtKind::Call { bind: None, call }));
-
     choice((
+        named,
         if_head,
         simple_keywords,
-        while_head,
+        unbound_while,
         break_stmt,
         priority,
-        skill_header,
-        bound_call,
-        assign,
-        plain_call,
     ))
     .labelled("statement")
 }
 
-/// `name` or `name(args)`. An unclosed argument list still yields the call, so that an
-/// editor can complete inside it; `parser::parse` reports it.
-fn call<'t, 's: 't, I, E>(
+/// What follows a line's first name.
+#[derive(Clone)]
+enum Tail<'s> {
+    Header,
+    Assign(Rhs<'s>),
+    Call(Option<Args<'s>>),
+}
+
+#[derive(Clone)]
+enum Rhs<'s> {
+    While(Span, Expr<'s>),
+    Call(Call<'s>),
+    Expr(Expr<'s>),
+}
+
+/// `(args)`. An unclosed argument list still yields the call, so that an editor can
+/// complete inside it; `parser::parse` reports it.
+fn args<'t, 's: 't, I, E>(
+    source: &'s str,
     expr: impl Parser<'t, I, Expr<'s>, E> + Clone,
-) -> impl Parser<'t, I, Call<'s>, E> + Clone
+) -> impl Parser<'t, I, Args<'s>, E> + Clone
 where
-    I: ValueInput<'t, Token = Token<'s>, Span = Span>,
+    I: ValueInput<'t, Token = Token, Span = Span>,
     E: ParserExtra<'t, I> + 't,
     E::Error: LabelError<'t, I, &'static str>,
 {
-    let setting = name()
+    let setting = name(source)
         .then_ignore(just(Token::Assign))
         .then(expr.clone().labelled("value"))
         .map(|(key, value)| Arg::Setting { key, value });
     let arg = setting.or(expr.map(Arg::Positional)).labelled("argument");
-    let args = just(Token::LParen)
+    just(Token::LParen)
         .ignore_then(arg.separated_by(just(Token::Comma)).collect::<Vec<_>>())
         .then(just(Token::RParen).or_not())
-        .map_with(|(items, close), e| {
-            let span: Span = e.span();
-            Args {
-                items,
-                span,
-                closed: close.is_some(),
-            }
-        });
-    name()
-        .then(args.or_not())
-        .map(|(name, args)| Call { name, args })
+        .map_with(|(items, close), e| Args {
+            items,
+            span: e.span(),
+            closed: close.is_some(),
+        })
 }
 
 fn condition<'t, 's: 't, I, E>(
     expr: impl Parser<'t, I, Expr<'s>, E> + Clone,
 ) -> impl Parser<'t, I, Expr<'s>, E> + Clone
 where
-    I: ValueInput<'t, Token = Token<'s>, Span = Span>,
+    I: ValueInput<'t, Token = Token, Span = Span>,
     E: ParserExtra<'t, I> + 't,
     E::Error: LabelError<'t, I, &'static str>,
 {
@@ -290,20 +323,26 @@ where
 }
 
 /// Arithmetic: `+ - * /`, unary minus and parentheses over numbers and names.
-fn expression<'t, 's: 't, I, E>() -> impl Parser<'t, I, Expr<'s>, E> + Clone
+fn expression<'t, 's: 't, I, E>(source: &'s str) -> impl Parser<'t, I, Expr<'s>, E> + Clone
 where
-    I: ValueInput<'t, Token = Token<'s>, Span = Span>,
+    I: ValueInput<'t, Token = Token, Span = Span>,
     E: ParserExtra<'t, I> + 't,
     E::Error: LabelError<'t, I, &'static str>,
 {
     recursive(|expr| {
         let atom = select! {
-            Token::Number(n) => ExprKind::Number(n),
-            Token::Ident(text) = e => ExprKind::Name(Name { text, span: e.span() }),
+            Token::Number => true,
+            Token::Ident => false,
         }
-        .map_with(|kind, e| Expr {
-            kind,
-            span: e.span(),
+        .map_with(move |is_number, e| {
+            let span: Span = e.span();
+            let text = span.slice(source);
+            let kind = if is_number {
+                ExprKind::Number(crate::lexer::number(text))
+            } else {
+                ExprKind::Name(Name { text, span })
+            };
+            Expr { kind, span }
         })
         .or(expr
             .delimited_by(just(Token::LParen), just(Token::RParen))

@@ -25,8 +25,8 @@ pub fn parse(source: &str, file: FileId) -> Parsed<'_> {
     }
     let mut diagnostics = Vec::new();
     for (token, span) in &tokens {
-        if let Token::Break(p) = token {
-            if !p.closed {
+        if *token == Token::Break {
+            if !lexer::break_pattern(source, *span).closed {
                 diagnostics.push(
                     Diagnostic::new(
                         Code::UnclosedPattern,
@@ -40,7 +40,11 @@ pub fn parse(source: &str, file: FileId) -> Parsed<'_> {
         }
     }
     let (lines, errors) = lines::parse_lines(&tokens, source);
-    diagnostics.extend(errors.into_iter().map(|e| syntax_diagnostic(e, file)));
+    diagnostics.extend(
+        errors
+            .into_iter()
+            .map(|e| syntax_diagnostic(e, file, source)),
+    );
     let tree = blocks::build(lines, source, lexed.comments, file, &mut diagnostics);
     tree.for_each_stmt(&mut |stmt| {
         if let StmtKind::Call { call, .. } = &stmt.kind {
@@ -66,16 +70,18 @@ pub fn parse(source: &str, file: FileId) -> Parsed<'_> {
     }
 }
 
-fn syntax_diagnostic(error: lines::ParseError<'_, '_>, file: FileId) -> Diagnostic {
+fn syntax_diagnostic(error: lines::ParseError<'_>, file: FileId, source: &str) -> Diagnostic {
     let span = *error.span();
     match error.reason() {
         RichReason::Custom(message) => Diagnostic::new(Code::Syntax, file, span, message.clone()),
         RichReason::ExpectedFound { found, .. } => {
-            let found = found.as_deref().map_or("end of file".to_string(), describe);
+            let found = found.as_deref().map_or("end of file".to_string(), |t| {
+                describe(t, span.slice(source))
+            });
             let mut expected: Vec<String> = error
                 .expected()
                 .filter_map(|p| match p {
-                    RichPattern::Token(t) => Some(describe(t)),
+                    RichPattern::Token(t) => Some(t.to_string()),
                     RichPattern::Label(l) => Some(l.to_string()),
                     RichPattern::Identifier(i) => Some(format!("`{i}`")),
                     RichPattern::EndOfInput => Some("end of file".into()),
@@ -95,10 +101,11 @@ fn syntax_diagnostic(error: lines::ParseError<'_, '_>, file: FileId) -> Diagnost
     }
 }
 
-fn describe(token: &Token<'_>) -> String {
+/// A found token, with its text where that helps.
+fn describe(token: &Token, text: &str) -> String {
     match token {
-        Token::Ident(name) => format!("name `{name}`"),
-        Token::Number(n) => format!("number `{n}`"),
+        Token::Ident => format!("name `{text}`"),
+        Token::Number => format!("number `{text}`"),
         other => other.to_string(),
     }
 }
