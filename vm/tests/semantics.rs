@@ -385,6 +385,101 @@ fn a_skill_call_binds_a_status_set_when_all_its_commands_ended() {
     insta::assert_snapshot!(trace(&vm));
 }
 
+/// Figure 56: `TURN1` then `speed(0.4)` and a movement. The skill's statements are
+/// issued where the call stands, so its `speed(-0.4)` applies to its own movement and
+/// its `wait` holds the caller; its second block starts at the call as a new strand.
+#[test]
+fn a_skill_call_runs_in_line_and_its_wait_holds_the_caller() {
+    let mut a = Asm::new();
+    let skill = a.skill("Back");
+    let s1 = vec![
+        a.cmd("speed(-0.4)", Command::Speed, &[A::N(-0.4)], None),
+        a.cmd("t=goahead(0.5)", Command::Goahead, &[A::N(0.5)], Some("t")),
+        a.wait_var("wait(t)", "t"),
+    ];
+    let sb1 = a.block(s1);
+    a.blank();
+    let s2 = vec![a.assign("side=1", "side", &[X::N(1.0)])];
+    let sb2 = a.block(s2);
+    a.define(skill, &[sb1, sb2]);
+    a.blank();
+    let main = vec![
+        a.call("Back", skill, None),
+        a.cmd("speed(0.4)", Command::Speed, &[A::N(0.4)], None),
+        a.cmd("g=goahead(0.5)", Command::Goahead, &[A::N(0.5)], Some("g")),
+    ];
+    let mb = a.block(main);
+    let mut vm = vm(a.task(&[mb]), robot(), config());
+    assert!(vm.run_for(20.0), "task ends");
+    let back_done = when(&vm, "end", "wait(t)").expect("the skill's wait ends");
+    assert_eq!(
+        when(&vm, "var", "side=1"),
+        Some(0.0),
+        "second block at the call"
+    );
+    assert_eq!(
+        when(&vm, "issue", "speed(0.4)"),
+        Some(back_done),
+        "the caller goes on only when the skill's block has issued its last statement"
+    );
+    let order: Vec<&str> = vm
+        .events()
+        .iter()
+        .filter(|e| e.kind.name() == "issue")
+        .filter_map(|e| e.stmt.and_then(|s| vm.module().stmt(s)))
+        .map(|s| s.text.as_str())
+        .collect();
+    assert_eq!(
+        order,
+        [
+            "Back",
+            "speed(-0.4)",
+            "t=goahead(0.5)",
+            "wait(t)",
+            "side=1",
+            "speed(0.4)",
+            "g=goahead(0.5)"
+        ]
+    );
+    // Backwards half a metre, then forwards again: the caller's speed drove its own
+    // movement.
+    let x = vm.hal().true_pose().x;
+    assert!(x.abs() < 0.1, "back where it started: x = {x}");
+    insta::assert_snapshot!(trace(&vm));
+}
+
+#[test]
+fn a_skill_call_runs_in_line_even_when_it_issues_nothing_that_waits() {
+    let mut a = Asm::new();
+    let inner = a.skill("Inner");
+    let i1 = vec![a.assign("x=1", "x", &[X::N(1.0)])];
+    let ib = a.block(i1);
+    a.define(inner, &[ib]);
+    a.blank();
+    let outer = a.skill("Outer");
+    let o1 = vec![
+        a.call("Inner", inner, None),
+        a.assign("y=x+1", "y", &[X::V("x"), X::N(1.0), X::Op(ExprOp::Add)]),
+    ];
+    let ob = a.block(o1);
+    a.define(outer, &[ob]);
+    a.blank();
+    let main = vec![
+        a.call("o=Outer", outer, Some("o")),
+        a.assign("z=y+1", "z", &[X::V("y"), X::N(1.0), X::Op(ExprOp::Add)]),
+    ];
+    let mb = a.block(main);
+    let mut vm = vm(a.task(&[mb]), robot(), config());
+    assert!(vm.run_for(1.0));
+    assert_eq!(
+        vm.var("z").map(|v| v.value),
+        Some(3.0),
+        "nested calls in line"
+    );
+    assert_eq!(vm.var("o").map(|v| v.status), Some(1.0));
+    assert_eq!(when(&vm, "end", "o=Outer"), Some(0.0));
+}
+
 #[test]
 fn consecutive_movements_link_without_a_stop() {
     let mut a = Asm::new();
@@ -759,5 +854,173 @@ fn speed_with_w_waits_for_the_running_movement() {
         (vm.hal().true_pose().x - 0.5).abs() < 0.05,
         "{:?}",
         vm.hal().true_pose()
+    );
+}
+
+#[test]
+fn activity_tells_when_only_waiting_guards_are_left() {
+    let mut a = Asm::new();
+    let one = vec![
+        a.cmd("goahead(0.3)", Command::Goahead, &[A::N(0.3)], None),
+        a.cmd("goahead(0.2)", Command::Goahead, &[A::N(0.2)], None),
+        a.wait("wait(0.5)", 0.5),
+        a.assign("x=1", "x", &[X::N(1.0)]),
+    ];
+    let b1 = a.block(one);
+    a.blank();
+    let two = vec![
+        a.if_("if(x>5)", &[X::V("x"), X::N(5.0), X::Op(ExprOp::Gt)], |a| {
+            vec![a.assign("y=1", "y", &[X::N(1.0)])]
+        }),
+    ];
+    let b2 = a.block(two);
+    let mut vm = vm(a.task(&[b1, b2]), robot(), config());
+    vm.tick();
+    let now = vm.activity();
+    assert_eq!(
+        now,
+        ilmr_vm::Activity {
+            running_commands: 1,
+            queued_movements: 1,
+            waiting_guards: 1,
+            sleeping: 1,
+            issuing_blocks: 1,
+            ready: 0,
+            robot_at_rest: true,
+        },
+        "the first tick only commanded the speed"
+    );
+    assert!(!vm.only_guards_waiting());
+    vm.tick();
+    assert!(!vm.activity().robot_at_rest, "moving");
+    let mut ticks = 0;
+    while !vm.only_guards_waiting() && ticks < 2_000 {
+        vm.tick();
+        ticks += 1;
+    }
+    let end = vm.activity();
+    assert!(end.only_guards_waiting(), "{end:?}");
+    assert_eq!(end.waiting_guards, 1);
+    assert!(!vm.finished(), "the guard still lives");
+    assert_eq!(vm.var("x").map(|v| v.value), Some(1.0));
+    assert!(
+        vm.time() >= 0.5,
+        "the movements and the wait are over: {}",
+        vm.time()
+    );
+}
+
+#[test]
+fn break_with_an_empty_pattern_ends_nothing() {
+    let mut a = Asm::new();
+    let code = vec![a.wait("wait(0.5)", 0.5), a.assign("x=1", "x", &[X::N(1.0)])];
+    let b1 = a.block(code);
+    a.blank();
+    let two = vec![a.brk("break()", ""), a.brk("break( )", " ")];
+    let b2 = a.block(two);
+    let mut vm = vm(a.task(&[b1, b2]), robot(), config());
+    assert!(vm.run_for(2.0));
+    assert_eq!(ended(&vm, "wait(0.5)").as_deref(), Some("completed"));
+    assert_eq!(vm.var("x").map(|v| v.value), Some(1.0));
+}
+
+#[test]
+fn copy_gives_a_variable_the_whole_record_of_another() {
+    let mut a = Asm::new();
+    let door = a.var("Door", VarKind::Position);
+    let mine = a.var("MyDoor", VarKind::Position);
+    let code = vec![
+        a.cmd(
+            "Door=sensor(camera,door)",
+            Command::Sensor,
+            &[A::W("camera"), A::W("door")],
+            Some("Door"),
+        ),
+        a.wait_var("wait(Door)", "Door"),
+        a.op(
+            "MyDoor=Door",
+            Op::Copy {
+                to: mine,
+                from: door,
+            },
+        ),
+    ];
+    let b = a.block(code);
+    let detection = Detection {
+        sensor: "camera".into(),
+        object: "door".into(),
+        x: 3.0,
+        y: -1.5,
+        h: 0.25,
+        side: Side::Right,
+    };
+    let r = robot().sighting(0.1, 10.0, detection);
+    let mut vm = vm(a.task(&[b]), r, config());
+    assert!(vm.run_for(1.0));
+    let (d, m) = (
+        vm.var("Door").expect("door"),
+        vm.var("MyDoor").expect("copy"),
+    );
+    assert_eq!(m, d, "every field and how it ended");
+    assert_eq!((m.x, m.y, m.h, m.status), (3.0, -1.5, 0.25, 1.0));
+    let line = trace(&vm)
+        .lines()
+        .find(|l| l.contains("\"var\":\"MyDoor\""))
+        .map(str::to_string);
+    assert_eq!(
+        line.as_deref(),
+        Some(
+            "{\"t\":0.1,\"event\":\"var\",\"line\":3,\"text\":\"MyDoor=Door\",\"var\":\"MyDoor\",\"status\":1,\"x\":3,\"y\":-1.5,\"h\":0.25,\"how\":\"completed\"}"
+        )
+    );
+}
+
+#[test]
+fn obstacle_avoidance_traces_its_state_changes() {
+    let mut a = Asm::new();
+    let code = vec![
+        a.cmd("obsavoid(on)", Command::ObsAvoid, &[A::W("on")], None),
+        a.cmd("goahead(6)", Command::Goahead, &[A::N(6.0)], None),
+    ];
+    let b = a.block(code);
+    // One scan at the start: a post 2.5 m ahead of the scanner, nothing else in range.
+    let n = 181;
+    let step = std::f64::consts::PI / (n - 1) as f64;
+    let ranges = (0..n)
+        .map(|i| {
+            let angle = -std::f64::consts::FRAC_PI_2 + i as f64 * step;
+            if angle.abs() < 0.04 { 2.5 } else { 30.0 }
+        })
+        .collect();
+    let scan = ilmr_hal::Scan {
+        device: "scanner".into(),
+        t: 0.0,
+        angle_min: -std::f64::consts::FRAC_PI_2,
+        angle_step: step,
+        ranges,
+    };
+    let mut vm = vm(a.task(&[b]), robot().scan(scan), config());
+    assert!(vm.run_for(60.0), "the movement ends");
+    let states: Vec<String> = trace(&vm)
+        .lines()
+        .filter(|l| l.contains("\"event\":\"avoid\""))
+        .map(|l| {
+            let at = l.find("\"state\":\"").map_or(0, |i| i + 9);
+            l[at..].trim_end_matches("\"}").to_string()
+        })
+        .collect();
+    assert_eq!(
+        states.first().map(String::as_str),
+        Some("avoiding"),
+        "{states:?}"
+    );
+    assert_eq!(
+        states.last().map(String::as_str),
+        Some("normal"),
+        "{states:?}"
+    );
+    assert!(
+        trace(&vm).contains("\"event\":\"avoid\",\"line\":2,\"text\":\"goahead(6)\""),
+        "the event names the running movement"
     );
 }

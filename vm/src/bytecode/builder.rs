@@ -91,6 +91,23 @@ impl ModuleBuilder {
         }
     }
 
+    /// A builder that owns the live module while a line is lowered into it (see
+    /// `Vm::add_line`): nothing is copied, and [`Self::into_extended`] gives the module
+    /// back with the line appended.
+    pub(crate) fn lent(live: Module) -> ModuleBuilder {
+        let base = live.counts();
+        ModuleBuilder {
+            m: live,
+            base: Some(base),
+        }
+    }
+
+    /// The module and the counts it had when it was lent (`None` for a builder not
+    /// made by [`Self::lent`] or [`Self::extending`]).
+    pub(crate) fn into_extended(self) -> (Module, Option<Counts>) {
+        (self.m, self.base)
+    }
+
     pub fn file(&mut self, path: &str) -> Result<FileId, BuildError> {
         if let Some(i) = self.m.files.iter().position(|f| f == path) {
             return Ok(FileId(i as u32));
@@ -251,8 +268,8 @@ impl ModuleBuilder {
     /// Validates and returns what was added to the live module, with the blocks to
     /// start. Also usable on a builder made with [`Self::new`] (the base is empty).
     pub fn finish_fragment(self, start: &[BlockId]) -> Result<Fragment, BuildError> {
-        self.m.validate().map_err(BuildError::Invalid)?;
         let base = self.base.unwrap_or_default();
+        self.m.validate_from(&base).map_err(BuildError::Invalid)?;
         let mut m = self.m;
         fn tail<T>(v: &mut Vec<T>, from: u32) -> Vec<T> {
             v.split_off((from as usize).min(v.len()))

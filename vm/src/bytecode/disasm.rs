@@ -85,6 +85,7 @@ fn operands(m: &Module, op: &Op) -> String {
     let mut s = match *op {
         Op::Issue { command, args, .. } => format!("{command} {}", render_args(m, args)),
         Op::Assign { var: v, expr } => format!("{} = {}", var(m, v), render_expr(m, expr)),
+        Op::Copy { to, from } => format!("{} = {}", var(m, to), var(m, from)),
         Op::WaitTime { seconds, .. } => format!("{} s", render_expr(m, seconds)),
         Op::WaitVar { var: v, .. } | Op::Clear { var: v } => var(m, v).to_string(),
         Op::If { cond, body, .. } | Op::While { cond, body, .. } => {

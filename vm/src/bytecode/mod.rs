@@ -231,35 +231,58 @@ impl Module {
         Ok(module)
     }
 
-    /// Appends a fragment compiled against exactly this module, after validating it.
+    /// Appends a fragment compiled against exactly this module, after validating what
+    /// it adds. In place: the cost is the fragment's, not the module's. On an error the
+    /// module is as it was.
     pub fn append(&mut self, fragment: &Fragment) -> Result<(), ModuleError> {
-        if fragment.base != self.counts() {
+        let base = self.counts();
+        if fragment.base != base {
             return Err(ModuleError::StaleFragment);
         }
-        let mut joined = self.clone();
         let a = &fragment.added;
-        joined.files.extend(a.files.iter().cloned());
-        joined.stmts.extend(a.stmts.iter().cloned());
-        joined.consts.extend(a.consts.iter().copied());
-        joined.names.extend(a.names.iter().cloned());
-        joined.globals.extend(a.globals.iter().cloned());
-        joined.units.extend(a.units.iter().cloned());
-        joined.blocks.extend(a.blocks.iter().copied());
-        joined.code.extend(a.code.iter().copied());
-        joined.args.extend(a.args.iter().copied());
-        joined.exprs.extend(a.exprs.iter().copied());
-        joined.expr_code.extend(a.expr_code.iter().copied());
-        joined.validate()?;
-        for b in &fragment.start {
-            if b.index() >= joined.blocks.len() {
-                return Err(ModuleError::Index {
+        self.files.extend(a.files.iter().cloned());
+        self.stmts.extend(a.stmts.iter().cloned());
+        self.consts.extend(a.consts.iter().copied());
+        self.names.extend(a.names.iter().cloned());
+        self.globals.extend(a.globals.iter().cloned());
+        self.units.extend(a.units.iter().cloned());
+        self.blocks.extend(a.blocks.iter().copied());
+        self.code.extend(a.code.iter().copied());
+        self.args.extend(a.args.iter().copied());
+        self.exprs.extend(a.exprs.iter().copied());
+        self.expr_code.extend(a.expr_code.iter().copied());
+        let checked = self.validate_from(&base).and_then(|()| {
+            match fragment
+                .start
+                .iter()
+                .find(|b| b.index() >= self.blocks.len())
+            {
+                Some(b) => Err(ModuleError::Index {
                     what: "fragment start block",
                     index: b.0,
-                    len: joined.blocks.len(),
-                });
+                    len: self.blocks.len(),
+                }),
+                None => Ok(()),
             }
+        });
+        if checked.is_err() {
+            self.truncate(&base);
         }
-        *self = joined;
-        Ok(())
+        checked
+    }
+
+    /// Drops every entry past `base` (undoes an append).
+    pub fn truncate(&mut self, base: &Counts) {
+        self.files.truncate(base.files as usize);
+        self.stmts.truncate(base.stmts as usize);
+        self.consts.truncate(base.consts as usize);
+        self.names.truncate(base.names as usize);
+        self.globals.truncate(base.globals as usize);
+        self.units.truncate(base.units as usize);
+        self.blocks.truncate(base.blocks as usize);
+        self.code.truncate(base.code as usize);
+        self.args.truncate(base.args as usize);
+        self.exprs.truncate(base.exprs as usize);
+        self.expr_code.truncate(base.expr_code as usize);
     }
 }

@@ -45,6 +45,12 @@ pub enum Op {
         var: VarId,
         expr: ExprId,
     },
+    /// `to = from` where `from` is a record (a position): every field of `from`'s
+    /// record, and how its command ended, is copied to `to`.
+    Copy {
+        to: VarId,
+        from: VarId,
+    },
     /// `wait(seconds)`: holds its block.
     WaitTime {
         seconds: ExprId,
@@ -140,6 +146,7 @@ impl ExprOp {
 pub enum Opcode {
     Issue,
     Assign,
+    Copy,
     WaitTime,
     WaitVar,
     If,
@@ -172,9 +179,10 @@ pub enum Opcode {
 const _: () = assert!(Opcode::ALL.len() == Opcode::PosEq as usize + 1);
 
 impl Opcode {
-    pub const ALL: [Opcode; 27] = [
+    pub const ALL: [Opcode; 28] = [
         Opcode::Issue,
         Opcode::Assign,
+        Opcode::Copy,
         Opcode::WaitTime,
         Opcode::WaitVar,
         Opcode::If,
@@ -206,6 +214,7 @@ impl Opcode {
         match self {
             Opcode::Issue => "ISSUE",
             Opcode::Assign => "ASSIGN",
+            Opcode::Copy => "COPY",
             Opcode::WaitTime => "WAITTIME",
             Opcode::WaitVar => "WAITVAR",
             Opcode::If => "IF",
@@ -240,6 +249,7 @@ impl Op {
         match self {
             Op::Issue { .. } => Opcode::Issue,
             Op::Assign { .. } => Opcode::Assign,
+            Op::Copy { .. } => Opcode::Copy,
             Op::WaitTime { .. } => Opcode::WaitTime,
             Op::WaitVar { .. } => Opcode::WaitVar,
             Op::If { .. } => Opcode::If,

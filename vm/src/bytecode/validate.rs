@@ -90,24 +90,35 @@ pub(crate) fn issuable(command: Command) -> bool {
 
 impl Module {
     pub fn validate(&self) -> Result<(), ModuleError> {
+        self.validate_from(&super::Counts::default())
+    }
+
+    /// Validates the entries at or past `base` in every table, against the whole
+    /// module: what a fragment added to a module that was valid with `base`'s counts.
+    /// Entries before `base` are trusted (the tables only grow), so joining a line
+    /// costs in proportion to the line, not to the program.
+    pub fn validate_from(&self, base: &super::Counts) -> Result<(), ModuleError> {
+        fn from<T>(v: &[T], n: u32) -> impl Iterator<Item = (usize, &T)> {
+            v.iter().enumerate().skip(n as usize)
+        }
         check("main unit", self.main.0, self.units.len())?;
-        for s in &self.stmts {
+        for (_, s) in from(&self.stmts, base.stmts) {
             check("file", s.file.0, self.files.len())?;
         }
-        for u in &self.units {
+        for (_, u) in from(&self.units, base.units) {
             for b in &u.blocks {
                 check("block", b.0, self.blocks.len())?;
             }
         }
-        for b in &self.blocks {
+        for (_, b) in from(&self.blocks, base.blocks) {
             check_range("block code", b.start, b.len, self.code.len())?;
         }
-        for (i, e) in self.exprs.iter().enumerate() {
+        for (i, e) in from(&self.exprs, base.exprs) {
             check_range("expression code", e.start, e.len, self.expr_code.len())?;
             self.validate_expr(i as u32)?;
         }
         let vars = self.globals.len();
-        for instr in &self.code {
+        for (_, instr) in from(&self.code, base.code) {
             check("statement", instr.stmt.0, self.stmts.len())?;
             if let Some(v) = instr.op.bind() {
                 check("variable", v.0, vars)?;
@@ -123,6 +134,10 @@ impl Module {
                     check("variable", var.0, vars)?;
                     check("expression", expr.0, self.exprs.len())?;
                 }
+                Op::Copy { to, from } => {
+                    check("variable", to.0, vars)?;
+                    check("variable", from.0, vars)?;
+                }
                 Op::WaitTime { seconds, .. } => check("expression", seconds.0, self.exprs.len())?,
                 Op::WaitVar { var, .. } | Op::Clear { var } => check("variable", var.0, vars)?,
                 Op::If { cond, body, .. } | Op::While { cond, body, .. } => {
@@ -134,19 +149,19 @@ impl Module {
                 Op::BreakAll | Op::Stop | Op::Cont | Op::Priority => {}
             }
         }
-        for i in 0..self.blocks.len() as u32 {
-            let code = self.block_code(super::BlockId(i));
+        for (i, _) in from(&self.blocks, base.blocks) {
+            let code = self.block_code(super::BlockId(i as u32));
             if code.iter().skip(1).any(|c| c.op == Op::Priority) {
-                return Err(ModuleError::PriorityNotFirst { block: i });
+                return Err(ModuleError::PriorityNotFirst { block: i as u32 });
             }
         }
-        let starts: std::collections::BTreeSet<u32> = self
-            .blocks
-            .iter()
-            .filter(|b| b.len > 0)
-            .map(|b| b.start)
+        // Trusted blocks cover only trusted code, so new code can only start a new
+        // block.
+        let starts: std::collections::BTreeSet<u32> = from(&self.blocks, base.blocks)
+            .filter(|(_, b)| b.len > 0)
+            .map(|(_, b)| b.start)
             .collect();
-        for (pc, instr) in self.code.iter().enumerate() {
+        for (pc, instr) in from(&self.code, base.code) {
             if instr.op == Op::Priority && !starts.contains(&(pc as u32)) {
                 return Err(ModuleError::PriorityNotFirst { block: u32::MAX });
             }

@@ -114,9 +114,10 @@ impl<H: Hal, C: Clock> Vm<H, C> {
                 match kind {
                     Kind::Movement { .. } => self.queue_movement(node),
                     Kind::Sensor { .. } | Kind::Async { .. } | Kind::SpeedAfter { .. } => {
+                        let key = self.search_key(kind);
                         self.step_node(node);
                         if self.nodes.alive(node) {
-                            self.active.push(node);
+                            self.active.push(super::Active { node, key });
                         }
                     }
                     _ => {}
@@ -502,13 +503,58 @@ impl<H: Hal, C: Clock> Vm<H, C> {
         })
     }
 
-    /// Steps every live reading, search and asynchronous operation once.
+    /// The (sensor, object) pair a search looks for, as an index into
+    /// `search_keys` (added if new); NONE for anything but a search.
+    fn search_key(&mut self, kind: Kind) -> u32 {
+        let Kind::Sensor {
+            spec: SensorSpec::Search { sensor, object, .. },
+            ..
+        } = kind
+        else {
+            return NONE;
+        };
+        match self.search_keys.iter().position(|k| *k == (sensor, object)) {
+            Some(i) => i as u32,
+            None => {
+                self.search_keys.push((sensor, object));
+                self.key_hit.push(false);
+                (self.search_keys.len() - 1) as u32
+            }
+        }
+    }
+
+    /// Which search keys this tick's detections match: a search whose key has no
+    /// match is not looked at (it waits for a detection, so it costs nothing).
+    pub(super) fn resolve_search_keys(&mut self) {
+        let dets = &self.snap.detections;
+        for (i, &(sensor, object)) in self.search_keys.iter().enumerate() {
+            let (s, o) = (
+                self.module.name(crate::bytecode::NameId(sensor)),
+                self.module.name(crate::bytecode::NameId(object)),
+            );
+            self.key_hit[i] = dets
+                .iter()
+                .any(|d| d.sensor.eq_ignore_ascii_case(s) && d.object.eq_ignore_ascii_case(o));
+        }
+    }
+
+    /// Steps every live reading, search and asynchronous operation once, in issue
+    /// order. The list is dense (12 bytes a command) and a search without a matching
+    /// detection is skipped without touching its node; entries of ended commands are
+    /// dropped when they come to outnumber the live ones.
     pub(super) fn step_active(&mut self) {
-        let nodes = &self.nodes;
-        self.active.retain(|r| nodes.alive(*r));
+        let live = self.nodes.classes[super::nodes::Class::Active as usize];
+        if self.active.len() > 2 * live + 64 {
+            let nodes = &self.nodes;
+            self.active.retain(|a| nodes.alive(a.node));
+        }
+        self.resolve_search_keys();
         for i in 0..self.active.len() {
-            let r = self.active[i];
-            self.step_node(r);
+            let a = self.active[i];
+            if a.key != NONE && !self.key_hit[a.key as usize] {
+                continue;
+            }
+            self.step_node(a.node);
         }
     }
 

@@ -21,11 +21,29 @@ enum Flow {
     Suspended,
     /// The block was ended by one of its own statements.
     Gone,
+    /// A skill call: its first block continues this strand.
+    Enter(NodeRef),
+}
+
+/// An entry of the ready queue.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Ready {
+    /// A block to run, or a guard, loop or wait to look at.
+    Node(NodeRef),
+    /// A variable changed: evaluate its subscribers (guards and waits) in place, in
+    /// subscription order. One entry however many subscribe.
+    Wake(u32),
 }
 
 impl<H: Hal, C: Clock> Vm<H, C> {
     pub(super) fn start_block(&mut self, parent: u32, block: u32, depth: u16) -> NodeRef {
-        let r = self.nodes.alloc(
+        let r = self.new_block(parent, block, depth, false);
+        self.enqueue(r.idx);
+        r
+    }
+
+    fn new_block(&mut self, parent: u32, block: u32, depth: u16, inline: bool) -> NodeRef {
+        self.nodes.alloc(
             parent,
             NONE,
             NONE,
@@ -35,10 +53,9 @@ impl<H: Hal, C: Clock> Vm<H, C> {
                 holder: NONE,
                 issued: false,
                 depth,
+                inline,
             }),
-        );
-        self.enqueue(r.idx);
-        r
+        )
     }
 
     pub(super) fn enqueue(&mut self, idx: u32) {
@@ -46,29 +63,43 @@ impl<H: Hal, C: Clock> Vm<H, C> {
         if !n.queued {
             n.queued = true;
             let r = self.nodes.at(idx);
-            self.ready.push_back(r);
+            self.ready.push_back(Ready::Node(r));
         }
     }
 
     /// Runs ready nodes in FIFO order until the queue is empty or the budget is spent.
     pub(super) fn run_ready(&mut self) {
         self.ops_left = self.cfg.budget_ops;
-        while let Some(r) = self.ready.pop_front() {
+        while let Some(entry) = self.ready.pop_front() {
+            let r = match entry {
+                Ready::Node(r) => r,
+                Ready::Wake(var) => {
+                    if self.ops_left == 0 {
+                        self.ready.push_front(entry);
+                        self.overrun(NONE);
+                        return;
+                    }
+                    if !self.wake(var) {
+                        return;
+                    }
+                    continue;
+                }
+            };
             if !self.nodes.alive(r) {
                 continue;
             }
             if self.ops_left == 0 {
-                self.ready.push_front(r);
+                self.ready.push_front(entry);
                 self.overrun(r.idx);
                 return;
             }
             self.nodes.get_mut(r.idx).queued = false;
             match self.nodes.get(r.idx).kind {
                 Kind::Block(_) => {
-                    if let Flow::Suspended = self.run_block(r) {
-                        self.nodes.get_mut(r.idx).queued = true;
-                        self.ready.push_front(r);
-                        self.overrun(r.idx);
+                    if let Some(at) = self.run_strand(r) {
+                        self.nodes.get_mut(at.idx).queued = true;
+                        self.ready.push_front(Ready::Node(at));
+                        self.overrun(at.idx);
                         return;
                     }
                 }
@@ -82,7 +113,62 @@ impl<H: Hal, C: Clock> Vm<H, C> {
         }
     }
 
+    /// A queued wake of `var`: its guards' conditions are evaluated straight from the
+    /// subscription records (a false one costs its expression and touches nothing
+    /// else) and its waits ended if its status is 1. Returns false when the budget
+    /// ran out: the subscribers not yet looked at are queued first, one by one.
+    fn wake(&mut self, var: u32) -> bool {
+        let mut subs = std::mem::take(&mut self.woken);
+        subs.clear();
+        self.vars.take_wake(var, &mut subs);
+        let mut done = true;
+        for (i, &(node, cond)) in subs.iter().enumerate() {
+            if self.ops_left == 0 {
+                for &(n, _) in subs[i..].iter().rev() {
+                    if self.nodes.get(n).kind != Kind::Free && !self.nodes.get(n).queued {
+                        self.nodes.get_mut(n).queued = true;
+                        let r = self.nodes.at(n);
+                        self.ready.push_front(Ready::Node(r));
+                    }
+                }
+                self.overrun(node);
+                done = false;
+                break;
+            }
+            if cond == NONE {
+                if self.vars.field(var, Field::Status) >= 1.0
+                    && matches!(self.nodes.get(node).kind, Kind::WaitVar { .. })
+                {
+                    self.end_node(node, How::Completed, false, None, true);
+                }
+                continue;
+            }
+            self.ops_left -= 1;
+            match self.eval(ExprId(cond)) {
+                Ok(v) if v != 0.0 => {
+                    // Only an unfired guard is subscribed; it may have fired already
+                    // in this wake when it reads the variable twice.
+                    if matches!(self.nodes.get(node).kind, Kind::If { fired: false, .. }) {
+                        self.fire_guard(node);
+                    }
+                }
+                Ok(_) => {}
+                Err(e) => {
+                    let stmt = stmt_of(self.nodes.get(node).stmt);
+                    self.error(stmt, e.to_string());
+                }
+            }
+        }
+        self.woken = subs;
+        done
+    }
+
     fn overrun(&mut self, idx: u32) {
+        if idx == NONE {
+            let pending = self.ready.len() as u32;
+            self.push_event(None, EventKind::Overrun { pending });
+            return;
+        }
         let stmt = match self.nodes.get(idx).kind {
             Kind::Block(b) => {
                 let code = self.module.block_code(crate::bytecode::BlockId(b.block));
@@ -92,6 +178,59 @@ impl<H: Hal, C: Clock> Vm<H, C> {
         };
         let pending = self.ready.len() as u32;
         self.push_event(stmt_of(stmt), EventKind::Overrun { pending });
+    }
+
+    /// Runs a strand of blocks from `r`: into the first block of every skill it calls,
+    /// and back out to the caller when that block has issued its last statement.
+    /// Returns the block to resume first next tick when the budget ran out.
+    fn run_strand(&mut self, mut r: NodeRef) -> Option<NodeRef> {
+        loop {
+            match self.run_block(r) {
+                Flow::Enter(first) => r = first,
+                Flow::Suspended => return Some(r),
+                Flow::Held | Flow::Gone => return None,
+                Flow::Done => match self.finish_issuing(r) {
+                    Some(caller) => r = caller,
+                    None => return None,
+                },
+            }
+        }
+    }
+
+    /// A block has issued its last statement: it ends when its commands have. The
+    /// first block of a skill call also hands the strand back to its caller, which
+    /// is returned to go on at once.
+    fn finish_issuing(&mut self, r: NodeRef) -> Option<NodeRef> {
+        let Kind::Block(b) = self.nodes.get(r.idx).kind else {
+            return None;
+        };
+        self.nodes.update_kind(r.idx, |k| {
+            if let Kind::Block(s) = k {
+                s.issued = true;
+            }
+        });
+        let mut caller = None;
+        if b.inline {
+            let call = self.nodes.get(r.idx).parent;
+            let up = if call == NONE {
+                NONE
+            } else {
+                self.nodes.get(call).parent
+            };
+            if up != NONE
+                && let Kind::Block(c) = self.nodes.get(up).kind
+                && c.holder == call
+            {
+                // Released before this block may end (and with it the call), so that
+                // the caller is not also queued.
+                self.set_block(up, |s| s.holder = NONE);
+                caller = Some(self.nodes.at(up));
+            }
+        }
+        if self.nodes.get(r.idx).children == 0 {
+            self.end_node(r.idx, How::Completed, false, None, true);
+        }
+        caller.filter(|c| self.nodes.alive(*c))
     }
 
     fn run_block(&mut self, r: NodeRef) -> Flow {
@@ -110,10 +249,6 @@ impl<H: Hal, C: Clock> Vm<H, C> {
                 code.get(b.pc as usize).copied()
             };
             let Some(instr) = instr else {
-                self.set_block(r.idx, |s| s.issued = true);
-                if self.nodes.get(r.idx).children == 0 {
-                    self.end_node(r.idx, How::Completed, false, None, true);
-                }
                 return Flow::Done;
             };
             if self.ops_left == 0 {
@@ -121,7 +256,9 @@ impl<H: Hal, C: Clock> Vm<H, C> {
             }
             self.ops_left -= 1;
             self.set_block(r.idx, |s| s.pc += 1);
-            self.exec(r.idx, b.depth, instr.op, instr.stmt);
+            if let Some(first) = self.exec(r.idx, b.depth, instr.op, instr.stmt) {
+                return Flow::Enter(first);
+            }
         }
     }
 
@@ -137,8 +274,9 @@ impl<H: Hal, C: Clock> Vm<H, C> {
         }
     }
 
-    /// Executes one statement instruction of block `blk`.
-    fn exec(&mut self, blk: u32, depth: u16, op: Op, stmt: StmtId) {
+    /// Executes one statement instruction of block `blk`. Returns the block that
+    /// continues the strand when the instruction called a skill.
+    fn exec(&mut self, blk: u32, depth: u16, op: Op, stmt: StmtId) -> Option<NodeRef> {
         self.push_event(Some(stmt), EventKind::Issue);
         let s = stmt.0;
         match op {
@@ -167,6 +305,24 @@ impl<H: Hal, C: Clock> Vm<H, C> {
                 }
                 Err(e) => self.error(Some(stmt), e.to_string()),
             },
+            Op::Copy { to, from } => {
+                let r = self.vars.get(from.0);
+                let fields = [
+                    (Field::Status, r.status),
+                    (Field::X, r.x),
+                    (Field::Y, r.y),
+                    (Field::H, r.h),
+                    (Field::Value, r.value),
+                    (Field::Dist, r.dist),
+                ];
+                let report = FieldMask(
+                    FieldMask::bit(Field::Status)
+                        | FieldMask::bit(Field::X)
+                        | FieldMask::bit(Field::Y)
+                        | FieldMask::bit(Field::H),
+                );
+                self.write_reporting(to.0, &fields, Some(r.how), s, false, report);
+            }
             Op::WaitTime { seconds, bind } => {
                 let secs = self.eval(seconds).unwrap_or(0.0);
                 let bind = bind.map_or(NONE, |v| v.0);
@@ -190,7 +346,7 @@ impl<H: Hal, C: Clock> Vm<H, C> {
                     self.end_node(child.idx, How::Completed, false, None, true);
                 } else {
                     let mut head = NONE;
-                    self.vars.subscribe(child.idx, var.0, &mut head);
+                    self.vars.subscribe(child.idx, NONE, var.0, &mut head);
                     self.nodes.get_mut(child.idx).subs = head;
                     self.hold(blk, child);
                 }
@@ -225,38 +381,7 @@ impl<H: Hal, C: Clock> Vm<H, C> {
                 );
                 self.check_while(child.idx);
             }
-            Op::Call { unit, bind } => {
-                let bind = bind.map_or(NONE, |v| v.0);
-                self.bind_issue(bind, s);
-                let d = depth.saturating_add(1);
-                let child = self.nodes.alloc(
-                    blk,
-                    s,
-                    bind,
-                    Kind::Call {
-                        unit: unit.0,
-                        depth: d,
-                    },
-                );
-                if d > self.cfg.max_call_depth {
-                    let why = format!("skill calls nested deeper than {}", self.cfg.max_call_depth);
-                    self.end_node(child.idx, How::Refused, false, Some(why), true);
-                    return;
-                }
-                let blocks = self
-                    .module
-                    .units
-                    .get(unit.index())
-                    .map(|u| u.blocks.len())
-                    .unwrap_or(0);
-                for i in 0..blocks {
-                    let b = self.module.units[unit.index()].blocks[i];
-                    self.start_block(child.idx, b.0, d);
-                }
-                if blocks == 0 {
-                    self.end_node(child.idx, How::Completed, false, None, true);
-                }
-            }
+            Op::Call { unit, bind } => return self.call(blk, depth, s, unit.index(), bind),
             Op::Break { pattern } => self.break_pattern(pattern.0),
             Op::BreakAll => {
                 if let Err(e) = self.hal.set_motion(0.0, 0.0) {
@@ -278,6 +403,52 @@ impl<H: Hal, C: Clock> Vm<H, C> {
                 self.changed(var.0, mask, s, false);
             }
         }
+        None
+    }
+
+    /// A skill call, issued in line (section 4.2.2.2: the skill's commands are
+    /// appended where the call stands). The skill's first block continues the
+    /// caller's strand, which the call holds until that block has issued its last
+    /// statement; its further blocks start now as new strands. The call node is the
+    /// frame: it ends, and sets its variable, when all of them have ended.
+    fn call(
+        &mut self,
+        blk: u32,
+        depth: u16,
+        stmt: u32,
+        unit: usize,
+        bind: Option<crate::bytecode::VarId>,
+    ) -> Option<NodeRef> {
+        let bind = bind.map_or(NONE, |v| v.0);
+        self.bind_issue(bind, stmt);
+        let d = depth.saturating_add(1);
+        let child = self.nodes.alloc(
+            blk,
+            stmt,
+            bind,
+            Kind::Call {
+                unit: unit as u32,
+                depth: d,
+            },
+        );
+        if d > self.cfg.max_call_depth {
+            let why = format!("skill calls nested deeper than {}", self.cfg.max_call_depth);
+            self.end_node(child.idx, How::Refused, false, Some(why), true);
+            return None;
+        }
+        let count = self.module.units.get(unit).map_or(0, |u| u.blocks.len());
+        if count == 0 {
+            self.end_node(child.idx, How::Completed, false, None, true);
+            return None;
+        }
+        for i in 1..count {
+            let b = self.module.units[unit].blocks[i];
+            self.start_block(child.idx, b.0, d);
+        }
+        let first = self.module.units[unit].blocks[0];
+        let strand = self.new_block(child.idx, first.0, d, true);
+        self.hold(blk, child);
+        Some(strand)
     }
 
     /// A statement bound to `var` was issued: its status is 0 until it ends.
@@ -296,7 +467,7 @@ impl<H: Hal, C: Clock> Vm<H, C> {
         for op in ops {
             let v = match *op {
                 ExprOp::Const(c) => self.module.consts.get(c.index()).copied().unwrap_or(0.0),
-                ExprOp::Field(v, f) => self.vars.get(v.0).get(f),
+                ExprOp::Field(v, f) => self.vars.field(v.0, f),
                 ExprOp::PosEq(a, b) => {
                     let (a, b) = (self.vars.get(a.0), self.vars.get(b.0));
                     let same =
@@ -355,7 +526,7 @@ impl<H: Hal, C: Clock> Vm<H, C> {
     /// Evaluates an `if` guard: fire its body, or sleep until a variable it reads
     /// changes.
     pub(super) fn check_guard(&mut self, idx: u32) {
-        let Kind::If { cond, body, fired } = self.nodes.get(idx).kind else {
+        let Kind::If { cond, fired, .. } = self.nodes.get(idx).kind else {
             return;
         };
         if fired {
@@ -372,31 +543,42 @@ impl<H: Hal, C: Clock> Vm<H, C> {
         };
         // Subscriptions persist while the guard is false: its inputs are fixed, so
         // it is woken exactly when one of them changes.
-        let mut subs = self.nodes.get(idx).subs;
         if truth {
-            self.vars.unsubscribe_all(&mut subs);
-            self.nodes.get_mut(idx).subs = subs;
-            if let Kind::If { fired, .. } = &mut self.nodes.get_mut(idx).kind {
-                *fired = true;
-            }
-            let stmt = stmt_of(self.nodes.get(idx).stmt);
-            self.push_event(stmt, EventKind::Start { iteration: None });
-            let depth = self.depth_of(idx);
-            self.start_block(idx, body, depth);
-        } else if subs == NONE {
+            self.fire_guard(idx);
+        } else if self.nodes.get(idx).subs == NONE {
+            let mut subs = NONE;
             self.subscribe_expr(idx, cond, &mut subs);
             self.nodes.get_mut(idx).subs = subs;
         }
+    }
+
+    /// A guard's condition is true: it stops listening and starts its body once.
+    fn fire_guard(&mut self, idx: u32) {
+        let Kind::If { body, .. } = self.nodes.get(idx).kind else {
+            return;
+        };
+        let mut subs = self.nodes.get(idx).subs;
+        self.vars.unsubscribe_all(&mut subs);
+        self.nodes.get_mut(idx).subs = subs;
+        self.nodes.update_kind(idx, |k| {
+            if let Kind::If { fired, .. } = k {
+                *fired = true;
+            }
+        });
+        let stmt = stmt_of(self.nodes.get(idx).stmt);
+        self.push_event(stmt, EventKind::Start { iteration: None });
+        let depth = self.depth_of(idx);
+        self.start_block(idx, body, depth);
     }
 
     fn subscribe_expr(&mut self, idx: u32, cond: u32, subs: &mut u32) {
         let ops = self.module.expr_ops(ExprId(cond));
         for i in 0..ops.len() {
             match self.module.expr_ops(ExprId(cond))[i] {
-                ExprOp::Field(v, _) => self.vars.subscribe(idx, v.0, subs),
+                ExprOp::Field(v, _) => self.vars.subscribe(idx, cond, v.0, subs),
                 ExprOp::PosEq(a, b) => {
-                    self.vars.subscribe(idx, a.0, subs);
-                    self.vars.subscribe(idx, b.0, subs);
+                    self.vars.subscribe(idx, cond, a.0, subs);
+                    self.vars.subscribe(idx, cond, b.0, subs);
                 }
                 _ => {}
             }
@@ -496,14 +678,9 @@ impl<H: Hal, C: Clock> Vm<H, C> {
                 },
             );
         }
-        let (nodes, ready) = (&mut self.nodes, &mut self.ready);
-        self.vars.for_each_subscriber(var, |n| {
-            let node = nodes.get_mut(n);
-            if !node.queued {
-                node.queued = true;
-                ready.push_back(nodes.at(n));
-            }
-        });
+        if self.vars.queue_wake(var) {
+            self.ready.push_back(Ready::Wake(var));
+        }
     }
 
     /// Ends one node: trace, variable, command-specific cleanup, unlink, free. With
@@ -650,7 +827,12 @@ impl<H: Hal, C: Clock> Vm<H, C> {
         let pat = self
             .module
             .name(crate::bytecode::NameId(pattern))
+            .trim()
             .to_lowercase();
+        // An empty pattern matches no statement (as the checker reads it), not all.
+        if pat.is_empty() {
+            return;
+        }
         let mut hits = Vec::new();
         for (i, n) in self.nodes.all.iter().enumerate() {
             if n.kind == Kind::Free || n.stmt == NONE {

@@ -1,6 +1,7 @@
 //! The VM: a tree of live commands stepped at 100 Hz. See `vm/README.md` for the order
 //! of a tick and `docs/bytecode.md` for the instructions.
 
+pub mod activity;
 pub mod clock;
 mod commands;
 pub mod config;
@@ -14,11 +15,12 @@ use std::collections::{BTreeMap, BinaryHeap, VecDeque};
 
 use ilmr_hal::{Hal, Snapshot};
 
-use crate::bytecode::{Fragment, Module, ModuleError, StmtId};
+use crate::bytecode::{BlockId, Fragment, Module, ModuleBuilder, ModuleError, StmtId};
+use activity::{Activity, REST_SPEED};
 use clock::Clock;
 use config::{Config, TraceLevel};
 use motion::Motion;
-use nodes::{Kind, NodeRef, Nodes};
+use nodes::{Class, Kind, NodeRef, Nodes};
 use trace::{Event, EventKind};
 use vars::{NONE, VarRecord, Vars};
 
@@ -33,6 +35,14 @@ struct Follower {
     spec: nodes::SensorSpec,
     /// The reading that started it, for the trace.
     stmt: u32,
+}
+
+/// A command stepped every tick: its node and, for a search, its key in
+/// `Vm::search_keys` (NONE otherwise).
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Active {
+    node: NodeRef,
+    key: u32,
 }
 
 /// `record(name)` in progress.
@@ -52,9 +62,15 @@ pub struct Vm<H: Hal, C: Clock> {
     vars: Vars,
     nodes: Nodes,
     root: u32,
-    ready: VecDeque<NodeRef>,
+    ready: VecDeque<exec::Ready>,
+    /// Reused buffer of the subscribers of a woken variable.
+    woken: Vec<(u32, u32)>,
     /// Nodes stepped every tick (sensors, searches, asynchronous operations).
-    active: Vec<NodeRef>,
+    active: Vec<Active>,
+    /// The distinct (sensor, object) name pairs of searches, and whether this tick's
+    /// detections match each.
+    search_keys: Vec<(u32, u32)>,
+    key_hit: Vec<bool>,
     /// `(due tick, sequence, node)` in a min-heap; stale entries are skipped.
     timers: BinaryHeap<std::cmp::Reverse<(u64, u64, u32, u32)>>,
     timer_seq: u64,
@@ -90,6 +106,27 @@ impl std::fmt::Display for VmError {
 
 impl std::error::Error for VmError {}
 
+/// Why [`Vm::add_line`] joined nothing.
+#[derive(Debug, Clone, PartialEq)]
+pub enum LineError<E> {
+    /// The lowering refused the line.
+    Lower(E),
+    /// What the lowering added does not validate.
+    Invalid(ModuleError),
+    /// The lowering replaced the builder it was lent.
+    Replaced,
+}
+
+impl<E: std::fmt::Display> std::fmt::Display for LineError<E> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            LineError::Lower(e) => write!(f, "{e}"),
+            LineError::Invalid(e) => write!(f, "{e}"),
+            LineError::Replaced => write!(f, "the lowering replaced the builder it was lent"),
+        }
+    }
+}
+
 impl<H: Hal, C: Clock> Vm<H, C> {
     /// Validates the module and starts the task's top-level blocks (they run from the
     /// first tick).
@@ -110,7 +147,10 @@ impl<H: Hal, C: Clock> Vm<H, C> {
             nodes,
             root,
             ready: VecDeque::new(),
+            woken: Vec::new(),
             active: Vec::new(),
+            search_keys: Vec::new(),
+            key_hit: Vec::new(),
             timers: BinaryHeap::new(),
             timer_seq: 0,
             followers: Vec::new(),
@@ -177,6 +217,28 @@ impl<H: Hal, C: Clock> Vm<H, C> {
         self.nodes.get(self.root).children == 0 && self.pending.is_empty()
     }
 
+    /// What is still live; see [`Activity`]. Costs nothing per live command.
+    pub fn activity(&self) -> Activity {
+        let c = &self.nodes.classes;
+        let running_movement = usize::from(self.motion.head.is_some_and(|h| self.nodes.alive(h)));
+        Activity {
+            running_commands: c[Class::Active as usize] + running_movement,
+            queued_movements: c[Class::Movement as usize].saturating_sub(running_movement),
+            waiting_guards: c[Class::Guard as usize],
+            sleeping: c[Class::Sleep as usize],
+            issuing_blocks: c[Class::Issuing as usize],
+            ready: self.ready.len() + self.pending.len(),
+            robot_at_rest: self.snap.speed.abs() < REST_SPEED
+                && self.motion.commanded_speed().abs() < REST_SPEED,
+        }
+    }
+
+    /// Nothing is left but waiting `if` guards and the robot is at rest (the guide's
+    /// end of a run); [`Vm::finished`] is the stricter "nothing is left at all".
+    pub fn only_guards_waiting(&self) -> bool {
+        self.activity().only_guards_waiting()
+    }
+
     /// Logical time of the current tick, seconds.
     pub fn time(&self) -> f64 {
         self.tick as f64 * self.cfg.period
@@ -197,8 +259,9 @@ impl<H: Hal, C: Clock> Vm<H, C> {
         use std::mem::size_of;
         self.nodes.footprint()
             + self.vars.footprint()
-            + self.active.capacity() * size_of::<NodeRef>()
-            + self.ready.capacity() * size_of::<NodeRef>()
+            + self.active.capacity() * size_of::<Active>()
+            + self.ready.capacity() * size_of::<exec::Ready>()
+            + self.woken.capacity() * size_of::<(u32, u32)>()
             + self.timers.capacity() * size_of::<(u64, u64, u32, u32)>()
             + self.followers.capacity() * size_of::<Follower>()
     }
@@ -250,14 +313,68 @@ impl<H: Hal, C: Clock> Vm<H, C> {
     /// VM's module) as new top-level blocks; they start at the next tick.
     pub fn add_block(&mut self, fragment: &Fragment) -> Result<(), VmError> {
         self.module.append(fragment).map_err(VmError::Module)?;
+        self.joined(fragment.start.iter().map(|b| b.0));
+        Ok(())
+    }
+
+    /// Lowers an interactive line straight into the live module: `lower` gets a
+    /// builder that owns this VM's module (moved, not copied), appends the line and
+    /// returns the blocks to start. Only what it added is validated; on any error the
+    /// module is as it was. The cost is the line's, not the program's: this is the
+    /// fast form of `ModuleBuilder::extending` + `finish_fragment` + [`Vm::add_block`],
+    /// which copies the module twice.
+    ///
+    /// `lower` must leave the builder it is given in place (a lowering that takes it
+    /// by value with `std::mem::take` puts it back); a replaced builder is refused
+    /// with [`LineError::Replaced`] and leaves the VM without its program.
+    pub fn add_line<E>(
+        &mut self,
+        lower: impl FnOnce(&mut ModuleBuilder) -> Result<Vec<BlockId>, E>,
+    ) -> Result<(), LineError<E>> {
+        let base = self.module.counts();
+        let live = std::mem::replace(&mut self.module, ModuleBuilder::new().into_extended().0);
+        let mut b = ModuleBuilder::lent(live);
+        let lowered = lower(&mut b);
+        let (module, lent) = b.into_extended();
+        self.module = module;
+        if lent != Some(base) {
+            return Err(LineError::Replaced);
+        }
+        let start = match lowered {
+            Ok(start) => start,
+            Err(e) => {
+                self.module.truncate(&base);
+                return Err(LineError::Lower(e));
+            }
+        };
+        let checked = self.module.validate_from(&base).and_then(|()| {
+            match start.iter().find(|b| b.index() >= self.module.blocks.len()) {
+                Some(b) => Err(ModuleError::Index {
+                    what: "line start block",
+                    index: b.0,
+                    len: self.module.blocks.len(),
+                }),
+                None => Ok(()),
+            }
+        });
+        if let Err(e) = checked {
+            self.module.truncate(&base);
+            return Err(LineError::Invalid(e));
+        }
+        self.joined(start.iter().map(|b| b.0));
+        Ok(())
+    }
+
+    /// The module grew: size the variables and the lower-case texts to it, and queue
+    /// the new top-level blocks.
+    fn joined(&mut self, start: impl Iterator<Item = u32>) {
         self.vars.grow(self.module.globals.len());
         self.lower.extend(
             self.module.stmts[self.lower.len()..]
                 .iter()
                 .map(|s| s.text.to_lowercase()),
         );
-        self.pending.extend(fragment.start.iter().map(|b| b.0));
-        Ok(())
+        self.pending.extend(start);
     }
 
     fn start_pending(&mut self) {

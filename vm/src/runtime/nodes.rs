@@ -18,6 +18,9 @@ pub(crate) struct BlockState {
     pub issued: bool,
     /// Skill call depth.
     pub depth: u16,
+    /// The first block of a skill call: it continues its caller's strand, so when it
+    /// has issued its last statement the calling block goes on at once, in line.
+    pub inline: bool,
 }
 
 /// A movement's evaluated arguments. Stored as f32 (sub-millimetre over kilometres)
@@ -188,11 +191,51 @@ pub(crate) struct NodeRef {
     pub epoch: u32,
 }
 
+/// What a live node is doing, for [`crate::runtime::Activity`]: a pure function of
+/// its kind, counted as nodes are allocated, change state and are freed.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Class {
+    /// The root, a fired `if`, a `while`, a skill call, a block that has issued
+    /// everything: alive only through what they contain.
+    Container,
+    /// A block with statements left to issue (running, queued or held).
+    Issuing,
+    /// An `if` that has not fired.
+    Guard,
+    /// `wait(seconds)`, `wait(v)`.
+    Sleep,
+    Movement,
+    /// Readings, searches, asynchronous operations, `speed(v,w)`.
+    Active,
+}
+
+impl Class {
+    pub const COUNT: usize = 6;
+
+    pub fn of(kind: &Kind) -> Option<Class> {
+        Some(match kind {
+            Kind::Free => return None,
+            Kind::Block(b) if !b.issued => Class::Issuing,
+            Kind::If { fired: false, .. } => Class::Guard,
+            Kind::Root
+            | Kind::Block(_)
+            | Kind::If { .. }
+            | Kind::While { .. }
+            | Kind::Call { .. } => Class::Container,
+            Kind::WaitTime | Kind::WaitVar { .. } => Class::Sleep,
+            Kind::Movement { .. } => Class::Movement,
+            Kind::Sensor { .. } | Kind::Async { .. } | Kind::SpeedAfter { .. } => Class::Active,
+        })
+    }
+}
+
 #[derive(Debug, Default)]
 pub(crate) struct Nodes {
     pub all: Vec<Node>,
     free: Vec<u32>,
     pub live: usize,
+    /// Live nodes per [`Class`].
+    pub classes: [usize; Class::COUNT],
 }
 
 impl Nodes {
@@ -211,6 +254,7 @@ impl Nodes {
         n.bind = bind;
         n.kind = kind;
         self.all[idx as usize] = n;
+        self.count(&kind, 1);
         if parent != NONE {
             self.link(parent, idx);
         }
@@ -261,7 +305,28 @@ impl Nodes {
         self.all[parent as usize].children = self.all[parent as usize].children.saturating_sub(1);
     }
 
+    fn count(&mut self, kind: &Kind, up: isize) {
+        if let Some(c) = Class::of(kind) {
+            let n = &mut self.classes[c as usize];
+            *n = n.saturating_add_signed(up);
+        }
+    }
+
+    /// Changes a node's kind in place (a guard fires, a block has issued everything),
+    /// keeping the class counts.
+    pub fn update_kind(&mut self, idx: u32, f: impl FnOnce(&mut Kind)) {
+        let before = self.all[idx as usize].kind;
+        f(&mut self.all[idx as usize].kind);
+        let after = self.all[idx as usize].kind;
+        if Class::of(&before) != Class::of(&after) {
+            self.count(&before, -1);
+            self.count(&after, 1);
+        }
+    }
+
     pub fn free(&mut self, idx: u32) {
+        let kind = self.all[idx as usize].kind;
+        self.count(&kind, -1);
         let n = &mut self.all[idx as usize];
         n.epoch = n.epoch.wrapping_add(1);
         n.kind = Kind::Free;

@@ -3,6 +3,8 @@
 
 use std::fmt::Write;
 
+use ilmr_motion::obstacle::AvoidState;
+
 use crate::bytecode::{Module, StmtId, VarId};
 
 use super::vars::{FIELDS, FieldMask, How, VarRecord};
@@ -34,6 +36,11 @@ pub enum EventKind {
         /// Ground truth (`true`) or the robot's estimate.
         truth: bool,
     },
+    /// Obstacle avoidance changed state while the movement ran (section 4.5.7):
+    /// `avoiding` (it drives round an obstacle, the movement's output suppressed),
+    /// `returning` (back to the reference after the security wait), `normal`,
+    /// `blocked` (halted: `obsavoid(stop)`, or no way round).
+    Avoid { state: AvoidState },
     /// A block ran out of the tick's budget and was suspended.
     Overrun { pending: u32 },
     /// A runtime error that ended no command (a division by zero, a HAL call failing).
@@ -57,6 +64,7 @@ impl EventKind {
             EventKind::End { .. } => "end",
             EventKind::Var { .. } => "var",
             EventKind::Pose { .. } => "pose",
+            EventKind::Avoid { .. } => "avoid",
             EventKind::Overrun { .. } => "overrun",
             EventKind::Error { .. } => "error",
         }
@@ -172,6 +180,15 @@ pub fn render_event(m: &Module, e: &Event) -> String {
                 fmt_num(*curvature),
                 if *truth { "true" } else { "estimated" }
             );
+        }
+        EventKind::Avoid { state } => {
+            let name = match state {
+                AvoidState::Normal => "normal",
+                AvoidState::Avoiding => "avoiding",
+                AvoidState::Returning => "returning",
+                AvoidState::Blocked => "blocked",
+            };
+            let _ = write!(o, ",\"state\":\"{name}\"");
         }
         EventKind::Overrun { pending } => {
             let _ = write!(o, ",\"pending\":{pending}");

@@ -100,16 +100,33 @@ impl VarRecord {
 #[derive(Debug, Clone, Copy)]
 struct Sub {
     node: u32,
+    /// The guard's condition, so that waking evaluates it without touching the
+    /// node; NONE for a `wait(v)`.
+    cond: u32,
     var: u32,
     prev: u32,
     next: u32,
     next_of_node: u32,
 }
 
+/// A variable's subscription list, and whether a wake of it is queued.
+#[derive(Debug, Clone, Copy)]
+struct Head {
+    first: u32,
+    last: u32,
+    queued: bool,
+}
+
+const EMPTY: Head = Head {
+    first: NONE,
+    last: NONE,
+    queued: false,
+};
+
 #[derive(Debug, Default)]
 pub(crate) struct Vars {
     pub records: Vec<VarRecord>,
-    heads: Vec<(u32, u32)>,
+    heads: Vec<Head>,
     subs: Vec<Sub>,
     free_subs: u32,
 }
@@ -118,7 +135,7 @@ impl Vars {
     pub fn new(n: usize) -> Vars {
         Vars {
             records: vec![VarRecord::default(); n],
-            heads: vec![(NONE, NONE); n],
+            heads: vec![EMPTY; n],
             subs: Vec::new(),
             free_subs: NONE,
         }
@@ -127,19 +144,51 @@ impl Vars {
     pub fn footprint(&self) -> usize {
         use std::mem::size_of;
         self.records.capacity() * size_of::<VarRecord>()
-            + self.heads.capacity() * size_of::<(u32, u32)>()
+            + self.heads.capacity() * size_of::<Head>()
             + self.subs.capacity() * size_of::<Sub>()
     }
 
     pub fn grow(&mut self, n: usize) {
         if n > self.records.len() {
             self.records.resize(n, VarRecord::default());
-            self.heads.resize(n, (NONE, NONE));
+            self.heads.resize(n, EMPTY);
         }
     }
 
     pub fn get(&self, v: u32) -> VarRecord {
         self.records.get(v as usize).copied().unwrap_or_default()
+    }
+
+    /// One field, without copying the record (expressions).
+    #[inline]
+    pub fn field(&self, v: u32, f: Field) -> f64 {
+        self.records.get(v as usize).map_or(0.0, |r| r.get(f))
+    }
+
+    /// Marks a wake of `v` as queued; returns false if one already was.
+    pub fn queue_wake(&mut self, v: u32) -> bool {
+        match self.heads.get_mut(v as usize) {
+            Some(h) if !h.queued && h.first != NONE => {
+                h.queued = true;
+                true
+            }
+            _ => false,
+        }
+    }
+
+    /// Takes the queued wake of `v`: appends `(node, cond)` of every subscriber, in
+    /// subscription order, to `out`.
+    pub fn take_wake(&mut self, v: u32, out: &mut Vec<(u32, u32)>) {
+        let Some(h) = self.heads.get_mut(v as usize) else {
+            return;
+        };
+        h.queued = false;
+        let mut id = h.first;
+        while id != NONE {
+            let s = &self.subs[id as usize];
+            out.push((s.node, s.cond));
+            id = s.next;
+        }
     }
 
     /// Writes one field; returns whether it changed.
@@ -177,13 +226,15 @@ impl Vars {
         mask
     }
 
-    /// Subscribes `node` to changes of `var`; `node_head` is the node's list head.
-    pub fn subscribe(&mut self, node: u32, var: u32, node_head: &mut u32) {
-        let Some(&(_, tail)) = self.heads.get(var as usize) else {
+    /// Subscribes `node` to changes of `var`; `node_head` is the node's list head,
+    /// `cond` the guard's condition (NONE for a wait).
+    pub fn subscribe(&mut self, node: u32, cond: u32, var: u32, node_head: &mut u32) {
+        let Some(tail) = self.heads.get(var as usize).map(|h| h.last) else {
             return;
         };
         let sub = Sub {
             node,
+            cond,
             var,
             prev: tail,
             next: NONE,
@@ -201,9 +252,9 @@ impl Vars {
         if tail != NONE {
             self.subs[tail as usize].next = id;
         } else {
-            self.heads[var as usize].0 = id;
+            self.heads[var as usize].first = id;
         }
-        self.heads[var as usize].1 = id;
+        self.heads[var as usize].last = id;
         *node_head = id;
     }
 
@@ -215,12 +266,12 @@ impl Vars {
             if s.prev != NONE {
                 self.subs[s.prev as usize].next = s.next;
             } else {
-                self.heads[s.var as usize].0 = s.next;
+                self.heads[s.var as usize].first = s.next;
             }
             if s.next != NONE {
                 self.subs[s.next as usize].prev = s.prev;
             } else {
-                self.heads[s.var as usize].1 = s.prev;
+                self.heads[s.var as usize].last = s.prev;
             }
             self.subs[id as usize].next = self.free_subs;
             self.free_subs = id;
@@ -231,7 +282,7 @@ impl Vars {
 
     /// Calls `f` for every node subscribed to `var`, in subscription order.
     pub fn for_each_subscriber(&self, var: u32, mut f: impl FnMut(u32)) {
-        let mut id = self.heads.get(var as usize).map_or(NONE, |h| h.0);
+        let mut id = self.heads.get(var as usize).map_or(NONE, |h| h.first);
         while id != NONE {
             let s = &self.subs[id as usize];
             f(s.node);
@@ -248,9 +299,9 @@ mod tests {
     fn subscriptions_wake_in_order_and_drop_per_node() {
         let mut vars = Vars::new(2);
         let (mut a, mut b) = (NONE, NONE);
-        vars.subscribe(10, 0, &mut a);
-        vars.subscribe(11, 0, &mut b);
-        vars.subscribe(10, 1, &mut a);
+        vars.subscribe(10, NONE, 0, &mut a);
+        vars.subscribe(11, NONE, 0, &mut b);
+        vars.subscribe(10, NONE, 1, &mut a);
         let mut seen = Vec::new();
         vars.for_each_subscriber(0, |n| seen.push(n));
         assert_eq!(seen, vec![10, 11]);
@@ -260,7 +311,7 @@ mod tests {
         vars.for_each_subscriber(1, |n| seen.push(n));
         assert_eq!(seen, vec![11]);
         // Freed records are reused.
-        vars.subscribe(12, 1, &mut a);
+        vars.subscribe(12, NONE, 1, &mut a);
         assert!(vars.subs.len() <= 3);
     }
 }

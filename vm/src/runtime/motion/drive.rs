@@ -15,6 +15,7 @@ use super::mpose;
 use crate::runtime::Vm;
 use crate::runtime::clock::Clock;
 use crate::runtime::stmt_of;
+use crate::runtime::trace::EventKind;
 use crate::runtime::vars::{How, NONE};
 
 /// At a cusp of an `r` manoeuvre the robot has stopped when this close, m,
@@ -107,6 +108,7 @@ impl<H: Hal, C: Clock> Vm<H, C> {
             dt,
         });
         let (halt, obs_control) = (decision.halt, decision.obs_control);
+        let avoid_state = decision.state;
         match decision.detour {
             Some(d) if run.detour.as_ref().is_none_or(|(p, _)| p != d) => {
                 run.detour = Some((d.clone(), 0));
@@ -179,6 +181,11 @@ impl<H: Hal, C: Clock> Vm<H, C> {
         }
         self.motion.v = v;
         self.motion.c = c;
+        if avoid_state != self.motion.avoid_state {
+            self.motion.avoid_state = avoid_state;
+            let stmt = stmt_of(self.nodes.get(head.idx).stmt);
+            self.push_event(stmt, EventKind::Avoid { state: avoid_state });
+        }
 
         if let Err(e) = self.hal.set_motion(sign * v, c) {
             let stmt = stmt_of(self.nodes.get(head.idx).stmt);

@@ -14,7 +14,7 @@ mod plan;
 use std::collections::VecDeque;
 
 use ilmr_hal::Hal;
-use ilmr_motion::obstacle::{AreaParams, AvoidMode, AvoidParams, Avoider, SideParams};
+use ilmr_motion::obstacle::{AreaParams, AvoidMode, AvoidParams, AvoidState, Avoider, SideParams};
 use ilmr_motion::path::JOIN_TOLERANCE;
 use ilmr_motion::{Path, Pose, Side};
 use nalgebra::Point2;
@@ -112,6 +112,8 @@ pub(crate) struct Motion {
     pub use_goalpos: bool,
     pub advance_stop: Option<f64>,
     avoider: Avoider,
+    /// The avoider's state as last traced.
+    pub avoid_state: AvoidState,
     map: EnvMap,
     /// Speed magnitude and curvature commanded last tick: the controller's
     /// v and c_now.
@@ -161,11 +163,17 @@ impl Motion {
             use_goalpos: false,
             advance_stop: None,
             avoider: Avoider::new(AvoidMode::Off, avoid_params(cfg)),
+            avoid_state: AvoidState::Normal,
             map: EnvMap::default(),
             v: 0.0,
             c: 0.0,
             idle: true,
         }
+    }
+
+    /// The speed magnitude commanded last tick, m/s.
+    pub fn commanded_speed(&self) -> f64 {
+        if self.idle { 0.0 } else { self.v }
     }
 
     /// `locate(..)` moved the robot's frame: the map's points are in the old one.
