@@ -1,19 +1,61 @@
 //! The robots `ilmrc run` can drive. Every backend is a [`Hal`]; the run loop sees only
-//! [`Robot`], so a simulated robot (`--robot moro|workpartner`, from `ilmr-sim`) plugs in
-//! here as one more arm of [`open`].
+//! [`Robot`]: the HAL, plus what a run records of a robot that has a world around it.
 
-use ilmr_hal::{
-    AsyncOp, BodyPose, Hal, HalError, Limits, OpId, OpStatus, Pose, ScriptedRobot, Snapshot,
-};
-use ilmr_model::RobotModel;
-use ilmr_vm::Config;
-
-use super::scenario::Scenario;
+use ilmr_hal::{AsyncOp, BodyPose, Hal, HalError, OpId, OpStatus, Pose, ScriptedRobot, Snapshot};
+use ilmr_sim::SimRobot;
 
 /// What the run loop needs beyond the HAL: whether the robot has come to rest, since a
-/// run does not end while it still moves.
+/// run does not end while it still moves, and, for a simulated robot, the ground truth
+/// that the trace, the plot and the summary show.
 pub trait Robot: Hal {
     fn at_rest(&self) -> bool;
+
+    /// Where the robot really is, in the world frame; `None` without a world.
+    fn true_pose(&self) -> Option<Pose> {
+        None
+    }
+
+    /// Ground speed and curvature, m/s and 1/m; `None` without a world.
+    fn true_motion(&self) -> Option<(f64, f64)> {
+        None
+    }
+
+    /// The scan that arrived since the last call, placed in the world.
+    fn new_scan(&mut self) -> Option<WorldScan> {
+        None
+    }
+
+    /// Times the robot has run into something.
+    fn contacts(&self) -> u64 {
+        0
+    }
+}
+
+/// A laser scan with its origin in the world frame (where the beams were cast from).
+#[derive(Debug, Clone, PartialEq)]
+pub struct WorldScan {
+    pub t: f64,
+    /// The scanner's pose in the world; beam `i` points at `origin.h + angle_min + i * angle_step`.
+    pub origin: Pose,
+    pub angle_min: f64,
+    pub angle_step: f64,
+    pub max_range: f64,
+    /// Metres; `max_range` where a beam found nothing.
+    pub ranges: Vec<f64>,
+}
+
+impl WorldScan {
+    /// The points the beams hit, in the world frame.
+    pub fn hits(&self) -> impl Iterator<Item = (f64, f64)> + '_ {
+        self.ranges
+            .iter()
+            .enumerate()
+            .filter(|(_, r)| **r < self.max_range && **r > 0.0)
+            .map(|(i, &r)| {
+                let a = self.origin.h + self.angle_min + i as f64 * self.angle_step;
+                (self.origin.x + r * a.cos(), self.origin.y + r * a.sin())
+            })
+    }
 }
 
 impl Robot for ScriptedRobot {
@@ -21,6 +63,96 @@ impl Robot for ScriptedRobot {
         self.speed().abs() < 1e-9
     }
 }
+
+/// The simulated robot, with the sequence number of the last scan handed out.
+pub struct Simulated {
+    pub robot: SimRobot,
+    seen_scan: Option<u64>,
+}
+
+impl Simulated {
+    pub fn new(robot: SimRobot) -> Simulated {
+        Simulated {
+            robot,
+            seen_scan: None,
+        }
+    }
+}
+
+impl Robot for Simulated {
+    fn at_rest(&self) -> bool {
+        self.robot.sim().true_speed().abs() < 1e-6
+    }
+
+    fn true_pose(&self) -> Option<Pose> {
+        Some(self.robot.true_pose())
+    }
+
+    fn true_motion(&self) -> Option<(f64, f64)> {
+        let sim = self.robot.sim();
+        Some((sim.true_speed(), sim.true_curvature()))
+    }
+
+    fn new_scan(&mut self) -> Option<WorldScan> {
+        let scan = self.robot.sim().snapshot().scan?;
+        if self.seen_scan == Some(scan.seq) {
+            return None;
+        }
+        self.seen_scan = Some(scan.seq);
+        // The beams were cast from the true pose of the step the scan was taken in,
+        // which is this tick's: the robot steps in lockstep with the VM.
+        let p = self.robot.sim().true_pose();
+        let o = p.transform(scan.mount);
+        Some(WorldScan {
+            t: scan.time,
+            origin: Pose::new(o.x, o.y, p.h),
+            angle_min: scan.angle_min,
+            angle_step: scan.angle_increment,
+            max_range: scan.max_range,
+            ranges: scan.ranges.clone(),
+        })
+    }
+
+    fn contacts(&self) -> u64 {
+        self.robot.sim().contact_count()
+    }
+}
+
+macro_rules! forward_hal {
+    ($ty:ty, $($field:tt).+) => {
+        impl Hal for $ty {
+            fn update(&mut self, t: f64) -> Result<(), HalError> {
+                self.$($field).+.update(t)
+            }
+            fn snapshot(&mut self, out: &mut Snapshot) -> Result<(), HalError> {
+                self.$($field).+.snapshot(out)
+            }
+            fn set_motion(&mut self, speed: f64, curvature: f64) -> Result<(), HalError> {
+                self.$($field).+.set_motion(speed, curvature)
+            }
+            fn actuator(&mut self, id: &str, value: f64) -> Result<(), HalError> {
+                self.$($field).+.actuator(id, value)
+            }
+            fn locmode(&mut self, mode: &str) -> Result<(), HalError> {
+                self.$($field).+.locmode(mode)
+            }
+            fn bodypose(&mut self, pose: BodyPose) -> Result<(), HalError> {
+                self.$($field).+.bodypose(pose)
+            }
+            fn locate(&mut self, pose: Pose) -> Result<(), HalError> {
+                self.$($field).+.locate(pose)
+            }
+            fn start(&mut self, op: &AsyncOp) -> Result<OpId, HalError> {
+                self.$($field).+.start(op)
+            }
+            fn poll(&mut self, op: OpId) -> Result<OpStatus, HalError> {
+                self.$($field).+.poll(op)
+            }
+        }
+    };
+}
+
+forward_hal!(Simulated, robot);
 
 /// `--robot none`: nothing to move or read. The checker has refused every command that
 /// would ask for something; a bare `break` still commands speed 0, which is granted.
@@ -83,33 +215,11 @@ impl Robot for NoRobot {
 /// A backend chosen at run time, behind one type for the VM.
 pub struct AnyRobot(Box<dyn Robot>);
 
-impl Hal for AnyRobot {
-    fn update(&mut self, t: f64) -> Result<(), HalError> {
-        self.0.update(t)
-    }
-    fn snapshot(&mut self, out: &mut Snapshot) -> Result<(), HalError> {
-        self.0.snapshot(out)
-    }
-    fn set_motion(&mut self, speed: f64, curvature: f64) -> Result<(), HalError> {
-        self.0.set_motion(speed, curvature)
-    }
-    fn actuator(&mut self, id: &str, value: f64) -> Result<(), HalError> {
-        self.0.actuator(id, value)
-    }
-    fn locmode(&mut self, mode: &str) -> Result<(), HalError> {
-        self.0.locmode(mode)
-    }
-    fn bodypose(&mut self, pose: BodyPose) -> Result<(), HalError> {
-        self.0.bodypose(pose)
-    }
-    fn locate(&mut self, pose: Pose) -> Result<(), HalError> {
-        self.0.locate(pose)
-    }
-    fn start(&mut self, op: &AsyncOp) -> Result<OpId, HalError> {
-        self.0.start(op)
-    }
-    fn poll(&mut self, op: OpId) -> Result<OpStatus, HalError> {
-        self.0.poll(op)
+forward_hal!(AnyRobot, 0);
+
+impl AnyRobot {
+    pub fn new(robot: impl Robot + 'static) -> AnyRobot {
+        AnyRobot(Box::new(robot))
     }
 }
 
@@ -117,63 +227,16 @@ impl Robot for AnyRobot {
     fn at_rest(&self) -> bool {
         self.0.at_rest()
     }
-}
-
-#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
-pub enum Backend {
-    /// No robot: only control flow, arithmetic, waits and skills.
-    None,
-    /// The deterministic scripted robot of `ilmr-hal`, driven by `--scenario`.
-    Scripted,
-}
-
-/// Opens a backend for a run. `seed` is for backends with noise; the scripted robot
-/// has none and replays its scenario exactly.
-pub fn open(
-    backend: Backend,
-    model: &RobotModel,
-    scenario: &Scenario,
-    _seed: u64,
-) -> Result<AnyRobot, String> {
-    match backend {
-        Backend::None => {
-            if scenario.drives_a_robot() {
-                return Err(
-                    "the scenario scripts a robot, but the task runs with --robot none".into(),
-                );
-            }
-            Ok(AnyRobot(Box::new(NoRobot)))
-        }
-        Backend::Scripted => Ok(AnyRobot(Box::new(scenario.robot(limits(model))?))),
+    fn true_pose(&self) -> Option<Pose> {
+        self.0.true_pose()
     }
-}
-
-/// The scripted robot moves within the model's limits.
-fn limits(model: &RobotModel) -> Limits {
-    Limits {
-        acceleration: model.max_acceleration(),
-        deceleration: model.max_deceleration(),
-        curvature_rate: model.curinc(),
-        max_curvature: model.max_curvature(),
-        max_speed: model.max_speed(),
+    fn true_motion(&self) -> Option<(f64, f64)> {
+        self.0.true_motion()
     }
-}
-
-/// The VM's physical tunables from the robot model (each `Config` field names the
-/// ROBO.INI parameter it stands for).
-pub fn config(model: &RobotModel) -> Config {
-    let base = Config::default();
-    Config {
-        default_speed: model.default_speed(),
-        max_curvature: model.max_curvature(),
-        curinc: model.curinc(),
-        turn_curvature: base.turn_curvature.min(model.max_curvature()),
-        acceleration: model.max_acceleration(),
-        deceleration: model.max_deceleration(),
-        robot_width: model.robot_width(),
-        robot_length: model.robot_length(),
-        followwall_d: model.followwall_d(),
-        obstacle_curvature: model.omax_curvature(),
-        ..base
+    fn new_scan(&mut self) -> Option<WorldScan> {
+        self.0.new_scan()
+    }
+    fn contacts(&self) -> u64 {
+        self.0.contacts()
     }
 }

@@ -112,6 +112,14 @@ impl Scenario {
             || !self.paths.is_empty()
     }
 
+    /// Whether anything here stands in for a world (what a simulated robot senses).
+    pub fn scripts_the_world(&self) -> bool {
+        self.start.is_some()
+            || !self.readings.is_empty()
+            || !self.sightings.is_empty()
+            || !self.ops.is_empty()
+    }
+
     pub fn robot(&self, limits: Limits) -> Result<ScriptedRobot, String> {
         let mut r = ScriptedRobot::new(limits);
         if let Some(s) = self.start {

@@ -1,0 +1,298 @@
+//! `--mcap OUT.mcap`: the run for Foxglove. JSON messages with Foxglove's well-known
+//! schemas (copied from `@foxglove/schemas` 2.1.0 into `schemas/`) where one fits:
+//!
+//! | topic | schema | what |
+//! | --- | --- | --- |
+//! | `/world` | `foxglove.SceneUpdate` | walls, obstacles and boxes as cubes and cylinders, once at t = 0 |
+//! | `/pose` | `foxglove.PoseInFrame` | the true pose, at the trace's pose samples |
+//! | `/motion` | `ilmr.Motion` | speed and curvature at the same samples, for Foxglove's plot panel |
+//! | `/scan` | `foxglove.LaserScan` | every scan, placed at the scanner's true pose |
+//! | `/commands` | `foxglove.Log` | issue, start, end, overrun and error events with their source line |
+//!
+//! Everything is in frame `world`; log time is the run's logical time, so the file is
+//! the same for the same task, robot, world and seed.
+
+use std::collections::BTreeMap;
+use std::fs::File;
+use std::io::BufWriter;
+use std::path::{Path, PathBuf};
+
+use ilmr_sim::World;
+use ilmr_sim::geometry::Shape;
+use ilmr_vm::{Event, EventKind, How, Module};
+use mcap::records::MessageHeader;
+use serde_json::{Value, json};
+
+use super::backend::WorldScan;
+use super::setup::LoadedWorld;
+
+const FRAME: &str = "world";
+
+const MOTION_SCHEMA: &str = r#"{"title":"ilmr.Motion","description":"The robot's speed and curvature","type":"object","properties":{"timestamp":{"type":"object","title":"time","properties":{"sec":{"type":"integer","minimum":0},"nsec":{"type":"integer","minimum":0,"maximum":999999999}}},"speed":{"type":"number","description":"m/s"},"curvature":{"type":"number","description":"1/m"}}}"#;
+
+/// Topic, schema name and schema text of each channel, in channel order.
+const CHANNELS: [(&str, &str, &str); 5] = [
+    (
+        "/world",
+        "foxglove.SceneUpdate",
+        include_str!("schemas/foxglove.SceneUpdate.json"),
+    ),
+    (
+        "/pose",
+        "foxglove.PoseInFrame",
+        include_str!("schemas/foxglove.PoseInFrame.json"),
+    ),
+    ("/motion", "ilmr.Motion", MOTION_SCHEMA),
+    (
+        "/scan",
+        "foxglove.LaserScan",
+        include_str!("schemas/foxglove.LaserScan.json"),
+    ),
+    (
+        "/commands",
+        "foxglove.Log",
+        include_str!("schemas/foxglove.Log.json"),
+    ),
+];
+
+#[derive(Clone, Copy)]
+enum Topic {
+    World = 0,
+    Pose,
+    Motion,
+    Scan,
+    Commands,
+}
+
+pub struct McapOut {
+    path: PathBuf,
+    writer: mcap::Writer<BufWriter<File>>,
+    channels: Vec<u16>,
+    sequence: u32,
+    task: String,
+}
+
+fn stamp(t: f64) -> Value {
+    let ns = nanos(t);
+    json!({"sec": ns / 1_000_000_000, "nsec": ns % 1_000_000_000})
+}
+
+fn nanos(t: f64) -> u64 {
+    (t.max(0.0) * 1e9).round() as u64
+}
+
+fn pose(x: f64, y: f64, h: f64) -> Value {
+    json!({
+        "position": {"x": x, "y": y, "z": 0.0},
+        "orientation": {"x": 0.0, "y": 0.0, "z": (h / 2.0).sin(), "w": (h / 2.0).cos()}
+    })
+}
+
+impl McapOut {
+    pub fn create(
+        path: &Path,
+        world: Option<&LoadedWorld>,
+        task: &Path,
+    ) -> Result<McapOut, String> {
+        let file = File::create(path)
+            .map_err(|e| format!("cannot write MCAP `{}`: {e}", path.display()))?;
+        let options = mcap::WriteOptions::new().compression(None).profile("");
+        let mut writer = mcap::Writer::with_options(BufWriter::new(file), options)
+            .map_err(|e| format!("cannot write MCAP `{}`: {e}", path.display()))?;
+        let mut channels = Vec::new();
+        for (topic, name, schema) in CHANNELS {
+            let schema_id = writer
+                .add_schema(name, "jsonschema", schema.trim_end().as_bytes())
+                .map_err(|e| e.to_string())?;
+            let channel = writer
+                .add_channel(schema_id, topic, "json", &BTreeMap::new())
+                .map_err(|e| e.to_string())?;
+            channels.push(channel);
+        }
+        let mut out = McapOut {
+            path: path.to_path_buf(),
+            writer,
+            channels,
+            sequence: 0,
+            task: task.display().to_string(),
+        };
+        if let Some(w) = world {
+            out.write(Topic::World, 0.0, &scene(&w.world))?;
+        }
+        Ok(out)
+    }
+
+    fn write(&mut self, topic: Topic, t: f64, message: &Value) -> Result<(), String> {
+        self.sequence += 1;
+        let header = MessageHeader {
+            channel_id: self.channels[topic as usize],
+            sequence: self.sequence,
+            log_time: nanos(t),
+            publish_time: nanos(t),
+        };
+        let data = serde_json::to_vec(message).map_err(|e| e.to_string())?;
+        self.writer
+            .write_to_known_channel(&header, &data)
+            .map_err(|e| format!("cannot write MCAP `{}`: {e}", self.path.display()))
+    }
+
+    /// The tick's events and scan.
+    pub fn tick(
+        &mut self,
+        module: &Module,
+        events: &[Event],
+        scan: Option<&WorldScan>,
+    ) -> Result<(), String> {
+        for e in events {
+            match &e.kind {
+                EventKind::Pose {
+                    x,
+                    y,
+                    h,
+                    speed,
+                    curvature,
+                    ..
+                } => {
+                    let p = json!({"timestamp": stamp(e.t), "frame_id": FRAME, "pose": pose(*x, *y, *h)});
+                    self.write(Topic::Pose, e.t, &p)?;
+                    let m =
+                        json!({"timestamp": stamp(e.t), "speed": speed, "curvature": curvature});
+                    self.write(Topic::Motion, e.t, &m)?;
+                }
+                EventKind::Var { .. } => {}
+                _ => {
+                    let log = self.log(module, e);
+                    self.write(Topic::Commands, e.t, &log)?;
+                }
+            }
+        }
+        if let Some(s) = scan {
+            let end = s.angle_min + s.angle_step * (s.ranges.len().saturating_sub(1)) as f64;
+            let m = json!({
+                "timestamp": stamp(s.t),
+                "frame_id": FRAME,
+                "pose": pose(s.origin.x, s.origin.y, s.origin.h),
+                "start_angle": s.angle_min,
+                "end_angle": end,
+                "ranges": s.ranges,
+                "intensities": [],
+            });
+            self.write(Topic::Scan, s.t, &m)?;
+        }
+        Ok(())
+    }
+
+    fn log(&self, module: &Module, e: &Event) -> Value {
+        let stmt = e.stmt.and_then(|s| module.stmt(s));
+        let (level, what) = match &e.kind {
+            EventKind::End {
+                how: How::Refused,
+                reason,
+                ..
+            } => (
+                3,
+                format!(
+                    "refused{}",
+                    reason
+                        .as_ref()
+                        .map(|r| format!(": {r}"))
+                        .unwrap_or_default()
+                ),
+            ),
+            EventKind::End { how, linked, .. } => (
+                2,
+                format!(
+                    "end {}{}",
+                    how.name(),
+                    if *linked { " (linked)" } else { "" }
+                ),
+            ),
+            EventKind::Error { message } => (4, format!("error: {message}")),
+            EventKind::Overrun { pending } => (3, format!("overrun, {pending} pending")),
+            other => (2, other.name().to_string()),
+        };
+        let message = match stmt {
+            Some(s) => format!("{what}: {}", s.text),
+            None => what,
+        };
+        let file = stmt
+            .and_then(|s| module.files.get(s.file.0 as usize))
+            .cloned()
+            .unwrap_or_else(|| self.task.clone());
+        json!({
+            "timestamp": stamp(e.t),
+            "level": level,
+            "message": message,
+            "name": "ilmr",
+            "file": file,
+            "line": stmt.map_or(0, |s| s.line),
+        })
+    }
+
+    pub fn finish(mut self) -> Result<(), String> {
+        self.writer
+            .finish()
+            .map_err(|e| format!("cannot write MCAP `{}`: {e}", self.path.display()))?;
+        Ok(())
+    }
+}
+
+/// The world's solids as a scene: walls, obstacles and boxes as cubes, round things as
+/// cylinders, 1 m high.
+fn scene(w: &World) -> Value {
+    let grey = json!({"r": 0.55, "g": 0.55, "b": 0.55, "a": 1.0});
+    let cube = |center: ilmr_sim::Vec2, heading: f64, length: f64, width: f64| {
+        json!({
+            "pose": pose_z(center.x, center.y, 0.5, heading),
+            "size": {"x": length, "y": width, "z": 1.0},
+            "color": grey,
+        })
+    };
+    let mut cubes = Vec::new();
+    let mut cylinders = Vec::new();
+    for wall in &w.walls {
+        for &(a, b) in &wall.pieces {
+            let mid = ilmr_sim::Vec2::new((a.x + b.x) / 2.0, (a.y + b.y) / 2.0);
+            let h = (b.y - a.y).atan2(b.x - a.x);
+            cubes.push(cube(mid, h, a.distance(b), wall.thickness));
+        }
+    }
+    let mut obb = |o: &ilmr_sim::geometry::Obb| {
+        let h = o.axis.y.atan2(o.axis.x);
+        cubes.push(cube(o.center, h, 2.0 * o.half.x, 2.0 * o.half.y));
+    };
+    for o in &w.obstacles {
+        match o {
+            Shape::Box(b) => obb(b),
+            Shape::Circle(c) => cylinders.push(json!({
+                "pose": pose_z(c.center.x, c.center.y, 0.5, 0.0),
+                "size": {"x": 2.0 * c.radius, "y": 2.0 * c.radius, "z": 1.0},
+                "bottom_scale": 1.0, "top_scale": 1.0,
+                "color": grey,
+            })),
+        }
+    }
+    for b in &w.pickup_boxes {
+        obb(&b.shape);
+    }
+    json!({
+        "deletions": [],
+        "entities": [{
+            "timestamp": stamp(0.0),
+            "frame_id": FRAME,
+            "id": w.name,
+            "lifetime": {"sec": 0, "nsec": 0},
+            "frame_locked": false,
+            "metadata": [],
+            "arrows": [], "cubes": cubes, "spheres": [], "cylinders": cylinders,
+            "lines": [], "triangles": [], "texts": [], "models": [],
+        }],
+    })
+}
+
+fn pose_z(x: f64, y: f64, z: f64, h: f64) -> Value {
+    json!({
+        "position": {"x": x, "y": y, "z": z},
+        "orientation": {"x": 0.0, "y": 0.0, "z": (h / 2.0).sin(), "w": (h / 2.0).cos()}
+    })
+}

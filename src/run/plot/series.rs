@@ -1,0 +1,76 @@
+//! Speed and curvature over time (Figure 54), from the trace's pose samples, with a
+//! tick on the time axis where each movement command started.
+
+use plotters::coord::Shift;
+use plotters::prelude::*;
+
+use super::data::{At, RunRecord};
+use super::err;
+
+const LINE: RGBColor = RGBColor(20, 60, 170);
+const START: RGBColor = RGBColor(0, 130, 60);
+
+#[derive(Debug, Clone, Copy)]
+pub enum Quantity {
+    Speed,
+    Curvature,
+}
+
+impl Quantity {
+    fn label(self) -> &'static str {
+        match self {
+            Quantity::Speed => "speed (m/s)",
+            Quantity::Curvature => "curvature (1/m)",
+        }
+    }
+
+    fn of(self, s: &super::data::Sample) -> f64 {
+        match self {
+            Quantity::Speed => s.v,
+            Quantity::Curvature => s.c,
+        }
+    }
+}
+
+pub fn draw<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    record: &RunRecord,
+    q: Quantity,
+) -> Result<(), String> {
+    let t_end = record.poses.last().map_or(1.0, |p| p.t).max(1.0);
+    let (lo, hi) = record
+        .poses
+        .iter()
+        .map(|s| q.of(s))
+        .fold((0.0f64, 0.0f64), |(lo, hi), v| (lo.min(v), hi.max(v)));
+    let pad = ((hi - lo) * 0.1).max(0.05);
+    let mut chart = ChartBuilder::on(&area.margin(5, 15, 15, 15))
+        .x_label_area_size(35)
+        .y_label_area_size(55)
+        .build_cartesian_2d(0.0..t_end, (lo - pad)..(hi + pad))
+        .map_err(err)?;
+    chart
+        .configure_mesh()
+        .x_desc("time (s)")
+        .y_desc(q.label())
+        .max_light_lines(2)
+        .light_line_style(RGBColor(240, 240, 240))
+        .bold_line_style(RGBColor(215, 215, 215))
+        .draw()
+        .map_err(err)?;
+    chart
+        .draw_series(record.marks.iter().filter(|m| m.at == At::Start).map(|m| {
+            PathElement::new(
+                [(m.t, lo - pad), (m.t, hi + pad)],
+                START.mix(0.35).stroke_width(1),
+            )
+        }))
+        .map_err(err)?;
+    chart
+        .draw_series(LineSeries::new(
+            record.poses.iter().map(|s| (s.t, q.of(s))),
+            LINE.stroke_width(2),
+        ))
+        .map_err(err)?;
+    Ok(())
+}

@@ -1,0 +1,281 @@
+//! What `--robot`, `--model`, `--world` and `--start` name: the backend, the robot model
+//! the task is checked against, and for a simulated robot its world and start pose.
+
+use ilmr_hal::Limits;
+use ilmr_model::RobotModel;
+use ilmr_sim::{RobotKind, SimRobot, World};
+use ilmr_vm::Config;
+
+use super::backend::{AnyRobot, NoRobot, Simulated};
+use super::scenario::Scenario;
+
+/// `turn(left|right)` on a simulated body: three quarters of full lock, the setting
+/// the dissertation's tests were reproduced with (docs/experiments.md).
+const TURN_SHARE: f64 = 0.75;
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Backend {
+    /// No robot: only control flow, arithmetic, waits and skills.
+    None,
+    /// The deterministic scripted robot of `ilmr-hal`, driven by `--scenario`.
+    Scripted,
+    /// `ilmr-sim`'s robot with this body, in a world.
+    Sim(RobotKind),
+}
+
+/// A world and the text it was read from (the trace carries the text, so that
+/// `ilmrc replay` draws the same world).
+#[derive(Debug, Clone)]
+pub struct LoadedWorld {
+    pub world: World,
+    /// `office`, or the file's path.
+    pub name: String,
+    pub text: String,
+}
+
+pub struct Setup {
+    pub backend: Backend,
+    /// What `check` is given: `moro`, `workpartner` or a ROBO.INI path.
+    pub model_spec: String,
+    pub model: RobotModel,
+    /// Simulated robots only; its `start` is where the robot starts.
+    pub world: Option<LoadedWorld>,
+}
+
+/// Starts used instead of a shipped world's own `start`: the office's is beside the lab
+/// bench, where the Figure 52 task's left turn (radius 2 m) runs into the bench; south
+/// of the bench there is room for it. `--start` overrides both.
+const RUN_STARTS: [(&str, f64, f64, f64); 1] = [("office", 8.0, 5.0, 0.0)];
+
+/// The names `--robot` takes besides a ROBO.INI path.
+pub const ROBOT_NAMES: &str = "moro, workpartner, none, scripted";
+
+pub struct Choice<'a> {
+    pub robot: &'a str,
+    pub model: Option<&'a str>,
+    pub world: Option<&'a str>,
+    pub start: Option<&'a str>,
+}
+
+pub fn choose(c: &Choice<'_>) -> Result<Setup, String> {
+    let backend = match c.robot.to_ascii_lowercase().as_str() {
+        "none" => Backend::None,
+        "scripted" => Backend::Scripted,
+        _ => Backend::Sim(RobotKind::Moro),
+    };
+    if let Backend::Sim(_) = backend {
+        if c.model.is_some() {
+            return Err(format!(
+                "--model is for --robot none|scripted; the simulated robot `{}` is its own model",
+                c.robot
+            ));
+        }
+        let builtin = RobotModel::builtin(c.robot).is_some();
+        if !builtin
+            && c.robot.contains(['/', '\\', '.'])
+            && !std::path::Path::new(c.robot).is_file()
+        {
+            return Err(format!(
+                "cannot read robot model `{}`: no such file",
+                c.robot
+            ));
+        }
+        let loaded = crate::inputs::load_robot(c.robot).map_err(|e| {
+            if e.starts_with("unknown robot") {
+                format!(
+                    "unknown robot `{}`: use {ROBOT_NAMES} or a path to a ROBO.INI file",
+                    c.robot
+                )
+            } else {
+                e
+            }
+        })?;
+        let kind = body_of(c.robot, &loaded.model);
+        let mut world = load_world(c.world.unwrap_or(default_world(kind)))?;
+        if let Some(text) = c.start {
+            world.world.start = parse_start(text, &world.world)?;
+        } else if let Some(&(_, x, y, h)) = RUN_STARTS.iter().find(|(n, ..)| *n == world.name) {
+            world.world.start = ilmr_sim::Pose::new(x, y, f64::to_radians(h));
+        }
+        return Ok(Setup {
+            backend: Backend::Sim(kind),
+            model_spec: c.robot.to_string(),
+            model: loaded.model,
+            world: Some(world),
+        });
+    }
+    for (flag, given) in [("--world", c.world), ("--start", c.start)] {
+        if given.is_some() {
+            return Err(format!(
+                "{flag} places a simulated robot; --robot {} has no world",
+                c.robot
+            ));
+        }
+    }
+    let model_spec = c.model.unwrap_or("moro").to_string();
+    let model = crate::inputs::load_robot(&model_spec)?.model;
+    Ok(Setup {
+        backend,
+        model_spec,
+        model,
+        world: None,
+    })
+}
+
+/// The simulated body of a model: the shipped models name theirs; a ROBO.INI file gets
+/// Workpartner's when it describes a navigation subsystem (`nav_rate`), as Workpartner's
+/// model does, and MoRo's otherwise.
+fn body_of(spec: &str, model: &RobotModel) -> RobotKind {
+    if spec.eq_ignore_ascii_case("workpartner") || model.nav_rate().is_some() {
+        RobotKind::Workpartner
+    } else {
+        RobotKind::Moro
+    }
+}
+
+/// Where each robot feels at home: MoRo in the office (its test site at VTT), Workpartner
+/// in the yard (its test site outdoors).
+pub fn default_world(kind: RobotKind) -> &'static str {
+    match kind {
+        RobotKind::Moro => "office",
+        RobotKind::Workpartner => "yard",
+    }
+}
+
+/// A shipped world by name, or a world file.
+pub fn load_world(spec: &str) -> Result<LoadedWorld, String> {
+    if let Some((name, text)) = ilmr_sim::world::SHIPPED
+        .iter()
+        .find(|(n, _)| n.eq_ignore_ascii_case(spec))
+    {
+        let world = World::from_toml(text, &format!("<{name}>")).map_err(|e| e.to_string())?;
+        return Ok(LoadedWorld {
+            world,
+            name: (*name).to_string(),
+            text: (*text).to_string(),
+        });
+    }
+    let path = std::path::Path::new(spec);
+    if !spec.contains(['/', '\\', '.']) {
+        let names: Vec<&str> = ilmr_sim::world::SHIPPED.iter().map(|(n, _)| *n).collect();
+        return Err(format!(
+            "unknown world `{spec}`: use {} or a path to a world file (.toml)",
+            names.join(", ")
+        ));
+    }
+    let text =
+        std::fs::read_to_string(path).map_err(|e| format!("cannot read world `{spec}`: {e}"))?;
+    let world = World::from_toml(&text, spec).map_err(|e| format!("bad world file: {e}"))?;
+    Ok(LoadedWorld {
+        world,
+        name: spec.to_string(),
+        text,
+    })
+}
+
+/// `X,Y,H`: metres and degrees in the world frame, inside the world's bounds.
+fn parse_start(text: &str, world: &World) -> Result<ilmr_sim::Pose, String> {
+    let bad =
+        || format!("--start `{text}`: expected X,Y,HEADING (metres, degrees), e.g. 19.5,5.5,0");
+    let parts: Vec<f64> = text
+        .split(',')
+        .map(|p| p.trim().parse::<f64>())
+        .collect::<Result<_, _>>()
+        .map_err(|_| bad())?;
+    let [x, y, h] = parts[..] else {
+        return Err(bad());
+    };
+    if !(x.is_finite() && y.is_finite() && h.is_finite()) {
+        return Err(bad());
+    }
+    let at = ilmr_sim::Vec2::new(x, y);
+    if !world.bounds.contains(at) {
+        let b = world.bounds;
+        return Err(format!(
+            "--start ({x}, {y}) is outside the world `{}`, which spans ({}, {})..({}, {})",
+            world.name, b.min.x, b.min.y, b.max.x, b.max.y
+        ));
+    }
+    Ok(ilmr_sim::Pose::new(x, y, h.to_radians()))
+}
+
+/// Opens the robot of a run. `seed` seeds every noise source of a simulated robot; the
+/// scripted robot has none and replays its scenario exactly.
+pub fn open(setup: &Setup, scenario: &Scenario, seed: u64) -> Result<AnyRobot, String> {
+    match setup.backend {
+        Backend::None => {
+            if scenario.drives_a_robot() {
+                return Err(
+                    "the scenario scripts a robot, but the task runs with --robot none".into(),
+                );
+            }
+            Ok(AnyRobot::new(NoRobot))
+        }
+        Backend::Scripted => Ok(AnyRobot::new(scenario.robot(limits(&setup.model))?)),
+        Backend::Sim(kind) => {
+            if scenario.scripts_the_world() {
+                return Err(
+                    "the scenario scripts readings, sightings, operations or a start \
+                     pose, which only the scripted robot replays; a simulated robot senses \
+                     its world (a scenario's paths and lines are fine)"
+                        .into(),
+                );
+            }
+            let Some(world) = &setup.world else {
+                return Err("a simulated robot needs a world".into());
+            };
+            let start = world.world.start;
+            let robot = SimRobot::new(setup.model.clone(), kind, world.world.clone(), seed)
+                .map_err(|e| {
+                    format!(
+                        "the robot cannot start at ({:.2}, {:.2}, {:.0} deg) in `{}`: {e}",
+                        start.x,
+                        start.y,
+                        start.h.to_degrees(),
+                        world.name
+                    )
+                })?;
+            Ok(AnyRobot::new(Simulated::new(robot)))
+        }
+    }
+}
+
+/// The scripted robot moves within the model's limits.
+fn limits(model: &RobotModel) -> Limits {
+    Limits {
+        acceleration: model.max_acceleration(),
+        deceleration: model.max_deceleration(),
+        curvature_rate: model.curinc(),
+        max_curvature: model.max_curvature(),
+        max_speed: model.max_speed(),
+    }
+}
+
+/// The VM's tunables for a run: the physical ones from the ROBO.INI model (each
+/// `Config` field names the parameter it stands for), and the body's geometry (front
+/// and scanner offsets) from the simulator when the robot is simulated. Without a
+/// body the VM's defaults stand for what the model does not say, as they did for every
+/// scripted trace recorded so far.
+pub fn vm_config(model: &RobotModel, body: Option<&ilmr_sim::RobotConfig>) -> Config {
+    let base = Config::default();
+    let mut config = Config {
+        default_speed: model.default_speed(),
+        max_curvature: model.max_curvature(),
+        curinc: model.curinc(),
+        turn_curvature: base.turn_curvature.min(model.max_curvature()),
+        acceleration: model.max_acceleration(),
+        deceleration: model.max_deceleration(),
+        robot_width: model.robot_width(),
+        robot_length: model.robot_length(),
+        followwall_d: model.followwall_d(),
+        obstacle_curvature: model.omax_curvature(),
+        ..base
+    };
+    if let Some(body) = body {
+        config.turn_curvature = TURN_SHARE * model.max_curvature();
+        config.front_offset = body.body.length - body.body.rear_overhang;
+        config.scanner_offset = body.scanner.mount.x;
+        config.security_wait = model.bs_security();
+    }
+    config
+}

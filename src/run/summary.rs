@@ -1,0 +1,89 @@
+//! The summary printed when a run ends: how it ended, how long it took, what the
+//! commands did, and for a simulated robot where it was and how far it went.
+
+use ilmr_vm::runtime::trace::fmt_num;
+use ilmr_vm::{Clock, Vm};
+
+use super::RunArgs;
+use super::backend::{AnyRobot, Robot};
+use super::session::Session;
+use super::setup::{Backend, Setup};
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Outcome {
+    /// No command is left.
+    Finished,
+    /// Only waiting guards are left, and the robot is at rest.
+    Waiting,
+    MaxTime,
+}
+
+pub fn render<C: Clock>(
+    session: &Session,
+    vm: &Vm<AnyRobot, C>,
+    outcome: Outcome,
+    args: &RunArgs,
+    setup: &Setup,
+) -> String {
+    let t = fmt_num(vm.time());
+    let how = match outcome {
+        Outcome::Finished => "finished: no command left".to_string(),
+        Outcome::Waiting => "finished: only waiting guards left, robot at rest".to_string(),
+        Outcome::MaxTime => format!("max-time: stopped at --max-time {}", args.max_time),
+    };
+    let k = &session.tally;
+    let mut s = format!("{}: {how}\n", args.task.display());
+    let world = setup
+        .world
+        .as_ref()
+        .filter(|_| matches!(setup.backend, Backend::Sim(_)));
+    if let Some(w) = world {
+        let p = w.world.start;
+        s.push_str(&format!(
+            "  robot           {} in {}, seed {}, from ({}, {}, {} deg)\n",
+            setup.model_spec,
+            w.name,
+            args.seed,
+            fmt_num(p.x),
+            fmt_num(p.y),
+            fmt_num(p.h.to_degrees())
+        ));
+    }
+    s.push_str(&format!("  simulated time  {t} s ({} ticks)\n", vm.ticks()));
+    if world.is_some() {
+        let at = session
+            .last_pose()
+            .map(|p| {
+                format!(
+                    ", ended at ({}, {}, {} deg)",
+                    fmt_num(p.x),
+                    fmt_num(p.y),
+                    fmt_num(p.h.to_degrees())
+                )
+            })
+            .unwrap_or_default();
+        s.push_str(&format!(
+            "  distance        {} m{at}\n",
+            fmt_num((session.distance * 100.0).round() / 100.0)
+        ));
+    }
+    s.push_str(&format!(
+        "  commands ended  {} completed, {} broken, {} refused\n  guards waiting  {}\n  overruns        {}\n  runtime errors  {}\n",
+        k.completed,
+        k.broken,
+        k.refused,
+        vm.activity().waiting_guards,
+        k.overruns,
+        k.errors,
+    ));
+    if world.is_some() {
+        s.push_str(&format!("  contacts        {}\n", vm.hal().contacts()));
+    }
+    if k.lines_accepted + k.lines_rejected > 0 {
+        s.push_str(&format!(
+            "  lines           {} joined, {} rejected\n",
+            k.lines_accepted, k.lines_rejected
+        ));
+    }
+    s
+}

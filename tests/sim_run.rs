@@ -1,0 +1,346 @@
+//! `ilmrc run` on the simulated robots and `ilmrc replay`, as a user runs them: the
+//! dissertation's Figures 52 and 58 on MoRo in the office and test 1's turn on
+//! Workpartner in the yard (trace snapshots, byte-identical per seed, plot, MCAP read
+//! back), and every failure a user can cause with its message and exit code.
+
+mod support;
+
+use std::path::PathBuf;
+use std::process::Command;
+
+use support::root;
+
+fn ilmrc(args: &[&str]) -> (i32, String, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_ilmrc"))
+        .args(args)
+        .current_dir(root())
+        .env("NO_COLOR", "1")
+        .output()
+        .expect("ilmrc runs");
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+fn scratch(name: &str) -> PathBuf {
+    std::env::temp_dir().join(format!("ilmr-sim-run-{}-{name}", std::process::id()))
+}
+
+/// The outputs of one run: trace, MCAP, SVG bytes and the summary.
+struct Outputs {
+    trace: Vec<u8>,
+    mcap: Vec<u8>,
+    svg: Vec<u8>,
+    summary: String,
+}
+
+fn run_with_outputs(name: &str, args: &[&str]) -> Outputs {
+    let (t, m, p) = (
+        scratch(&format!("{name}.jsonl")),
+        scratch(&format!("{name}.mcap")),
+        scratch(&format!("{name}.svg")),
+    );
+    let (ts, ms, ps) = (
+        t.display().to_string(),
+        m.display().to_string(),
+        p.display().to_string(),
+    );
+    let mut a = vec!["run"];
+    a.extend_from_slice(args);
+    a.extend(["--trace", &ts, "--mcap", &ms, "--plot", &ps]);
+    let (code, out, err) = ilmrc(&a);
+    assert_eq!(code, 0, "{name}: {out}{err}");
+    let read = |p: &PathBuf| {
+        let bytes = std::fs::read(p).expect("output written");
+        let _ = std::fs::remove_file(p);
+        bytes
+    };
+    Outputs {
+        trace: read(&t),
+        mcap: read(&m),
+        svg: read(&p),
+        summary: out,
+    }
+}
+
+/// The trace without its scans (hundreds of hit coordinates a line), for reading.
+fn readable(trace: &[u8]) -> String {
+    String::from_utf8(trace.to_vec())
+        .expect("UTF-8")
+        .lines()
+        .filter(|l| !l.contains("\"event\":\"scan\""))
+        .map(|l| format!("{l}\n"))
+        .collect()
+}
+
+const CASES: [(&str, &[&str]); 3] = [
+    (
+        "fig52_short_task",
+        &["--pose-every", "100", "examples/short_task.ilmr"],
+    ),
+    (
+        "fig58_way_out",
+        &[
+            "--start",
+            "4,6,0",
+            "--max-time",
+            "40",
+            "--pose-every",
+            "200",
+            "examples/way_out.ilmr",
+        ],
+    ),
+    (
+        "test1_turn_workpartner_yard",
+        &[
+            "--robot",
+            "workpartner",
+            "--world",
+            "yard",
+            "--seed",
+            "1",
+            "--pose-every",
+            "100",
+            "tests/sim_run/test1_turn.ilmr",
+        ],
+    ),
+];
+
+#[test]
+fn simulated_runs_are_snapshots_and_byte_identical_per_seed() {
+    for (name, args) in CASES {
+        let one = run_with_outputs(&format!("{name}-1"), args);
+        let two = run_with_outputs(&format!("{name}-2"), args);
+        assert!(one.trace == two.trace, "{name}: traces differ");
+        assert!(one.mcap == two.mcap, "{name}: MCAP files differ");
+        assert!(one.svg == two.svg, "{name}: plots differ");
+        insta::assert_snapshot!(
+            format!("trace_{name}"),
+            format!("{}---\n{}", readable(&one.trace), one.summary)
+        );
+    }
+}
+
+#[test]
+fn another_seed_gives_another_run() {
+    let base = [
+        "--pose-every",
+        "100",
+        "--max-time",
+        "10",
+        "examples/short_task.ilmr",
+    ];
+    let zero = run_with_outputs("seed0", &base);
+    let mut seeded = vec!["--seed", "7"];
+    seeded.extend(base);
+    let seven = run_with_outputs("seed7", &seeded);
+    assert!(zero.trace != seven.trace, "the seed reaches the simulator");
+}
+
+#[test]
+fn figure_52_completes_with_the_defaults() {
+    let (code, out, err) = ilmrc(&["run", "examples/short_task.ilmr"]);
+    assert_eq!(code, 0, "{out}{err}");
+    for expected in [
+        "finished: no command left",
+        "robot           moro in office",
+        "7 completed, 0 broken, 0 refused",
+        "contacts        0",
+    ] {
+        assert!(out.contains(expected), "{expected}: {out}");
+    }
+    assert!(err.is_empty(), "no progress line off a terminal: {err}");
+}
+
+#[test]
+fn replay_draws_what_run_drew() {
+    let run = run_with_outputs("replay", &["--max-time", "12", "examples/short_task.ilmr"]);
+    let trace = scratch("replay-in.jsonl");
+    let svg = scratch("replay-out.svg");
+    std::fs::write(&trace, &run.trace).unwrap();
+    let (code, out, err) = ilmrc(&[
+        "replay",
+        &trace.display().to_string(),
+        "--plot",
+        &svg.display().to_string(),
+    ]);
+    let drawn = std::fs::read(&svg).unwrap_or_default();
+    let _ = (std::fs::remove_file(&trace), std::fs::remove_file(&svg));
+    assert_eq!(code, 0, "{out}{err}");
+    assert!(
+        drawn == run.svg,
+        "replay draws the run's plot byte for byte"
+    );
+    let text = String::from_utf8(drawn).unwrap();
+    assert!(text.starts_with("<svg"), "an SVG");
+    for label in [
+        "moro in office, seed 0",
+        "true trajectory",
+        "scanner hits",
+        "speed (m/s)",
+        "curvature (1/m)",
+        "\n4\n</text>",
+        "\n5\n</text>",
+    ] {
+        assert!(text.contains(label), "{label} is drawn");
+    }
+}
+
+#[test]
+fn the_mcap_file_reads_back_with_foxglove_schemas() {
+    let run = run_with_outputs("mcap", &["--max-time", "8", "examples/short_task.ilmr"]);
+    let mut topics: std::collections::BTreeMap<String, (String, usize)> = Default::default();
+    let mut last_time = 0;
+    for m in mcap::MessageStream::new(&run.mcap).expect("an MCAP file") {
+        let m = m.expect("a message");
+        assert!(m.log_time >= last_time, "messages in time order");
+        last_time = m.log_time;
+        let schema = m
+            .channel
+            .schema
+            .as_ref()
+            .expect("every channel has a schema");
+        let entry = topics
+            .entry(m.channel.topic.clone())
+            .or_insert((schema.name.clone(), 0));
+        entry.1 += 1;
+        let v: serde_json::Value = serde_json::from_slice(&m.data).expect("JSON messages");
+        match m.channel.topic.as_str() {
+            "/pose" => assert!(v["pose"]["position"]["x"].is_number(), "{v}"),
+            "/scan" => assert_eq!(v["ranges"].as_array().map(Vec::len), Some(361)),
+            "/commands" => assert!(v["line"].as_u64().is_some_and(|l| l > 0) || v["line"] == 0),
+            _ => {}
+        }
+    }
+    let expect = [
+        ("/commands", "foxglove.Log"),
+        ("/motion", "ilmr.Motion"),
+        ("/pose", "foxglove.PoseInFrame"),
+        ("/scan", "foxglove.LaserScan"),
+        ("/world", "foxglove.SceneUpdate"),
+    ];
+    for (topic, schema) in expect {
+        let (name, count) = topics
+            .get(topic)
+            .unwrap_or_else(|| panic!("{topic} missing"));
+        assert_eq!(name, schema);
+        assert!(*count > 0);
+    }
+    assert_eq!(topics["/world"].1, 1, "the world once");
+    assert_eq!(topics["/pose"].1, 80, "8 s at 10 Hz");
+    assert!(topics["/scan"].1 >= 32, "every scan at 4 Hz");
+}
+
+#[test]
+fn every_failure_a_user_can_cause_has_a_message_and_an_exit_code() {
+    let bad_world = scratch("bad-world.toml");
+    std::fs::write(
+        &bad_world,
+        "name = \"x\"\nbounds = { min = [0, 0], max = [1, 1] }\nstart = { x = 9, y = 9 }\n",
+    )
+    .unwrap();
+    let not_a_trace = scratch("not-a-trace.jsonl");
+    std::fs::write(&not_a_trace, "hello\n").unwrap();
+    let bw = bad_world.display().to_string();
+    let nt = not_a_trace.display().to_string();
+    let task = "examples/short_task.ilmr";
+    let cases: Vec<(Vec<&str>, i32, &str)> = vec![
+        (vec!["run", "no/such.ilmr"], 2, "cannot read"),
+        (
+            vec!["run", "tests/check/broken/commands.ilmr"],
+            1,
+            "error(s)",
+        ),
+        (
+            vec!["run", "--robot", "r2d2", task],
+            2,
+            "unknown robot `r2d2`",
+        ),
+        (
+            vec!["run", "--robot", "no/such.ini", task],
+            2,
+            "cannot read robot model",
+        ),
+        (vec!["run", "--robot", "tests", task], 2, "unknown robot"),
+        (
+            vec!["run", "--robot", "examples/", task],
+            2,
+            "cannot read robot model",
+        ),
+        (
+            vec!["run", "--world", "moon", task],
+            2,
+            "unknown world `moon`",
+        ),
+        (
+            vec!["run", "--world", "no/such.toml", task],
+            2,
+            "cannot read world",
+        ),
+        (vec!["run", "--world", &bw, task], 2, "bad world file"),
+        (
+            vec!["run", "--start", "1,2", task],
+            2,
+            "expected X,Y,HEADING",
+        ),
+        (
+            vec!["run", "--start", "100,100,0", task],
+            2,
+            "outside the world",
+        ),
+        (vec!["run", "--start", "2.5,6,0", task], 2, "cannot start"),
+        (
+            vec!["run", "--robot", "scripted", "--world", "office", task],
+            2,
+            "has no world",
+        ),
+        (vec!["run", "--model", "moro", task], 2, "--model is for"),
+        (
+            vec!["run", "--trace", "no/such/dir/t.jsonl", task],
+            2,
+            "cannot write trace",
+        ),
+        (
+            vec!["run", "--plot", "no/such/dir/p.svg", task],
+            2,
+            "cannot write plot",
+        ),
+        (
+            vec!["run", "--mcap", "no/such/dir/m.mcap", task],
+            2,
+            "cannot write MCAP",
+        ),
+        (
+            vec!["run", "--scenario", "tests/run/fig58_way_out.json", task],
+            2,
+            "only the scripted robot",
+        ),
+        (vec!["run", "--max-time=-1", task], 2, "not a time"),
+        (vec!["run", "--seed", "x", task], 2, "invalid value"),
+        (
+            vec!["replay", "no/such.jsonl", "--plot", "x.svg"],
+            2,
+            "cannot read trace",
+        ),
+        (
+            vec!["replay", &nt, "--plot", "no/such/dir/x.svg"],
+            2,
+            "is not a trace",
+        ),
+    ];
+    for (args, code, message) in cases {
+        let (got, out, err) = ilmrc(&args);
+        assert_eq!(got, code, "{args:?}: {out}{err}");
+        assert!(
+            out.contains(message) || err.contains(message),
+            "{args:?}: expected `{message}` in {out}{err}"
+        );
+        assert!(!err.contains("panicked"), "{args:?}: {err}");
+    }
+    let _ = (
+        std::fs::remove_file(&bad_world),
+        std::fs::remove_file(&not_a_trace),
+    );
+}
