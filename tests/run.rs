@@ -345,3 +345,38 @@ fn a_line_calls_the_skills_of_the_running_task() {
         "make_a_bow is not part of this task"
     );
 }
+
+#[test]
+fn a_line_joins_through_add_line_without_copying_the_program() {
+    let m = ilmr_model::RobotModel::builtin("moro").unwrap();
+    let sources = [ilmr_compiler::check::Source::new(
+        "task.ilmr",
+        "cnt = 0\nwhile(cnt < 1000)\n    cnt = cnt + 1\nendwhile\n",
+    )];
+    let analysis = analyze(&sources, &m);
+    let module = lower(&analysis, &m, ilmr_compiler::FileId(0)).unwrap();
+    let robot = ilmr_hal::ScriptedRobot::new(ilmr_hal::Limits::default());
+    let mut vm =
+        ilmr_vm::Vm::new(module, robot, ilmr_vm::SimClock, ilmr_vm::Config::default()).unwrap();
+    vm.tick();
+    let files = vm.module().files.len();
+    vm.add_line(|b| {
+        ilmr_compiler::lower::lower_line_into("extra = cnt + 1", b, &m, LineOptions::default())
+    })
+    .map_err(|_| "joins")
+    .unwrap();
+    assert_eq!(
+        vm.module().files.len(),
+        files + 1,
+        "the line's text became a file of the module"
+    );
+    // A bad line leaves the program as it was.
+    let before = vm.module().code.len();
+    let bad = vm.add_line(|b| {
+        ilmr_compiler::lower::lower_line_into("gotoxy(cnt)", b, &m, LineOptions::default())
+    });
+    assert!(matches!(bad, Err(ilmr_vm::LineError::Lower(ref d)) if d[0].code.as_str() == "E0502"));
+    assert_eq!(vm.module().code.len(), before);
+    vm.run_for(1.0);
+    assert_eq!(vm.var("extra").map(|v| v.value > 0.0), Some(true));
+}

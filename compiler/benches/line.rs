@@ -4,7 +4,7 @@
 
 use divan::{Bencher, black_box};
 use ilmr_compiler::check::{Source, analyze};
-use ilmr_compiler::lower::{LineOptions, lower, lower_line};
+use ilmr_compiler::lower::{LineOptions, lower, lower_line, lower_line_into};
 use ilmr_hal::{Limits, ScriptedRobot};
 use ilmr_model::RobotModel;
 use ilmr_vm::{Config, SimClock, TraceLevel, Vm};
@@ -39,9 +39,9 @@ fn text_to_running(bencher: Bencher, line: &str) {
     bencher
         .with_inputs(|| running(&model))
         .bench_local_values(|mut vm| {
-            let fragment = lower_line(black_box(line), vm.module(), &model, LineOptions::default())
-                .expect("the line checks");
-            vm.add_block(&fragment).expect("joins the task");
+            vm.add_line(|b| lower_line_into(black_box(line), b, &model, LineOptions::default()))
+                .map_err(|_| "the line checks and joins")
+                .expect("the line joins the task");
             vm.tick();
             vm
         });

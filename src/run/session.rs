@@ -1,10 +1,11 @@
 //! What a run keeps between ticks besides the VM: which commands live, what has ended
 //! how, how far the robot went, and interactive lines joined or rejected.
 
-use ilmr_compiler::lower::{LineOptions, lower_line};
+use ilmr_compiler::lower::{LineOptions, lower_line_into};
 use ilmr_compiler::render::{self, RenderFile, Style};
 use ilmr_hal::Pose;
 use ilmr_model::RobotModel;
+use ilmr_vm::LineError;
 use ilmr_vm::{Clock, Event, EventKind, How, Vm};
 
 use super::backend::AnyRobot;
@@ -109,19 +110,23 @@ impl Session {
     ) -> String {
         let t = ilmr_vm::runtime::trace::fmt_num(vm.time());
         let quoted = serde_json::to_string(text).unwrap_or_else(|_| "\"\"".into());
-        match lower_line(text, vm.module(), model, self.options) {
-            Ok(fragment) => match vm.add_block(&fragment) {
-                Ok(()) => {
-                    self.tally.lines_accepted += 1;
-                    format!("{{\"t\":{t},\"event\":\"line\",\"text\":{quoted},\"accepted\":true}}")
-                }
-                Err(e) => {
-                    self.tally.lines_rejected += 1;
-                    eprintln!("line at t={t} not joined: {e}");
-                    format!("{{\"t\":{t},\"event\":\"line\",\"text\":{quoted},\"accepted\":false}}")
-                }
-            },
-            Err(diagnostics) => {
+        let options = self.options;
+        match vm.add_line(|b| lower_line_into(text, b, model, options)) {
+            Ok(()) => {
+                self.tally.lines_accepted += 1;
+                format!("{{\"t\":{t},\"event\":\"line\",\"text\":{quoted},\"accepted\":true}}")
+            }
+            Err(LineError::Invalid(e)) => {
+                self.tally.lines_rejected += 1;
+                eprintln!("line at t={t} not joined: {e}");
+                format!("{{\"t\":{t},\"event\":\"line\",\"text\":{quoted},\"accepted\":false}}")
+            }
+            Err(LineError::Replaced) => {
+                self.tally.lines_rejected += 1;
+                eprintln!("line at t={t} not joined: the lowering did not return the program");
+                format!("{{\"t\":{t},\"event\":\"line\",\"text\":{quoted},\"accepted\":false}}")
+            }
+            Err(LineError::Lower(diagnostics)) => {
                 self.tally.lines_rejected += 1;
                 let file = [RenderFile {
                     path: "<line>",

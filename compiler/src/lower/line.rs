@@ -9,7 +9,7 @@
 
 use ilmr_model::RobotModel;
 use ilmr_vm::Module;
-use ilmr_vm::bytecode::{Fragment, ModuleBuilder, UnitId};
+use ilmr_vm::bytecode::{BlockId, Fragment, ModuleBuilder, UnitId};
 
 use super::scope::Scope;
 use super::stmt::Lowerer;
@@ -27,14 +27,30 @@ pub struct LineOptions {
     pub robotless: bool,
 }
 
-/// Parses, checks and lowers `text` against `live`. Diagnostics point into `text` as
-/// file 0. Warnings do not stop a line.
+/// Parses, checks and lowers `text` against `live` into a fragment for
+/// `Vm::add_block`. Diagnostics point into `text` as file 0. Warnings do not stop a
+/// line.
 pub fn lower_line(
     text: &str,
     live: &Module,
     model: &RobotModel,
     options: LineOptions,
 ) -> Result<Fragment, Vec<Diagnostic>> {
+    let mut b = ModuleBuilder::extending(live);
+    let blocks = lower_line_into(text, &mut b, model, options)?;
+    b.finish_fragment(&blocks)
+        .map_err(|e| vec![*build_error(FileId(0), Span::default(), e)])
+}
+
+/// The same, appending to the builder `Vm::add_line` lends, which holds the running
+/// module itself: nothing is copied, so a line costs the same in a large program as in
+/// a small one. Returns the blocks to start.
+pub fn lower_line_into(
+    text: &str,
+    b: &mut ModuleBuilder,
+    model: &RobotModel,
+    options: LineOptions,
+) -> Result<Vec<BlockId>, Vec<Diagnostic>> {
     let file = FileId(0);
     let parsed = parser::parse(text, file);
     let mut diags: Vec<Diagnostic> = parsed.diagnostics;
@@ -59,33 +75,36 @@ pub fn lower_line(
         return Err(errors(diags));
     }
 
+    let live = b.module();
     // The running program's skills, in unit order: the checker's `SkillId(i)` is the
     // i-th of them.
-    let skill_units: Vec<(u32, &str)> = live
+    let skill_units: Vec<u32> = live
         .units
         .iter()
         .enumerate()
         .filter(|(_, u)| u.skill)
-        .map(|(i, u)| (i as u32, u.name.as_str()))
+        .map(|(i, _)| i as u32)
         .collect();
     let (unit, checked) = crate::check::check_fragment(
         &parsed.file,
         file,
         model,
         live.globals.iter().map(|g| (g.name.as_str(), g.kind)),
-        skill_units.iter().map(|(_, name)| *name),
+        live.units
+            .iter()
+            .filter(|u| u.skill)
+            .map(|u| u.name.as_str()),
     );
     if checked.iter().any(Diagnostic::is_error) {
         return Err(errors(checked));
     }
 
-    let mut b = ModuleBuilder::extending(live);
     let path = format!("<line {}>", live.files.len() + 1);
+    let base_code = live.code.len();
     let module_file = b
         .file(&path)
         .map_err(|e| vec![*build_error(file, Span::default(), e)])?;
-    let base_code = live.code.len();
-    let skill_unit = |id: SkillId| skill_units.get(id.0 as usize).map(|(i, _)| UnitId(*i));
+    let skill_unit = |id: SkillId| skill_units.get(id.0 as usize).map(|&i| UnitId(i));
     let scope = Scope::from_parts(
         file,
         module_file,
@@ -95,21 +114,22 @@ pub fn lower_line(
         &unit.vars,
         &skill_unit,
     );
-    let mut low = Lowerer::with_builder(b, model);
+    // The lowerer owns its builder; lend it this one and put it back whatever happens.
+    let mut low = Lowerer::with_builder(std::mem::take(b), model);
     let blocks = low.blocks(&scope, &parsed.file.blocks);
-    if !low.diags.is_empty() {
-        return Err(low.diags);
+    let lowered = std::mem::take(&mut low.diags);
+    *b = low.b;
+    if !lowered.is_empty() {
+        return Err(lowered);
     }
     if options.robotless {
-        let m = low.b.module();
+        let m = b.module();
         let refused = robotless::uses_in(m, m.code.get(base_code..).unwrap_or(&[]), |_| file);
         if !refused.is_empty() {
             return Err(refused);
         }
     }
-    low.b
-        .finish_fragment(&blocks)
-        .map_err(|e| vec![*build_error(file, Span::default(), e)])
+    Ok(blocks)
 }
 
 fn errors(diags: Vec<Diagnostic>) -> Vec<Diagnostic> {
