@@ -40,6 +40,9 @@ impl<'m, 'v> Cx<'m, 'v> {
         let mut best: Option<FormMatch<'s>> = None;
         // Forms whose shape fits the arguments first: a correct call then matches its
         // form at the first try, and no messages are built for forms it never meant.
+        if let [form] = spec.forms {
+            return self.match_form(spec, 0, form, items, at);
+        }
         let plausible: Vec<bool> = spec
             .forms
             .iter()
@@ -618,15 +621,17 @@ impl<'m, 'v> Cx<'m, 'v> {
     ) {
         let model = self.model;
         let param_bound = |param: &str| model.parameter_or_default(param);
-        let (ok, limit, bound): (bool, Limit, String) = match range {
+        // The message text is built only for a value out of range: this runs for every
+        // constant argument of a program.
+        let (ok, limit, bound): (bool, Limit, Box<dyn Fn() -> String + '_>) = match range {
             Range::Any => return,
             Range::Between { min, max, limit } => (
                 (min..=max).contains(&v),
                 limit,
-                format!("between {min} and {max}"),
+                Box::new(move || format!("between {min} and {max}")),
             ),
-            Range::Positive => (v > 0.0, Limit::Refuse, "greater than 0".into()),
-            Range::NonNegative => (v >= 0.0, Limit::Refuse, "0 or more".into()),
+            Range::Positive => (v > 0.0, Limit::Refuse, Box::new(|| "greater than 0".into())),
+            Range::NonNegative => (v >= 0.0, Limit::Refuse, Box::new(|| "0 or more".into())),
             Range::Symmetric {
                 param: bound,
                 limit,
@@ -641,7 +646,7 @@ impl<'m, 'v> Cx<'m, 'v> {
                 (
                     v.abs() <= p,
                     limit,
-                    format!("within ±{p} (`{bound}` of {})", model.name),
+                    Box::new(move || format!("within ±{p} (`{bound}` of {})", model.name)),
                 )
             }
             Range::UpTo {
@@ -654,7 +659,7 @@ impl<'m, 'v> Cx<'m, 'v> {
                 (
                     (0.0..=p).contains(&v),
                     limit,
-                    format!("between 0 and {p} (`{bound}` of {})", model.name),
+                    Box::new(move || format!("between 0 and {p} (`{bound}` of {})", model.name)),
                 )
             }
             Range::DeviceRange => {
@@ -662,10 +667,9 @@ impl<'m, 'v> Cx<'m, 'v> {
                 (
                     (d.min..=d.max).contains(&v),
                     Limit::Refuse,
-                    format!(
-                        "between {} and {} (the range of `{}`)",
-                        d.min, d.max, d.name
-                    ),
+                    Box::new(move || {
+                        format!("between {} and {} (the range of `{}`)", d.min, d.max, d.name)
+                    }),
                 )
             }
             Range::ReadingIndex => {
@@ -709,7 +713,7 @@ impl<'m, 'v> Cx<'m, 'v> {
             m.cost += COST_KIND;
         }
         m.findings.diags.push(
-            Diagnostic::new(code, self.file, span, message).with_label(format!("must be {bound}")),
+            Diagnostic::new(code, self.file, span, message).with_label(format!("must be {}", bound())),
         );
     }
 

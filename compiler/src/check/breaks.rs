@@ -28,6 +28,15 @@ pub fn matches(statement: &str, needle: &str) -> bool {
 }
 
 pub fn check_patterns(files: &[FileEntry<'_>], skills: &Skills, diags: &mut Vec<Diagnostic>) {
+    let mut any = false;
+    for entry in files {
+        entry.tree.for_each_stmt(&mut |stmt: &Stmt<'_>| {
+            any |= matches!(stmt.kind, StmtKind::Break { pattern: Some(_) });
+        });
+    }
+    if !any {
+        return;
+    }
     let mut statements: Vec<(FileId, Span, &str)> = Vec::new();
     let mut patterns: Vec<(FileId, Pattern<'_>)> = Vec::new();
     for (i, entry) in files.iter().enumerate() {
@@ -60,9 +69,6 @@ pub fn check_patterns(files: &[FileEntry<'_>], skills: &Skills, diags: &mut Vec<
                     .iter()
                     .any(|b| b.start <= span.start && span.end <= b.end)
         });
-    }
-    if patterns.is_empty() {
-        return;
     }
     for (file, pattern) in patterns {
         let needle = needle(&pattern);

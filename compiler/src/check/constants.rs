@@ -14,7 +14,8 @@ pub struct Constants {
 pub fn key<'b>(name: &str, buf: &'b mut String) -> &'b str {
     buf.clear();
     if name.is_ascii() {
-        buf.extend(name.bytes().map(|b| b.to_ascii_lowercase() as char));
+        buf.push_str(name);
+        buf.make_ascii_lowercase();
     } else {
         buf.extend(name.chars().flat_map(char::to_lowercase));
     }
