@@ -6,6 +6,7 @@ mod fmt;
 mod inputs;
 mod replay;
 mod run;
+mod serve;
 
 use std::process::ExitCode;
 
@@ -39,6 +40,8 @@ enum Cmd {
     Disasm(build::DisasmArgs),
     /// Run a task on a robot backend and write its trace.
     Run(run::RunArgs),
+    /// Run a simulated robot in real time and take ILMR lines from clients over TCP.
+    Serve(serve::ServeArgs),
     /// Redraw a finished run from its trace, without running it.
     Replay(replay::ReplayArgs),
     /// Print the syntax tree of a file, one node per line.
@@ -68,6 +71,7 @@ fn main() -> ExitCode {
         Cmd::Disasm(args) => build::disasm(args),
         Cmd::Run(args) => run::run(args),
         Cmd::Replay(args) => replay::run(args),
+        Cmd::Serve(args) => serve::run(args),
         Cmd::Parse { file } => match inputs::read_source(&file) {
             Ok(source) => {
                 let parsed = ilmr_compiler::parser::parse(&source.text, ilmr_compiler::FileId(0));

@@ -11,7 +11,7 @@ mod progress;
 mod record;
 mod scenario;
 mod session;
-mod setup;
+pub(crate) mod setup;
 mod summary;
 
 use std::path::PathBuf;

@@ -125,7 +125,7 @@ pub fn choose(c: &Choice<'_>) -> Result<Setup, String> {
 /// The simulated body of a model: the shipped models name theirs; a ROBO.INI file gets
 /// Workpartner's when it describes a navigation subsystem (`nav_rate`), as Workpartner's
 /// model does, and MoRo's otherwise.
-fn body_of(spec: &str, model: &RobotModel) -> RobotKind {
+pub fn body_of(spec: &str, model: &RobotModel) -> RobotKind {
     if spec.eq_ignore_ascii_case("workpartner") || model.nav_rate().is_some() {
         RobotKind::Workpartner
     } else {

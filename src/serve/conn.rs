@@ -1,0 +1,150 @@
+//! One client connection: a reader that turns request lines into jobs for the VM
+//! thread and waits for each answer, and a writer that owns the socket's sending side
+//! (answers and, once subscribed, events, in the order they were queued).
+
+use std::io::{BufRead, BufReader, Read, Write};
+use std::net::TcpStream;
+use std::sync::mpsc::{self, Sender, SyncSender};
+use std::time::Duration;
+
+use serde_json::{Map, Value};
+
+use super::engine::Job;
+use super::protocol::{self, Parsed, Request};
+
+/// The longest request line, bytes; a longer one is refused and the connection closed
+/// (a client cannot make the server hold unbounded input).
+pub const MAX_LINE: usize = 1 << 20;
+
+/// Lines queued for a connection before a subscriber that does not read is dropped.
+const OUT_QUEUE: usize = 4096;
+
+/// The VM thread answers between two ticks; this is only a guard against it having
+/// stopped.
+const ANSWER_WAIT: Duration = Duration::from_secs(10);
+
+/// Serves one client until it closes the connection, sends a line that is too long,
+/// or the socket fails. Never touches the robot except through `jobs`.
+pub fn serve(stream: TcpStream, conn: u64, jobs: Sender<Job>) {
+    let _ = stream.set_nodelay(true);
+    let Ok(send_side) = stream.try_clone() else {
+        return;
+    };
+    let (out, queued) = mpsc::sync_channel::<String>(OUT_QUEUE);
+    let writer = std::thread::spawn(move || write_lines(send_side, queued));
+    read_requests(stream, conn, &jobs, &out);
+    let _ = jobs.send(Job::Unsubscribe { conn });
+    // The writer ends once every sender is gone: this one, and the engine's clone
+    // (dropped on `Unsubscribe`), after flushing what was queued.
+    drop(out);
+    let _ = writer.join();
+}
+
+fn write_lines(mut stream: TcpStream, queued: mpsc::Receiver<String>) {
+    for mut line in queued {
+        line.push('\n');
+        if stream.write_all(line.as_bytes()).is_err() || stream.flush().is_err() {
+            // The client is gone; the reader sees that too and ends the connection.
+            let _ = stream.shutdown(std::net::Shutdown::Both);
+            return;
+        }
+    }
+}
+
+fn read_requests(stream: TcpStream, conn: u64, jobs: &Sender<Job>, out: &SyncSender<String>) {
+    let mut reader = BufReader::new(stream);
+    let mut buf = Vec::new();
+    loop {
+        buf.clear();
+        let read = (&mut reader)
+            .take(MAX_LINE as u64 + 1)
+            .read_until(b'\n', &mut buf);
+        match read {
+            Ok(0) | Err(_) => return,
+            Ok(_) => {}
+        }
+        if buf.last() != Some(&b'\n') {
+            if buf.len() > MAX_LINE {
+                let message = format!("request line longer than {MAX_LINE} bytes");
+                let _ = out.send(protocol::answer(protocol::error(&message), None));
+            }
+            // Otherwise the client went away mid-line: half a request is not run.
+            return;
+        }
+        let line = match std::str::from_utf8(&buf) {
+            Ok(text) => text.trim(),
+            Err(_) => {
+                let answer = protocol::error("not UTF-8");
+                if out.send(protocol::answer(answer, None)).is_err() {
+                    return;
+                }
+                continue;
+            }
+        };
+        if line.is_empty() {
+            continue;
+        }
+        let parsed = protocol::parse(line);
+        let Some(answer) = ask(&parsed, conn, jobs, out) else {
+            continue;
+        };
+        if out
+            .send(protocol::answer(answer, parsed.id.as_ref()))
+            .is_err()
+        {
+            return;
+        }
+    }
+}
+
+/// The answer to one request: from the VM thread, or an error object; `None` when
+/// the engine has queued it itself (a subscription).
+fn ask(
+    parsed: &Parsed,
+    conn: u64,
+    jobs: &Sender<Job>,
+    out: &SyncSender<String>,
+) -> Option<Map<String, Value>> {
+    let (reply, answer) = mpsc::channel();
+    let job = match &parsed.request {
+        Request::Invalid(why) => return Some(protocol::error(why)),
+        Request::Ilmr(text) => Job::Line {
+            text: text.clone(),
+            reply,
+        },
+        Request::Status => Job::Status { reply },
+        Request::Subscribe => return subscribe(conn, parsed.id.clone(), jobs, out),
+    };
+    if jobs.send(job).is_err() {
+        return Some(protocol::error("the robot has stopped"));
+    }
+    Some(
+        answer
+            .recv_timeout(ANSWER_WAIT)
+            .unwrap_or_else(|_| protocol::error("the robot did not answer")),
+    )
+}
+
+/// Subscribes this connection; the engine queues the answer itself (so it comes
+/// before the first event), hence `None` once it has.
+fn subscribe(
+    conn: u64,
+    id: Option<Value>,
+    jobs: &Sender<Job>,
+    out: &SyncSender<String>,
+) -> Option<Map<String, Value>> {
+    let (done, acknowledged) = mpsc::channel();
+    let job = Job::Subscribe {
+        conn,
+        out: out.clone(),
+        id,
+        done,
+    };
+    if jobs.send(job).is_err() {
+        return Some(protocol::error("the robot has stopped"));
+    }
+    match acknowledged.recv_timeout(ANSWER_WAIT) {
+        Ok(()) => None,
+        Err(_) => Some(protocol::error("the robot did not answer")),
+    }
+}

@@ -1,0 +1,376 @@
+//! `ilmrc serve` driven over real loopback TCP connections: answers, diagnostics,
+//! garbage, several clients, the event stream, and clients that go away mid-line.
+
+use std::io::{BufRead, BufReader, Read, Write};
+use std::net::TcpStream;
+use std::process::{Child, Command, Stdio};
+use std::sync::mpsc;
+use std::time::{Duration, Instant};
+
+use serde_json::{Value, json};
+
+/// Every wait in these tests ends by this deadline.
+const PATIENCE: Duration = Duration::from_secs(20);
+/// Lines read while looking for one: a bound on every reading loop.
+const MAX_LINES: usize = 20_000;
+
+/// A server on a free loopback port, killed when dropped.
+struct Server {
+    child: Child,
+    addr: String,
+}
+
+impl Server {
+    fn start(extra: &[&str]) -> Server {
+        let mut child = Command::new(env!("CARGO_BIN_EXE_ilmrc"))
+            .args(["serve", "--listen", "127.0.0.1:0"])
+            .args(extra)
+            .stdout(Stdio::piped())
+            .stderr(Stdio::null())
+            .spawn()
+            .expect("start ilmrc serve");
+        let stdout = child.stdout.take().expect("piped stdout");
+        let (tx, rx) = mpsc::channel();
+        std::thread::spawn(move || {
+            for line in BufReader::new(stdout).lines().take(100) {
+                let Ok(line) = line else { return };
+                if let Some(rest) = line.strip_prefix("listening on ") {
+                    let addr = rest.split_whitespace().next().unwrap_or("").to_string();
+                    let _ = tx.send(addr);
+                }
+            }
+        });
+        let Ok(addr) = rx.recv_timeout(PATIENCE) else {
+            let _ = child.kill();
+            panic!("the server did not print its address");
+        };
+        assert!(addr.starts_with("127.0.0.1:"), "{addr}");
+        Server { child, addr }
+    }
+
+    fn connect(&self) -> Client {
+        let stream = TcpStream::connect(&self.addr).expect("connect to the server");
+        stream
+            .set_read_timeout(Some(Duration::from_millis(200)))
+            .expect("read timeout");
+        Client {
+            reader: BufReader::new(stream.try_clone().expect("clone the stream")),
+            stream,
+            events: Vec::new(),
+        }
+    }
+}
+
+impl Drop for Server {
+    fn drop(&mut self) {
+        let _ = self.child.kill();
+        let _ = self.child.wait();
+    }
+}
+
+struct Client {
+    stream: TcpStream,
+    reader: BufReader<TcpStream>,
+    /// Event lines read while waiting for answers.
+    events: Vec<Value>,
+}
+
+impl Client {
+    fn send_raw(&mut self, bytes: &[u8]) {
+        self.stream.write_all(bytes).expect("send");
+        self.stream.flush().expect("flush");
+    }
+
+    /// The next line within the deadline, as JSON.
+    fn next_line(&mut self, deadline: Instant) -> Option<Value> {
+        let mut line = String::new();
+        while Instant::now() < deadline {
+            match self.reader.read_line(&mut line) {
+                Ok(0) => return None,
+                Ok(_) if line.ends_with('\n') => {
+                    return Some(serde_json::from_str(&line).expect("every line is JSON"));
+                }
+                // A timeout may leave a partial line in `line`; keep reading onto it.
+                Ok(_) | Err(_) => {}
+            }
+        }
+        None
+    }
+
+    /// Sends a request and returns its answer; events on the way are kept.
+    fn ask(&mut self, request: &str) -> Value {
+        self.send_raw(format!("{request}\n").as_bytes());
+        let deadline = Instant::now() + PATIENCE;
+        for _ in 0..MAX_LINES {
+            let line = self.next_line(deadline).expect("an answer in time");
+            if line.get("event").is_some() {
+                self.events.push(line);
+            } else {
+                return line;
+            }
+        }
+        panic!("no answer among {MAX_LINES} lines");
+    }
+
+    /// Reads events until one satisfies `found` (it is returned) or the deadline.
+    fn event_where(&mut self, found: impl Fn(&Value) -> bool) -> Option<Value> {
+        if let Some(e) = self.events.iter().find(|e| found(e)) {
+            return Some(e.clone());
+        }
+        let deadline = Instant::now() + PATIENCE;
+        for _ in 0..MAX_LINES {
+            let line = self.next_line(deadline)?;
+            let hit = found(&line);
+            self.events.push(line);
+            if hit {
+                return self.events.last().cloned();
+            }
+        }
+        None
+    }
+}
+
+#[test]
+fn a_good_line_is_accepted_and_a_bad_one_rejected_with_codes() {
+    let server = Server::start(&[]);
+    let mut c = server.connect();
+    let good = c.ask(r#"{"ilmr": "goahead(1)", "id": 1}"#);
+    assert_eq!(good["ok"], json!(true), "{good}");
+    assert_eq!(good["id"], json!(1));
+    assert!(good["t"].is_number());
+
+    let bad = c.ask(r#"{"ilmr": "goahed(1)", "id": "two"}"#);
+    assert_eq!(bad["ok"], json!(false), "{bad}");
+    assert_eq!(bad["id"], json!("two"));
+    let diagnostics = bad["diagnostics"].as_array().expect("diagnostics");
+    assert!(!diagnostics.is_empty());
+    let d = &diagnostics[0];
+    let code = d["code"].as_str().expect("a code");
+    assert!(code.starts_with('E') && code.len() == 5, "{code}");
+    assert_eq!(d["severity"], json!("error"));
+    assert_eq!(
+        (d["file"].as_str(), d["line"].as_u64()),
+        (Some("<line>"), Some(1))
+    );
+
+    // A block of several lines is one request.
+    let block = c.ask(&json!({"ilmr": "speed(0.2)\ngoahead(0.5)"}).to_string());
+    assert_eq!(block["ok"], json!(true), "{block}");
+
+    let stopped = c.ask(r#"{"stop": true}"#);
+    assert_eq!(stopped["ok"], json!(true), "{stopped}");
+    let resumed = c.ask(r#"{"cont": true}"#);
+    assert_eq!(resumed["ok"], json!(true), "{resumed}");
+}
+
+#[test]
+fn garbage_is_answered_and_the_connection_stays_usable() {
+    let server = Server::start(&[]);
+    let mut c = server.connect();
+    let not_json = c.ask("this is not json");
+    assert_eq!(not_json["ok"], json!(false));
+    assert!(
+        not_json["error"]
+            .as_str()
+            .is_some_and(|e| e.starts_with("not JSON")),
+        "{not_json}"
+    );
+    for garbage in [r#"[1, 2]"#, r#"{"fly": true}"#, r#"{"ilmr": 3}"#, "{}"] {
+        let answer = c.ask(garbage);
+        assert_eq!(answer["ok"], json!(false), "{garbage}: {answer}");
+        assert!(answer["error"].is_string(), "{garbage}: {answer}");
+    }
+    c.send_raw(b"\xff\xfe\n");
+    let deadline = Instant::now() + PATIENCE;
+    let not_utf8 = c.next_line(deadline).expect("an answer to bytes");
+    assert_eq!(not_utf8["error"], json!("not UTF-8"));
+
+    let status = c.ask(r#"{"status": true}"#);
+    assert_eq!(status["ok"], json!(true), "{status}");
+    assert!(status["pose"]["x"].is_number() && status["pose"]["h"].is_number());
+    assert_eq!(status["activity"]["robot_at_rest"], json!(true));
+    assert_eq!(status["activity"]["running_commands"], json!(0));
+}
+
+#[test]
+fn a_subscriber_sees_the_movement_another_client_starts() {
+    let server = Server::start(&["--robot", "moro", "--world", "office", "--seed", "3"]);
+    let mut watcher = server.connect();
+    let mut driver = server.connect();
+    let subscribed = watcher.ask(r#"{"subscribe": "events", "id": 9}"#);
+    assert_eq!(
+        subscribed,
+        json!({"ok": true, "t": subscribed["t"], "id": 9})
+    );
+
+    let before = driver.ask(r#"{"status": true}"#);
+    let x0 = before["pose"]["x"].as_f64().expect("x");
+    assert_eq!(driver.ask(r#"{"ilmr": "goahead(1)"}"#)["ok"], json!(true));
+
+    let joined = watcher
+        .event_where(|e| e["event"] == json!("line"))
+        .expect("the line event");
+    assert_eq!(joined["text"], json!("goahead(1)"));
+    assert_eq!(joined["accepted"], json!(true));
+    let started = watcher
+        .event_where(|e| e["event"] == json!("start") && e["text"] == json!("goahead(1)"))
+        .expect("the movement starts");
+    assert!(started["t"].as_f64() >= joined["t"].as_f64());
+    let moved = watcher
+        .event_where(|e| e["event"] == json!("pose") && e["x"].as_f64() > Some(x0 + 0.1))
+        .expect("the robot moves in the stream");
+    assert_eq!(moved["source"], json!("true"));
+    let ended = watcher
+        .event_where(|e| e["event"] == json!("end") && e["text"] == json!("goahead(1)"))
+        .expect("the movement ends");
+    assert_eq!(ended["how"], json!("completed"), "{ended}");
+
+    // The driver, who did not subscribe, got answers only.
+    assert!(driver.events.is_empty());
+    let after = driver.ask(r#"{"status": true}"#);
+    let x1 = after["pose"]["x"].as_f64().expect("x");
+    assert!((x1 - x0 - 1.0).abs() < 0.1, "went from {x0} to {x1}");
+    assert!(after["t"].as_f64() > before["t"].as_f64());
+
+    // A rejected line reaches the stream with its codes.
+    assert_eq!(driver.ask(r#"{"ilmr": "goahed(1)"}"#)["ok"], json!(false));
+    let refused = watcher
+        .event_where(|e| e["event"] == json!("line") && e["accepted"] == json!(false))
+        .expect("the rejected line");
+    assert!(
+        refused["codes"][0]
+            .as_str()
+            .is_some_and(|c| c.starts_with('E'))
+    );
+}
+
+#[test]
+fn a_client_leaving_mid_line_disturbs_neither_robot_nor_others() {
+    let server = Server::start(&[]);
+    let mut watcher = server.connect();
+    assert_eq!(watcher.ask(r#"{"subscribe": "events"}"#)["ok"], json!(true));
+    {
+        let mut leaver = server.connect();
+        leaver.send_raw(br#"{"ilmr": "goahead(5)"}"#);
+        // Gone without the newline that would have ended the request.
+    }
+    {
+        let mut subscriber = server.connect();
+        assert_eq!(
+            subscriber.ask(r#"{"subscribe": "events"}"#)["ok"],
+            json!(true)
+        );
+        subscriber.send_raw(b"{\"ilmr\": \"goahe");
+    }
+    // Both are gone; the watcher still gets answers, and nothing was joined.
+    std::thread::sleep(Duration::from_millis(300));
+    let status = watcher.ask(r#"{"status": true}"#);
+    assert_eq!(status["ok"], json!(true));
+    assert_eq!(status["activity"]["running_commands"], json!(0), "{status}");
+    assert_eq!(status["activity"]["queued_movements"], json!(0), "{status}");
+    assert!(
+        !watcher.events.iter().any(|e| e["event"] == json!("line")),
+        "{:?}",
+        watcher.events
+    );
+    assert_eq!(
+        watcher.ask(r#"{"ilmr": "goahead(0.2)"}"#)["ok"],
+        json!(true)
+    );
+    assert!(
+        watcher
+            .event_where(|e| e["event"] == json!("start"))
+            .is_some()
+    );
+}
+
+#[test]
+fn several_clients_are_answered_at_once() {
+    let server = Server::start(&[]);
+    let mut clients: Vec<Client> = (0..4).map(|_| server.connect()).collect();
+    for (i, c) in clients.iter_mut().enumerate() {
+        c.send_raw(format!("{{\"status\": true, \"id\": {i}}}\n").as_bytes());
+    }
+    for (i, c) in clients.iter_mut().enumerate() {
+        let deadline = Instant::now() + PATIENCE;
+        let answer = c.next_line(deadline).expect("an answer");
+        assert_eq!(
+            (answer["ok"].clone(), answer["id"].clone()),
+            (json!(true), json!(i))
+        );
+    }
+}
+
+#[test]
+fn a_port_in_use_or_a_bad_address_is_a_usage_error() {
+    let server = Server::start(&[]);
+    for (listen, says) in [
+        (server.addr.as_str(), "in use"),
+        ("192.0.2.1:7878", "loopback"),
+        ("localhost", "expected a loopback address"),
+    ] {
+        let mut child = Command::new(env!("CARGO_BIN_EXE_ilmrc"))
+            .args(["serve", "--listen", listen])
+            .stdout(Stdio::null())
+            .stderr(Stdio::piped())
+            .spawn()
+            .expect("start ilmrc serve");
+        let deadline = Instant::now() + PATIENCE;
+        let status = loop {
+            if let Some(status) = child.try_wait().expect("wait") {
+                break status;
+            }
+            if Instant::now() > deadline {
+                let _ = child.kill();
+                panic!("`serve --listen {listen}` did not exit");
+            }
+            std::thread::sleep(Duration::from_millis(20));
+        };
+        let mut stderr = String::new();
+        let _ = child
+            .stderr
+            .take()
+            .expect("piped stderr")
+            .read_to_string(&mut stderr);
+        assert_eq!(status.code(), Some(2), "{listen}: {stderr}");
+        assert!(stderr.contains(says), "{listen}: {stderr}");
+        assert!(!stderr.contains("panicked"), "{stderr}");
+    }
+}
+
+#[test]
+fn a_task_starts_with_the_server_and_a_bad_one_is_refused() {
+    let dir = std::env::temp_dir().join(format!("ilmr-serve-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    let good = dir.join("good.ilmr");
+    let bad = dir.join("bad.ilmr");
+    std::fs::write(&good, "m = goahead(0.5)\n").expect("write task");
+    std::fs::write(&bad, "goahed(1)\n").expect("write task");
+
+    let server = Server::start(&["--task", good.to_str().expect("utf-8 path")]);
+    let mut c = server.connect();
+    // The task's variable is there for lines to use.
+    assert_eq!(
+        c.ask(r#"{"ilmr": "wait(m)\ngoahead(0.2)"}"#)["ok"],
+        json!(true)
+    );
+    let status = c.ask(r#"{"status": true}"#);
+    let live = &status["activity"];
+    assert!(
+        live["running_commands"].as_u64() >= Some(1)
+            || live["queued_movements"].as_u64() >= Some(1),
+        "{status}"
+    );
+    drop(server);
+
+    let out = Command::new(env!("CARGO_BIN_EXE_ilmrc"))
+        .args(["serve", "--listen", "127.0.0.1:0", "--task"])
+        .arg(&bad)
+        .output()
+        .expect("run ilmrc serve");
+    let _ = std::fs::remove_dir_all(&dir);
+    assert_eq!(out.status.code(), Some(1));
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(stdout.contains("E0301"), "{stdout}");
+    assert!(!stdout.contains("listening"), "{stdout}");
+}
