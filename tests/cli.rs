@@ -2,22 +2,8 @@
 
 mod support;
 
-use std::process::Command;
 
-use support::root;
-
-fn ilmrc(args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_ilmrc"))
-        .args(args)
-        .current_dir(root())
-        .output()
-        .expect("ilmrc runs");
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stdout).into_owned(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
-}
+use support::ilmrc;
 
 #[test]
 fn clean_files_exit_zero_and_say_so() {

@@ -8,27 +8,12 @@
 mod support;
 
 use std::path::{Path, PathBuf};
-use std::process::Command;
 
 use ilmr_compiler::check::analyze;
 use ilmr_compiler::lower::{LineOptions, lower, lower_line};
 use ilmr_hal::{Limits, ScriptedRobot};
 use ilmr_vm::{Config, Module, SimClock, Vm};
 use support::*;
-
-fn ilmrc(args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_ilmrc"))
-        .args(args)
-        .current_dir(root())
-        .env("NO_COLOR", "1")
-        .output()
-        .expect("ilmrc runs");
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stdout).into_owned(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
-}
 
 /// A scratch path unique to this test process and `name`.
 fn scratch(name: &str) -> PathBuf {

@@ -6,23 +6,8 @@
 mod support;
 
 use std::path::PathBuf;
-use std::process::Command;
 
-use support::root;
-
-fn ilmrc(args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_ilmrc"))
-        .args(args)
-        .current_dir(root())
-        .env("NO_COLOR", "1")
-        .output()
-        .expect("ilmrc runs");
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stdout).into_owned(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
-}
+use support::ilmrc;
 
 fn scratch(name: &str) -> PathBuf {
     std::env::temp_dir().join(format!("ilmr-sim-run-{}-{name}", std::process::id()))

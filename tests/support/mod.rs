@@ -10,6 +10,21 @@ use ilmr_model::RobotModel;
 
 pub const ROBOTS: [&str; 2] = ["moro", "workpartner"];
 
+/// Runs the built `ilmrc` from the repository root: exit code, stdout, stderr.
+pub fn ilmrc(args: &[&str]) -> (i32, String, String) {
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_ilmrc"))
+        .args(args)
+        .current_dir(root())
+        .env("NO_COLOR", "1")
+        .output()
+        .expect("ilmrc runs");
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
 pub fn root() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
 }
