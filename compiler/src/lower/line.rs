@@ -102,7 +102,7 @@ pub fn lower_line_into(
     let path = format!("<line {}>", live.files.len() + 1);
     let base_code = live.code.len();
     let module_file = b
-        .file(&path)
+        .new_file(&path)
         .map_err(|e| vec![*build_error(file, Span::default(), e)])?;
     let skill_unit = |id: SkillId| skill_units.get(id.0 as usize).map(|&i| UnitId(i));
     let scope = Scope::from_parts(

@@ -112,6 +112,12 @@ impl ModuleBuilder {
         if let Some(i) = self.m.files.iter().position(|f| f == path) {
             return Ok(FileId(i as u32));
         }
+        self.new_file(path)
+    }
+
+    /// A file the module cannot have yet (an interactive line's own text): no search of
+    /// the files before it, which grow by one with every line joined.
+    pub fn new_file(&mut self, path: &str) -> Result<FileId, BuildError> {
         let id = index(&self.m.files, "files")?;
         self.m.files.push(path.to_string());
         Ok(FileId(id))
