@@ -1,9 +1,10 @@
 //! The area checked for obstacles: length by equation (11), width by
-//! equation (12), bent along the robot's current curvature.
+//! equation (12), bent along the robot's current curvature, but no further
+//! than the route turns: past that the area goes straight on.
 
 use crate::arc::Arc;
-use crate::path::Direction;
-use crate::pose::Pose;
+use crate::path::{Direction, Path};
+use crate::pose::{Pose, angle_diff};
 use nalgebra::Point2;
 use serde::{Deserialize, Serialize};
 
@@ -34,6 +35,32 @@ pub fn check_width(robot_width: f64) -> f64 {
     1.2 * robot_width
 }
 
+/// How far, in radians, the route turns towards the side of `curvature`
+/// from the robot's heading, over the `reach` metres of `reference` from
+/// index `k` on (0 when it turns the other way or not at all).
+///
+/// The robot steers along its route: once its heading has caught up with
+/// the route's it straightens, so the area need bend no further. Bent the
+/// whole length of equation (11) at a tight curvature, it would sweep round
+/// through the wall the robot is turning past (the end of the lab bench in
+/// Figure 58).
+pub fn route_turn(reference: &Path, k: usize, travel: &Pose, curvature: f64, reach: f64) -> f64 {
+    let pts = reference.points();
+    let k = reference.clamp_index(k);
+    let side = curvature.signum();
+    let s_end = pts[k].s + reach.max(0.0);
+    let mut heading = travel.h;
+    let mut turned: f64 = 0.0;
+    let mut most: f64 = 0.0;
+    for p in pts[k..].iter().take_while(|p| p.s <= s_end) {
+        let h = p.travel_heading();
+        turned += angle_diff(h, heading);
+        heading = h;
+        most = most.max(side * turned);
+    }
+    most
+}
+
 /// A map point inside the area, in the area's own coordinates.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Hit {
@@ -45,16 +72,19 @@ pub struct Hit {
 }
 
 /// The checked area: a band of `width` around an arc of the robot's
-/// current curvature, a rectangle only when the robot drives straight.
+/// current curvature, continued by a straight band of length `straight`
+/// where the route stops turning; a rectangle when the robot drives
+/// straight.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct CheckArea {
     pub arc: Arc,
+    pub straight: f64,
     pub width: f64,
 }
 
 impl CheckArea {
     /// The area in front of a robot at `pose` that moves in `direction`
-    /// with steering `curvature` at `speed`.
+    /// with steering `curvature` at `speed`, bent along the whole length.
     pub fn new(
         pose: &Pose,
         direction: Direction,
@@ -62,27 +92,68 @@ impl CheckArea {
         speed: f64,
         params: &AreaParams,
     ) -> CheckArea {
+        Self::turning_at_most(pose, direction, curvature, speed, params, f64::INFINITY)
+    }
+
+    /// As `new`, but the area turns through at most `max_turn` radians
+    /// (measured from the robot's heading, the stretch to the front
+    /// included) and goes straight on after that.
+    pub fn turning_at_most(
+        pose: &Pose,
+        direction: Direction,
+        curvature: f64,
+        speed: f64,
+        params: &AreaParams,
+        max_turn: f64,
+    ) -> CheckArea {
         let travel = match direction {
             Direction::Forward => *pose,
             Direction::Backward => pose.flipped(),
         };
         let geometric = direction.sign() * curvature;
+        let bend = if geometric == 0.0 || max_turn.is_nan() {
+            f64::INFINITY
+        } else {
+            max_turn.max(0.0) / geometric.abs()
+        };
+        let length = check_length(params.max_curvature, speed);
+        // The front: along the arc as far as the bend goes, then straight.
+        let to_front = params.front_offset.min(bend);
+        let start = travel
+            .advance(to_front, geometric)
+            .advance(params.front_offset - to_front, 0.0);
+        let arc_length = length.min((bend - to_front).max(0.0));
+        let arc_curvature = if arc_length > 0.0 { geometric } else { 0.0 };
         CheckArea {
             arc: Arc {
-                start: travel.advance(params.front_offset, geometric),
-                curvature: geometric,
-                length: check_length(params.max_curvature, speed),
+                start,
+                curvature: arc_curvature,
+                length: arc_length,
             },
+            straight: length - arc_length,
             width: check_width(params.robot_width),
         }
     }
 
+    /// Total length of the area, m.
+    pub fn length(&self) -> f64 {
+        self.arc.length + self.straight
+    }
+
     pub fn hit(&self, index: usize, p: &Point2<f64>) -> Option<Hit> {
+        let half = 0.5 * self.width;
         let (s, n) = self.arc.coords(p);
-        (s >= 0.0 && s <= self.arc.length && n.abs() <= 0.5 * self.width).then_some(Hit {
+        if s >= 0.0 && s <= self.arc.length && n.abs() <= half {
+            return Some(Hit { index, s, n });
+        }
+        if self.straight <= 0.0 {
+            return None;
+        }
+        let l = self.arc.end().to_local(p);
+        (l.x >= 0.0 && l.x <= self.straight && l.y.abs() <= half).then_some(Hit {
             index,
-            s,
-            n,
+            s: self.arc.length + l.x,
+            n: l.y,
         })
     }
 
@@ -195,5 +266,34 @@ mod tests {
         ];
         assert_eq!(a.first_hit(&pts).map(|h| h.index), Some(2));
         assert_eq!(a.hits(&pts).len(), 2);
+    }
+
+    #[test]
+    fn the_area_bends_no_further_than_the_route_turns() {
+        // A quarter circle of radius 1 to the left, then straight north.
+        let spec = crate::path::TurnSpec {
+            lead_out: 3.0,
+            ..crate::path::TurnSpec::degrees(90.0, 1.0)
+        };
+        let route = crate::path::turn(Pose::new(0.0, 0.0, 0.0), &spec, Direction::Forward, 0.05)
+            .expect("valid");
+        let at = Pose::new(0.0, 0.0, 0.0);
+        let turn = route_turn(&route, 0, &at, 1.0, 4.0);
+        assert!((turn - std::f64::consts::FRAC_PI_2).abs() < 1e-9, "{turn}");
+        // Steering right against a left route: nothing to bend for.
+        assert_eq!(route_turn(&route, 0, &at, -1.0, 4.0), 0.0);
+
+        let full = CheckArea::new(&at, Direction::Forward, 1.0, 0.4, &MORO);
+        let limited = CheckArea::turning_at_most(&at, Direction::Forward, 1.0, 0.4, &MORO, turn);
+        assert!((limited.length() - full.length()).abs() < 1e-12);
+        assert!(limited.straight > 0.0 && full.straight == 0.0);
+        // Inside the circle past the quarter, where the full bend sweeps
+        // (the wall the robot turns round); the limited area goes north.
+        let inside = Point2::new(0.55, 1.45);
+        assert!(full.hit(0, &inside).is_some());
+        assert!(limited.hit(0, &inside).is_none());
+        let ahead = Point2::new(1.0, 1.6);
+        let h = limited.hit(0, &ahead).expect("on the route after the turn");
+        assert!(h.n.abs() < 1e-9 && h.s > limited.arc.length);
     }
 }

@@ -7,7 +7,7 @@ mod area;
 mod side;
 mod state;
 
-pub use area::{AreaParams, CheckArea, Hit, check_length, check_width};
+pub use area::{AreaParams, CheckArea, Hit, check_length, check_width, route_turn};
 pub use side::{Detour, SideParams, corridor_is_free, detour_path, find_free_side};
 pub use state::{AvoidMode, AvoidParams, AvoidState, Avoider, Decision, Observation};
 

@@ -3,7 +3,7 @@
 //! position controller brings the robot back to its route) and back to
 //! NORMAL after a security wait; plus BLOCKED, where the robot stands.
 
-use super::area::{AreaParams, CheckArea};
+use super::area::{AreaParams, CheckArea, check_length, route_turn};
 use super::side::{Detour, SideParams, corridor_is_free, detour_path, find_free_side};
 use crate::path::{Direction, Path};
 use crate::pose::Pose;
@@ -147,12 +147,26 @@ impl Avoider {
 
     /// One cycle of the state machine.
     pub fn step(&mut self, obs: &Observation<'_>) -> Decision<'_> {
-        let area = CheckArea::new(
+        let travel = match obs.direction {
+            Direction::Forward => obs.pose,
+            Direction::Backward => obs.pose.flipped(),
+        };
+        let reach =
+            self.params.area.front_offset + check_length(self.params.area.max_curvature, obs.speed);
+        let max_turn = route_turn(
+            obs.reference,
+            obs.k,
+            &travel,
+            obs.direction.sign() * obs.curvature,
+            reach,
+        );
+        let area = CheckArea::turning_at_most(
             &obs.pose,
             obs.direction,
             obs.curvature,
             obs.speed,
             &self.params.area,
+            max_turn,
         );
         let hits = area.hits(obs.points);
         let next = match (self.mode, self.state) {

@@ -3,7 +3,7 @@
 
 use crate::arc::Arc;
 use crate::obstacle::check_width;
-use crate::path::Path;
+use crate::path::{Path, segment_distance};
 use crate::pose::{Pose, Side};
 use nalgebra::Point2;
 use std::f64::consts::FRAC_PI_2;
@@ -13,18 +13,25 @@ pub fn path_is_free(path: &Path, points: &[Point2<f64>], half_width: f64) -> boo
     points.iter().all(|p| path.distance_to(p) > half_width)
 }
 
-/// True when a quarter turn to `side` at `curvature` from `pose` keeps every
-/// map point further than half the checked width (equation (12)) plus
-/// `margin` from the robot's centre line.
+/// True when a quarter turn to `side` at `curvature` from `pose`, and the
+/// `lead_out` metres the robot then drives straight on, keep every map
+/// point further than half the checked width (equation (12)) plus `margin`
+/// from the robot's centre line.
+///
+/// The straight after the arc matters at the end of a wall the robot turns
+/// round: the arc alone clears the corner as soon as the corner lies beyond
+/// the arc's end, but the robot goes on past it with the avoider's area
+/// ahead, and that area would then find the corner.
 pub fn turn_space_free(
     pose: &Pose,
     side: Side,
     curvature: f64,
     robot_width: f64,
     margin: f64,
+    lead_out: f64,
     points: &[Point2<f64>],
 ) -> bool {
-    if !(curvature.is_finite() && curvature > 0.0) {
+    if !(curvature.is_finite() && curvature > 0.0 && lead_out.is_finite()) {
         return false;
     }
     let arc = Arc {
@@ -32,8 +39,12 @@ pub fn turn_space_free(
         curvature: side.sign() * curvature,
         length: FRAC_PI_2 / curvature,
     };
+    let end = arc.end();
+    let beyond = end.advance(lead_out.max(0.0), 0.0).position();
     let clearance = 0.5 * check_width(robot_width) + margin;
-    points.iter().all(|p| arc.distance_to(p) > clearance)
+    points.iter().all(|p| {
+        arc.distance_to(p) > clearance && segment_distance(p, &end.position(), &beyond) > clearance
+    })
 }
 
 #[cfg(test)]
@@ -63,6 +74,7 @@ mod tests {
             1.0,
             0.6,
             0.1,
+            0.0,
             &pts
         ));
         assert!(turn_space_free(
@@ -71,6 +83,7 @@ mod tests {
             1.0,
             0.6,
             0.1,
+            0.0,
             &pts
         ));
         // The right side is a wall all along.
@@ -80,6 +93,7 @@ mod tests {
             1.0,
             0.6,
             0.1,
+            0.0,
             &pts
         ));
         assert!(!turn_space_free(
@@ -88,7 +102,40 @@ mod tests {
             0.0,
             0.6,
             0.1,
+            0.0,
             &pts
+        ));
+    }
+
+    #[test]
+    fn the_straight_after_the_turn_must_clear_the_corner_too() {
+        // The end of a bench on the left (Figure 58): its corner lies just
+        // beyond the arc's end, closer than the clearance to the line the
+        // robot drives on after the turn.
+        let bench: Vec<Point2<f64>> = (0..=20)
+            .map(|i| Point2::new(4.5 + 0.25 * f64::from(i), 7.1))
+            .chain((0..=8).map(|i| Point2::new(9.5, 7.1 + 0.1 * f64::from(i))))
+            .collect();
+        let at = Pose::new(8.955, 6.0, 0.0);
+        assert!(turn_space_free(&at, Side::Left, 1.0, 0.6, 0.1, 0.0, &bench));
+        assert!(!turn_space_free(
+            &at,
+            Side::Left,
+            1.0,
+            0.6,
+            0.1,
+            1.4,
+            &bench
+        ));
+        let later = Pose::new(9.1, 6.0, 0.0);
+        assert!(turn_space_free(
+            &later,
+            Side::Left,
+            1.0,
+            0.6,
+            0.1,
+            1.4,
+            &bench
         ));
     }
 }

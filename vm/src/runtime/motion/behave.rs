@@ -54,6 +54,7 @@ impl<H: Hal, C: Clock> Vm<H, C> {
                     self.cfg.turn_curvature,
                     self.cfg.robot_width,
                     TURN_MARGIN,
+                    self.turn_lead_out(),
                     self.motion.map.points(),
                 ) {
                     Some((self.quarter_turn(pose, side)?, Mode::Path))

@@ -8,6 +8,7 @@
 use std::f64::consts::FRAC_PI_2;
 
 use ilmr_hal::Hal;
+use ilmr_motion::obstacle::check_length;
 use ilmr_motion::path::{TurnSpec, polyline, straight, turn};
 use ilmr_motion::wall::{
     FOLLOWWALL_AHEAD, WallParams, fit_wall, followwall_goal, middle_goal, turn_space_free,
@@ -26,7 +27,11 @@ pub(crate) const SPACING: f64 = 0.05;
 /// A `goahead` without a distance is planned this far and extended as it goes.
 pub(crate) const ENDLESS_LEG: f64 = 30.0;
 /// Clearance kept by `turn(left|right)` beyond half the checked width, m.
-pub(crate) const TURN_MARGIN: f64 = 0.1;
+/// It absorbs the controller catching up with the quarter circle (tighter
+/// than the path for a moment, so the avoider's area swings inside it) and
+/// the map's 5 cm cells at a wall's corner; with 0.1 m the turn round the
+/// end of Figure 58's lab bench began 1 cm too early and ended blocked.
+pub(crate) const TURN_MARGIN: f64 = 0.25;
 /// Recorded paths are thinned to waypoints at least this far apart, in turn,
 /// until their corners fit the robot's curvature.
 const THINNING: [f64; 5] = [0.0, 0.3, 0.6, 1.2, 2.5];
@@ -171,6 +176,7 @@ impl<H: Hal, C: Clock> Vm<H, C> {
                     c,
                     self.cfg.robot_width,
                     TURN_MARGIN,
+                    self.turn_lead_out(),
                     self.motion.map.points(),
                 ) {
                     Planned::path(self.quarter_turn(start, s)?)
@@ -255,6 +261,13 @@ impl<H: Hal, C: Clock> Vm<H, C> {
                 }
             }
         })
+    }
+
+    /// How far past a `turn(left|right)` the way must be clear too: as far as
+    /// the avoider's area reaches ahead of the robot (equation (11) from
+    /// the front), so the turn is not begun only to be blocked at its end.
+    pub(crate) fn turn_lead_out(&self) -> f64 {
+        self.cfg.front_offset + check_length(self.cfg.obstacle_curvature, self.motion.speed)
     }
 
     /// `turn(left|right)` once there is room: a quarter circle at the
