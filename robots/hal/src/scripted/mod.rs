@@ -29,7 +29,10 @@ struct RunningOp {
 pub struct ScriptedRobot {
     limits: Limits,
     kin: Kinematics,
-    /// Dead reckoning offset applied by `locate`: estimated = true + offset.
+    /// The frame `locate` sets, as a rigid transform of the true pose: the estimate is
+    /// the true position rotated by `offset.h` and moved by (`offset.x`, `offset.y`),
+    /// its heading turned by `offset.h`. Adding the offsets per component would skew
+    /// the frame whenever the located heading differs from the true one.
     offset: Pose,
     t: f64,
     ticks: u64,
@@ -145,9 +148,10 @@ impl ScriptedRobot {
 
     fn estimated(&self) -> Pose {
         let p = self.kin.pose;
+        let (sin, cos) = self.offset.h.sin_cos();
         Pose::new(
-            p.x + self.offset.x,
-            p.y + self.offset.y,
+            cos * p.x - sin * p.y + self.offset.x,
+            sin * p.x + cos * p.y + self.offset.y,
             wrap(p.h + self.offset.h),
         )
     }
@@ -281,7 +285,13 @@ impl Hal for ScriptedRobot {
             return Err(HalError::Refused("pose is not a number".into()));
         }
         let p = self.kin.pose;
-        self.offset = Pose::new(pose.x - p.x, pose.y - p.y, wrap(pose.h - p.h));
+        let turn = wrap(pose.h - p.h);
+        let (sin, cos) = turn.sin_cos();
+        self.offset = Pose::new(
+            pose.x - (cos * p.x - sin * p.y),
+            pose.y - (sin * p.x + cos * p.y),
+            turn,
+        );
         Ok(())
     }
 
@@ -394,5 +404,22 @@ mod tests {
         let s = run_to(&mut robot, 0.1);
         assert_eq!(s.pose, Pose::new(2.0, 3.0, 0.5));
         assert_eq!(s.true_pose, Some(Pose::default()));
+    }
+
+    #[test]
+    fn after_locate_the_robot_moves_along_its_located_heading() {
+        let mut robot = ScriptedRobot::new(Limits::default());
+        // Truly at the origin facing +x; told it stands at (5, 1) facing -x.
+        robot
+            .locate(Pose::new(5.0, 1.0, std::f64::consts::PI))
+            .expect("finite pose");
+        robot.set_motion(0.5, 0.0).expect("drives");
+        let s = run_to(&mut robot, 4.0);
+        let truth = s.true_pose.expect("scripted robots know the truth");
+        let travelled = truth.x;
+        assert!(travelled > 0.5, "it moved: {truth:?}");
+        // Forward in the located frame is -x: x falls by what was travelled, y stays.
+        assert!((s.pose.x - (5.0 - travelled)).abs() < 1e-9, "{:?}", s.pose);
+        assert!((s.pose.y - 1.0).abs() < 1e-9, "{:?}", s.pose);
     }
 }
