@@ -2,7 +2,6 @@
 
 mod support;
 
-
 use support::ilmrc;
 
 #[test]

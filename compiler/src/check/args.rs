@@ -668,7 +668,10 @@ impl<'m, 'v> Cx<'m, 'v> {
                     (d.min..=d.max).contains(&v),
                     Limit::Refuse,
                     Box::new(move || {
-                        format!("between {} and {} (the range of `{}`)", d.min, d.max, d.name)
+                        format!(
+                            "between {} and {} (the range of `{}`)",
+                            d.min, d.max, d.name
+                        )
                     }),
                 )
             }
@@ -713,7 +716,8 @@ impl<'m, 'v> Cx<'m, 'v> {
             m.cost += COST_KIND;
         }
         m.findings.diags.push(
-            Diagnostic::new(code, self.file, span, message).with_label(format!("must be {}", bound())),
+            Diagnostic::new(code, self.file, span, message)
+                .with_label(format!("must be {}", bound())),
         );
     }
 
