@@ -219,14 +219,14 @@ impl<'s> Formatter<'_, 's> {
         for line in (0..count).rev() {
             next_depth[line] = self.lines.get(&line).map_or(next_depth[line + 1], |l| l.0);
         }
-        for line in 0..count {
+        for (line, &next) in next_depth.iter().enumerate().take(count) {
             let comment = comment_on
                 .get(&line)
                 .map(|c| c.slice(self.source).trim_end());
             let text = match (self.lines.get(&line), comment) {
                 (Some((depth, text)), Some(c)) => format!("{}{text} {c}", INDENT.repeat(*depth)),
                 (Some((depth, text)), None) => format!("{}{text}", INDENT.repeat(*depth)),
-                (None, Some(c)) => format!("{}{c}", INDENT.repeat(next_depth[line])),
+                (None, Some(c)) => format!("{}{c}", INDENT.repeat(next)),
                 (None, None) => String::new(),
             };
             if text.is_empty() && out.last().is_none_or(String::is_empty) {

@@ -106,22 +106,6 @@ impl LineIndex {
     }
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn lines_and_columns_are_one_based_and_count_characters() {
-        let src = "ab\nkäännös=1\n";
-        let idx = LineIndex::new(src);
-        assert_eq!(idx.line_col(src, 0), (1, 1));
-        assert_eq!(idx.line_col(src, 3), (2, 1));
-        let eq = src.find('=').unwrap();
-        assert_eq!(idx.line_col(src, eq), (2, 8));
-        assert_eq!(idx.line_col(src, src.len()), (3, 1));
-    }
-}
-
 impl chumsky::span::Span for Span {
     type Context = ();
     type Offset = usize;
@@ -138,5 +122,21 @@ impl chumsky::span::Span for Span {
 
     fn end(&self) -> usize {
         self.end as usize
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn lines_and_columns_are_one_based_and_count_characters() {
+        let src = "ab\nkäännös=1\n";
+        let idx = LineIndex::new(src);
+        assert_eq!(idx.line_col(src, 0), (1, 1));
+        assert_eq!(idx.line_col(src, 3), (2, 1));
+        let eq = src.find('=').unwrap();
+        assert_eq!(idx.line_col(src, eq), (2, 8));
+        assert_eq!(idx.line_col(src, src.len()), (3, 1));
     }
 }

@@ -3,12 +3,15 @@
 //! reported, so `turn(lft)` says "did you mean `left`?" rather than listing every form.
 
 use ilmr_model::Device;
+use smallvec::SmallVec;
+
 use ilmr_stdlib::{
     CommandSpec, Form, Limit, ModelNames, NameSpace, Occurs, ParamKind, Range, VarKind,
 };
 
 use crate::ast::{Arg, Args, Expr, ExprKind, Name};
 use crate::check::expr::Value;
+use crate::check::keywords::is_keyword;
 use crate::check::suggest;
 use crate::check::{Cx, Findings, Resolved};
 use crate::diagnostic::{Code, Diagnostic};
@@ -43,27 +46,36 @@ impl<'m, 'v> Cx<'m, 'v> {
         if let [form] = spec.forms {
             return self.match_form(spec, 0, form, items, at);
         }
-        let plausible: Vec<bool> = spec
-            .forms
-            .iter()
-            .map(|f| self.plausible(spec, f, items))
-            .collect();
-        let plausible = &plausible;
+        // Plausibility is asked lazily: a correct call usually fits a form before the
+        // last, and the forms after it are never looked at.
+        let mut plausible: SmallVec<[Option<bool>; 8]> =
+            smallvec::smallvec![None; spec.forms.len()];
         let order = [true, false]
             .into_iter()
-            .flat_map(|wanted| (0..spec.forms.len()).filter(move |&i| plausible[i] == wanted));
-        for i in order {
+            .flat_map(|wanted| (0..spec.forms.len()).map(move |i| (wanted, i)));
+        for (wanted, i) in order {
             let form = &spec.forms[i];
+            let fits = match plausible[i] {
+                Some(known) => known,
+                None => *plausible[i].insert(self.plausible(spec, form, items)),
+            };
+            if fits != wanted {
+                continue;
+            }
             let m = self.match_form(spec, i, form, items, at);
             if m.cost == 0 {
+                if let Some(b) = best {
+                    self.discard(b.findings);
+                }
                 return m;
             }
             // Ties go to the catalogue's order, not to the order of trying.
-            if best
+            let better = best
                 .as_ref()
-                .is_none_or(|b| (m.cost, m.form) < (b.cost, b.form))
-            {
-                best = Some(m);
+                .is_none_or(|b| (m.cost, m.form) < (b.cost, b.form));
+            let loser = if better { best.replace(m) } else { Some(m) };
+            if let Some(loser) = loser {
+                self.discard(loser.findings);
             }
         }
         best.expect("call commands have at least one form")
@@ -79,11 +91,11 @@ impl<'m, 'v> Cx<'m, 'v> {
     ) -> FormMatch<'s> {
         let mut m = FormMatch {
             form: index,
-            findings: Findings::default(),
+            findings: self.findings(),
             binds_position: None,
             cost: 0,
         };
-        let positional: Vec<&Expr<'s>> = items
+        let positional: SmallVec<[&Expr<'s>; 8]> = items
             .iter()
             .filter_map(|a| match a {
                 Arg::Positional(e) => Some(e),
@@ -116,11 +128,11 @@ impl<'m, 'v> Cx<'m, 'v> {
                     }
                 },
                 Occurs::Optional => {
-                    if let Some(e) = positional.get(next) {
-                        if self.fits(spec, &param.kind, e) {
-                            self.accept(&mut m, spec, param.name, &param.kind, e, &mut device);
-                            next += 1;
-                        }
+                    if let Some(e) = positional.get(next)
+                        && self.fits(spec, &param.kind, e)
+                    {
+                        self.accept(&mut m, spec, param.name, &param.kind, e, &mut device);
+                        next += 1;
                     }
                 }
                 Occurs::Many => {
@@ -590,20 +602,21 @@ impl<'m, 'v> Cx<'m, 'v> {
             }
         }
         for param in form.params {
-            if let ParamKind::Setting { key, .. } = param.kind {
-                if param.occurs == Occurs::One && !seen.iter().any(|(s, _)| *s == key) {
-                    m.cost += COST_COUNT;
-                    m.findings.diags.push(
-                        Diagnostic::new(
-                            Code::BadSetting,
-                            self.file,
-                            at,
-                            format!("`{}` needs the setting `{key}=` ({})", spec.name, param.doc),
-                        )
-                        .with_label(format!("`{key}=` is missing"))
-                        .with_help(format!("the grammar is:\n{}", spec.grammar)),
-                    );
-                }
+            if let ParamKind::Setting { key, .. } = param.kind
+                && param.occurs == Occurs::One
+                && !seen.iter().any(|(s, _)| *s == key)
+            {
+                m.cost += COST_COUNT;
+                m.findings.diags.push(
+                    Diagnostic::new(
+                        Code::BadSetting,
+                        self.file,
+                        at,
+                        format!("`{}` needs the setting `{key}=` ({})", spec.name, param.doc),
+                    )
+                    .with_label(format!("`{key}=` is missing"))
+                    .with_help(format!("the grammar is:\n{}", spec.grammar)),
+                );
             }
         }
     }
@@ -620,7 +633,8 @@ impl<'m, 'v> Cx<'m, 'v> {
         device: Option<&Device>,
     ) {
         let model = self.model;
-        let param_bound = |param: &str| model.parameter_or_default(param);
+        let constants = self.constants;
+        let param_bound = |param: &str| constants.parameter_or_default(param, model);
         // The message text is built only for a value out of range: this runs for every
         // constant argument of a program.
         let (ok, limit, bound): (bool, Limit, Box<dyn Fn() -> String + '_>) = match range {
@@ -752,9 +766,9 @@ pub fn fits(spec: &CommandSpec, kind: &ParamKind, e: &Expr<'_>) -> bool {
         ParamKind::OneOf { kinds } => kinds.iter().any(|k| fits(spec, k, e)),
         ParamKind::Model {
             names: ModelNames::Device,
-        } => matches!(e.kind, ExprKind::Number(_)) || name.is_some_and(|n| !spec.has_keyword(n)),
-        ParamKind::Value { .. } => name.is_none_or(|n| !spec.has_keyword(n)),
-        _ => name.is_some_and(|n| !spec.has_keyword(n)),
+        } => matches!(e.kind, ExprKind::Number(_)) || name.is_some_and(|n| !is_keyword(spec, n)),
+        ParamKind::Value { .. } => name.is_none_or(|n| !is_keyword(spec, n)),
+        _ => name.is_some_and(|n| !is_keyword(spec, n)),
     }
 }
 

@@ -7,11 +7,12 @@ mod args;
 mod breaks;
 pub mod constants;
 mod expr;
+mod fold;
+mod keywords;
+mod names;
 mod scope;
 mod skills;
 pub mod suggest;
-
-use std::collections::HashMap;
 
 use ilmr_model::RobotModel;
 use ilmr_stdlib::{Command, Syntax, VarKind};
@@ -131,6 +132,23 @@ pub struct Cx<'m, 'v> {
     pub vars: &'v mut Vars,
     pub file: FileId,
     pub buf: &'v mut String,
+    /// Emptied findings, kept for their capacity: a statement's findings are gathered
+    /// apart and then absorbed, and most statements have some.
+    pub spare: &'v mut Vec<Findings>,
+}
+
+impl Cx<'_, '_> {
+    pub fn findings(&mut self) -> Findings {
+        self.spare.pop().unwrap_or_default()
+    }
+
+    /// Returns findings that were not taken.
+    pub fn discard(&mut self, mut f: Findings) {
+        f.diags.clear();
+        f.uses.clear();
+        f.refs.clear();
+        self.spare.push(f);
+    }
 }
 
 pub fn analyze<'s>(sources: &'s [Source], model: &RobotModel) -> Analysis<'s> {
@@ -158,8 +176,14 @@ pub fn analyze<'s>(sources: &'s [Source], model: &RobotModel) -> Analysis<'s> {
 
     let mut skills = skills::Skills::collect(&files, model, &mut diagnostics);
     let constants = constants::Constants::new(model);
+    let names = names::Names::new(&constants, &skills);
     let mut units = Vec::new();
-    let mut globals: Vec<(String, VarKind)> = skills.all_binds();
+    // Keyed as a skill's table looks them up; a later binding of a name replaces an
+    // earlier one.
+    let mut globals: FxHashMap<String, VarKind> = FxHashMap::default();
+    for (name, kind) in skills.all_binds() {
+        globals.insert(name.to_lowercase(), kind);
+    }
 
     for (i, entry) in files.iter().enumerate() {
         if entry.tree.kind != FileKind::Task || entry.library {
@@ -172,18 +196,22 @@ pub fn analyze<'s>(sources: &'s [Source], model: &RobotModel) -> Analysis<'s> {
             refs: Vec::new(),
             targets: FxHashMap::default(),
         };
-        Walker::new(model, &constants, &skills, &mut unit, &mut diagnostics)
-            .blocks(&entry.tree.blocks);
-        globals.extend(unit.vars.iter().map(|(_, v)| (v.spelling.clone(), v.kind)));
+        Walker::new(
+            model,
+            &constants,
+            &names,
+            &skills,
+            &mut unit,
+            &mut diagnostics,
+        )
+        .blocks(&entry.tree.blocks);
+        globals.reserve(unit.vars.len());
+        for (_, v) in unit.vars.iter() {
+            globals.insert(v.spelling.to_lowercase(), v.kind);
+        }
         units.push(unit);
     }
-
-    let globals: std::rc::Rc<HashMap<String, VarKind>> = std::rc::Rc::new(
-        globals
-            .into_iter()
-            .map(|(name, kind)| (name.to_lowercase(), kind))
-            .collect(),
-    );
+    let globals = std::rc::Rc::new(globals);
     // Skills of the files given to check first; then the library skills that anything
     // checked so far calls (library skills are checked only where called).
     for library in [false, true] {
@@ -219,7 +247,15 @@ pub fn analyze<'s>(sources: &'s [Source], model: &RobotModel) -> Analysis<'s> {
                 targets: FxHashMap::default(),
             };
             let blocks = &entry.tree.skills[skill.index].blocks;
-            Walker::new(model, &constants, &skills, &mut unit, &mut diagnostics).blocks(blocks);
+            Walker::new(
+                model,
+                &constants,
+                &names,
+                &skills,
+                &mut unit,
+                &mut diagnostics,
+            )
+            .blocks(blocks);
             units.push(unit);
         }
     }
@@ -249,11 +285,12 @@ pub fn check_fragment<'n>(
 ) -> (Unit, Vec<Diagnostic>) {
     let skills = skills::Skills::from_names(skill_names);
     let constants = constants::Constants::new(model);
+    let names = names::Names::unindexed();
     let globals = std::rc::Rc::new(
         globals
             .into_iter()
             .map(|(name, kind)| (name.to_lowercase(), kind))
-            .collect(),
+            .collect::<FxHashMap<_, _>>(),
     );
     let mut unit = Unit {
         file,
@@ -263,7 +300,15 @@ pub fn check_fragment<'n>(
         targets: FxHashMap::default(),
     };
     let mut diagnostics = Vec::new();
-    Walker::new(model, &constants, &skills, &mut unit, &mut diagnostics).blocks(&tree.blocks);
+    Walker::new(
+        model,
+        &constants,
+        &names,
+        &skills,
+        &mut unit,
+        &mut diagnostics,
+    )
+    .blocks(&tree.blocks);
     diagnostics.sort_by_key(|d| (d.span.start, d.code));
     (unit, diagnostics)
 }
@@ -301,16 +346,19 @@ fn unused_variables(files: &[FileEntry<'_>], units: &[Unit], diagnostics: &mut V
 struct Walker<'a, 'm> {
     model: &'m RobotModel,
     constants: &'m constants::Constants,
+    names: &'a names::Names,
     skills: &'a skills::Skills,
     unit: &'a mut Unit,
     diagnostics: &'a mut Vec<Diagnostic>,
     buf: String,
+    spare: Vec<Findings>,
 }
 
 impl<'a, 'm> Walker<'a, 'm> {
     fn new(
         model: &'m RobotModel,
         constants: &'m constants::Constants,
+        names: &'a names::Names,
         skills: &'a skills::Skills,
         unit: &'a mut Unit,
         diagnostics: &'a mut Vec<Diagnostic>,
@@ -318,10 +366,12 @@ impl<'a, 'm> Walker<'a, 'm> {
         Walker {
             model,
             constants,
+            names,
             skills,
             unit,
             diagnostics,
             buf: String::new(),
+            spare: Vec::new(),
         }
     }
 
@@ -332,16 +382,27 @@ impl<'a, 'm> Walker<'a, 'm> {
             vars: &mut self.unit.vars,
             file: self.unit.file,
             buf: &mut self.buf,
+            spare: &mut self.spare,
         }
     }
 
-    fn absorb(&mut self, f: Findings) {
+    fn findings(&mut self) -> Findings {
+        self.spare.pop().unwrap_or_default()
+    }
+
+    fn absorb(&mut self, mut f: Findings) {
         let file = self.unit.file;
-        for (id, span) in f.uses {
+        for (id, span) in f.uses.drain(..) {
             self.unit.vars.use_at(id, file, span);
         }
-        self.unit.refs.extend(f.refs);
-        self.diagnostics.extend(f.diags);
+        self.unit.refs.append(&mut f.refs);
+        self.diagnostics.append(&mut f.diags);
+        self.spare.push(f);
+    }
+
+    fn meaning(&mut self, name: &str) -> names::Meaning {
+        self.names
+            .meaning(name, self.constants, self.skills, &mut self.buf)
     }
 
     fn blocks(&mut self, blocks: &[Block<'_>]) {
@@ -381,7 +442,7 @@ impl<'a, 'm> Walker<'a, 'm> {
                 let kind = match &value.kind {
                     ExprKind::Name(name) => self.assign_name(name, stmt.span),
                     _ => {
-                        let mut f = Findings::default();
+                        let mut f = self.findings();
                         self.cx().value(&mut f, value);
                         self.absorb(f);
                         Some(VarKind::Number)
@@ -392,13 +453,13 @@ impl<'a, 'm> Walker<'a, 'm> {
                 }
             }
             StmtKind::If(c) => {
-                let mut f = Findings::default();
+                let mut f = self.findings();
                 self.cx().condition(&mut f, &c.cond);
                 self.absorb(f);
                 self.blocks(&c.body);
             }
             StmtKind::While { bind, body } => {
-                let mut f = Findings::default();
+                let mut f = self.findings();
                 self.cx().condition(&mut f, &body.cond);
                 self.absorb(f);
                 if let Some(bind) = bind {
@@ -417,16 +478,18 @@ impl<'a, 'm> Walker<'a, 'm> {
 
     /// `v = name`: a skill call, a bare command, a copy of a variable or a model constant.
     fn assign_name(&mut self, name: &Name<'_>, stmt: Span) -> Option<VarKind> {
-        if self.unit.vars.bound(name.text).is_none() && self.model_constant(name.text).is_none() {
-            let call = Call {
-                name: *name,
-                args: None,
-            };
-            if self.skills.find(name.text).is_some() || Command::from_name(name.text).is_some() {
+        if self.unit.vars.bound(name.text).is_none() {
+            let meaning = self.meaning(name.text);
+            if meaning.constant.is_none() && (meaning.skill.is_some() || meaning.command.is_some())
+            {
+                let call = Call {
+                    name: *name,
+                    args: None,
+                };
                 return self.call(&call, stmt);
             }
         }
-        let mut f = Findings::default();
+        let mut f = self.findings();
         let copied = self.unit.vars.bound(name.text);
         self.cx().value(
             &mut f,
@@ -446,14 +509,11 @@ impl<'a, 'm> Walker<'a, 'm> {
         Some(kind.unwrap_or(VarKind::Number))
     }
 
-    fn model_constant(&mut self, name: &str) -> Option<f64> {
-        self.constants.get(name, &mut self.buf)
-    }
-
     /// Checks a call and returns what a variable bound to it would hold.
     fn call(&mut self, call: &Call<'_>, stmt: Span) -> Option<VarKind> {
         let file = self.unit.file;
-        if let Some(command) = Command::from_name(call.name.text) {
+        let meaning = self.meaning(call.name.text);
+        if let Some(command) = meaning.command {
             let spec = command.spec();
             if spec.syntax == Syntax::Structural {
                 self.diagnostics.push(
@@ -486,7 +546,7 @@ impl<'a, 'm> Walker<'a, 'm> {
             );
             return Some(kind);
         }
-        if let Some(id) = self.skills.find(call.name.text) {
+        if let Some(id) = meaning.skill {
             self.unit.refs.push((call.name.span, Resolved::Skill(id)));
             if let Some(args) = &call.args {
                 self.diagnostics.push(
@@ -532,11 +592,12 @@ impl<'a, 'm> Walker<'a, 'm> {
 
     fn bind(&mut self, name: &Name<'_>, kind: VarKind) {
         let file = self.unit.file;
-        let reserved = if Command::from_name(name.text).is_some() {
+        let meaning = self.meaning(name.text);
+        let reserved = if meaning.command.is_some() {
             Some("a command")
-        } else if self.skills.find(name.text).is_some() {
+        } else if meaning.skill.is_some() {
             Some("a skill")
-        } else if self.model_constant(name.text).is_some() {
+        } else if meaning.constant.is_some() {
             Some("a constant of the robot model")
         } else {
             None

@@ -2,10 +2,11 @@
 //! which command bound each variable and whether a binding precedes the current
 //! statement in the text.
 
-use std::collections::HashMap;
 use std::rc::Rc;
 
 use rustc_hash::FxHashMap;
+
+use crate::check::fold::FoldMap;
 
 use ilmr_stdlib::VarKind;
 
@@ -27,12 +28,12 @@ pub struct Var {
 #[derive(Debug, Default, Clone)]
 pub struct Vars {
     vars: Vec<Var>,
-    index: FxHashMap<String, VarId>,
+    index: FoldMap<VarId>,
     /// Whether a binding of each variable precedes the statement being checked.
     bound: Vec<bool>,
     /// Variables bound anywhere in the program, which a skill may use: consulted on a
     /// miss rather than copied into every skill's table.
-    globals: Option<Rc<HashMap<String, VarKind>>>,
+    globals: Option<Rc<FxHashMap<String, VarKind>>>,
     /// The globals are a running program's: compiled code reads them by kind, so a new
     /// binding cannot change one's kind.
     fixed: bool,
@@ -41,12 +42,15 @@ pub struct Vars {
 
 impl Vars {
     pub fn find(&mut self, name: &str) -> Option<VarId> {
+        if name.is_ascii() {
+            return self.index.get(name).copied();
+        }
         super::constants::key(name, &mut self.key);
-        self.index.get(self.key.as_str()).copied()
+        self.index.get(&self.key).copied()
     }
 
     /// A table for a skill body, which sees the program's variables as bound.
-    pub fn with_globals(globals: Rc<HashMap<String, VarKind>>) -> Vars {
+    pub fn with_globals(globals: Rc<FxHashMap<String, VarKind>>) -> Vars {
         Vars {
             globals: Some(globals),
             ..Vars::default()
@@ -54,7 +58,7 @@ impl Vars {
     }
 
     /// A table for a line joining a running program, whose variables keep their kinds.
-    pub fn with_fixed_globals(globals: Rc<HashMap<String, VarKind>>) -> Vars {
+    pub fn with_fixed_globals(globals: Rc<FxHashMap<String, VarKind>>) -> Vars {
         Vars {
             fixed: true,
             ..Vars::with_globals(globals)
@@ -75,9 +79,10 @@ impl Vars {
         if let Some(id) = self.find(name).filter(|id| self.bound[id.0 as usize]) {
             return Some(id);
         }
-        let kind = *self.globals.as_ref()?.get(self.key.as_str())?;
+        let globals = self.globals.as_ref()?;
+        let kind = *globals.get(super::constants::key(name, &mut self.key))?;
         let id = VarId(self.vars.len() as u32);
-        self.index.insert(self.key.clone(), id);
+        self.index.insert(&self.key, id);
         self.vars.push(Var {
             spelling: name.to_string(),
             kind,
@@ -93,16 +98,16 @@ impl Vars {
             Some(id) => id,
             None => {
                 let id = VarId(self.vars.len() as u32);
-                let key = self.key.clone();
-                self.index.insert(key, id);
+                self.index
+                    .insert(super::constants::key(name, &mut self.key), id);
                 self.vars.push(Var {
                     spelling: name.to_string(),
                     kind,
-                    defs: Vec::new(),
+                    defs: vec![(file, span)],
                     uses: Vec::new(),
                 });
-                self.bound.push(false);
-                id
+                self.bound.push(true);
+                return id;
             }
         };
         let var = &mut self.vars[id.0 as usize];
@@ -114,6 +119,14 @@ impl Vars {
 
     pub fn use_at(&mut self, id: VarId, file: FileId, span: Span) {
         self.vars[id.0 as usize].uses.push((file, span));
+    }
+
+    pub fn len(&self) -> usize {
+        self.vars.len()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.vars.is_empty()
     }
 
     pub fn get(&self, id: VarId) -> &Var {

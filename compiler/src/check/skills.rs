@@ -165,6 +165,19 @@ impl Skills {
             .copied()
     }
 
+    pub fn len(&self) -> usize {
+        self.list.len()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.list.is_empty()
+    }
+
+    /// Every skill under its lower-cased key, in no particular order.
+    pub fn keys(&self) -> impl Iterator<Item = (&str, SkillId)> {
+        self.index.iter().map(|(k, id)| (k.as_str(), *id))
+    }
+
     pub fn get(&self, id: SkillId) -> &SkillInfo {
         &self.list[id.0 as usize]
     }
@@ -298,12 +311,11 @@ fn scan(
                     if let (Some(b), Some(k)) = (bind, kind) {
                         binds.push((b.text.to_string(), k));
                     }
-                    if let Some(cmd) = Command::from_name(call.name.text) {
-                        if cmd == Command::SavePos {
-                            if let Some(name) = first_name(call) {
-                                binds.push((name.text.to_string(), VarKind::Position));
-                            }
-                        }
+                    if let Some(cmd) = Command::from_name(call.name.text)
+                        && cmd == Command::SavePos
+                        && let Some(name) = first_name(call)
+                    {
+                        binds.push((name.text.to_string(), VarKind::Position));
                     }
                 }
                 StmtKind::Assign { target, value } => {

@@ -51,6 +51,18 @@ pub fn lower_line_into(
     model: &RobotModel,
     options: LineOptions,
 ) -> Result<Vec<BlockId>, Vec<Diagnostic>> {
+    lower_line_warned(text, b, model, options, &mut Vec::new())
+}
+
+/// [`lower_line_into`], also handing back the warnings of a line that was lowered
+/// (they are appended to `warnings` only on success), for a front end that shows them.
+pub fn lower_line_warned(
+    text: &str,
+    b: &mut ModuleBuilder,
+    model: &RobotModel,
+    options: LineOptions,
+    warnings: &mut Vec<Diagnostic>,
+) -> Result<Vec<BlockId>, Vec<Diagnostic>> {
     let file = FileId(0);
     let parsed = parser::parse(text, file);
     let mut diags: Vec<Diagnostic> = parsed.diagnostics;
@@ -129,6 +141,7 @@ pub fn lower_line_into(
             return Err(refused);
         }
     }
+    warnings.extend(diags.into_iter().chain(checked).filter(|d| !d.is_error()));
     Ok(blocks)
 }
 

@@ -26,7 +26,7 @@ use crate::check::{Analysis, SkillId};
 use crate::diagnostic::{Code, Diagnostic, FileId};
 use crate::span::Span;
 
-pub use line::{LineOptions, lower_line, lower_line_into};
+pub use line::{LineOptions, lower_line, lower_line_into, lower_line_warned};
 pub use robotless::robot_uses;
 
 use scope::Scope;

@@ -82,45 +82,36 @@ impl Closer {
     }
 }
 
-struct Builder<'s, 'd> {
+/// Takes the lines of a file in order, as they are parsed.
+pub struct Builder<'s> {
     file: FileId,
     source: &'s str,
     stack: Vec<Frame<'s>>,
     skills: Vec<Skill<'s>>,
     /// Statements before the first skill header, kept as the task's blocks.
     task_blocks: Option<Vec<Block<'s>>>,
-    diagnostics: &'d mut Vec<Diagnostic>,
+    diagnostics: Vec<Diagnostic>,
 }
 
-pub fn build<'s>(
-    lines: Vec<ParsedLine<'s>>,
-    source: &'s str,
-    comments: Vec<Span>,
-    file: FileId,
-    diagnostics: &mut Vec<Diagnostic>,
-) -> SourceFile<'s> {
-    let mut b = Builder {
-        file,
-        source,
-        stack: vec![Frame::new(Opener::Root, Span::empty(0))],
-        skills: Vec::new(),
-        task_blocks: None,
-        diagnostics,
-    };
-    for parsed in lines {
-        b.line(parsed);
+impl<'s> Builder<'s> {
+    pub fn new(source: &'s str, file: FileId) -> Self {
+        Builder {
+            file,
+            source,
+            stack: vec![Frame::new(Opener::Root, Span::empty(0))],
+            skills: Vec::new(),
+            task_blocks: None,
+            diagnostics: Vec::new(),
+        }
     }
-    b.finish(comments)
-}
 
-impl<'s> Builder<'s, '_> {
     fn top(&mut self) -> &mut Frame<'s> {
         self.stack
             .last_mut()
             .expect("the root frame is never popped")
     }
 
-    fn line(&mut self, parsed: ParsedLine<'s>) {
+    pub fn line(&mut self, parsed: ParsedLine<'s>) {
         let span = parsed.span;
         match parsed.line {
             Line::Blank => self.top().flush(),
@@ -285,7 +276,8 @@ impl<'s> Builder<'s, '_> {
         self.top().current.push(Stmt { kind, span });
     }
 
-    fn finish(mut self, comments: Vec<Span>) -> SourceFile<'s> {
+    /// The tree, and the diagnostics of its structure.
+    pub fn finish(mut self, comments: Vec<Span>) -> (SourceFile<'s>, Vec<Diagnostic>) {
         let end = self.source.len();
         while self.stack.len() > 1 {
             if matches!(self.top().opener, Opener::Skill { .. }) {
@@ -300,26 +292,27 @@ impl<'s> Builder<'s, '_> {
             Some(before_first_skill) => (FileKind::Skills, before_first_skill),
             None => (FileKind::Task, root.blocks),
         };
-        if kind == FileKind::Skills {
-            if let Some(first) = blocks.first().and_then(|b| b.stmts.first()) {
-                self.diagnostics.push(
-                    Diagnostic::new(
-                        Code::OutsideSkill,
-                        self.file,
-                        first.span,
-                        "statement before the first skill header",
-                    )
-                    .with_label("this belongs to no skill")
-                    .with_help("put a `NAME:` header above it, or move it to a task file"),
-                );
-            }
+        if kind == FileKind::Skills
+            && let Some(first) = blocks.first().and_then(|b| b.stmts.first())
+        {
+            self.diagnostics.push(
+                Diagnostic::new(
+                    Code::OutsideSkill,
+                    self.file,
+                    first.span,
+                    "statement before the first skill header",
+                )
+                .with_label("this belongs to no skill")
+                .with_help("put a `NAME:` header above it, or move it to a task file"),
+            );
         }
-        SourceFile {
+        let tree = SourceFile {
             kind,
             blocks,
             skills: self.skills,
             comments,
             span: Span::new(0, end),
-        }
+        };
+        (tree, self.diagnostics)
     }
 }

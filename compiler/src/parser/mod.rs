@@ -1,14 +1,19 @@
 //! Source text to syntax tree. Parsing never fails: it returns the tree and the
 //! diagnostics together, one diagnostic per broken line.
 
+#[cfg(test)]
+mod agreement;
 mod blocks;
+mod fast;
 mod lines;
 
 use chumsky::error::{RichPattern, RichReason};
 
-use crate::ast::{SourceFile, StmtKind};
+use crate::ast::SourceFile;
+use crate::ast::StmtKind;
 use crate::diagnostic::{Code, Diagnostic, FileId};
 use crate::lexer::{self, Token};
+use crate::parser::lines::{Line, ParsedLine};
 use crate::span::Span;
 
 pub struct Parsed<'s> {
@@ -16,58 +21,117 @@ pub struct Parsed<'s> {
     pub diagnostics: Vec<Diagnostic>,
 }
 
-pub fn parse(source: &str, file: FileId) -> Parsed<'_> {
+/// Line by line: the hand-written reader takes the lines it recognises, and the chumsky
+/// grammar each line it declines (every broken line among them), so a file costs the
+/// grammar's price only where it is unusual.
+pub fn parse<'s>(source: &'s str, file: FileId) -> Parsed<'s> {
     let lexed = lexer::lex(source);
-    let mut tokens = lexed.tokens;
-    // The line grammar ends every line with a line break; give the last line one.
+    let tokens = with_final_newline(lexed.tokens, source);
+    let mut patterns = Vec::new();
+    let mut syntax = Vec::new();
+    let mut unclosed = Vec::new();
+    let mut builder = blocks::Builder::new(source, file);
+    let mut emit = |parsed: ParsedLine<'s>| {
+        if let Some(d) = unclosed_args(&parsed.line, file) {
+            unclosed.push(d);
+        }
+        builder.line(parsed);
+    };
+    // The grammar spans an empty line from its line break back to the end of the token
+    // before (the end of the file when there is none); the reader does the same.
+    let mut previous_end = source.len() as u32;
+    let mut start = 0;
+    for (i, &(token, span)) in tokens.iter().enumerate() {
+        match token {
+            Token::Break => patterns.extend(unclosed_pattern(source, span, file)),
+            Token::Newline => {
+                let line = &tokens[start..i];
+                match (line.first(), line.last()) {
+                    (Some(&(_, first)), Some(&(_, last))) => match fast::line(line, source) {
+                        Some(parsed) => emit(ParsedLine {
+                            line: parsed,
+                            span: Span {
+                                start: first.start,
+                                end: last.end,
+                            },
+                        }),
+                        None => {
+                            let (lines, errors) = lines::parse_lines(&tokens[start..=i], source);
+                            syntax.extend(
+                                errors
+                                    .into_iter()
+                                    .map(|e| syntax_diagnostic(e, file, source)),
+                            );
+                            lines.into_iter().for_each(&mut emit);
+                        }
+                    },
+                    _ => emit(ParsedLine {
+                        line: Line::Blank,
+                        span: Span {
+                            start: span.start,
+                            end: previous_end,
+                        },
+                    }),
+                }
+                previous_end = span.end;
+                start = i + 1;
+            }
+            _ => {}
+        }
+    }
+    let (tree, structure) = builder.finish(lexed.comments);
+    finish(tree, [patterns, syntax, structure, unclosed])
+}
+
+/// The line grammar ends every line with a line break; the last line gets one.
+fn with_final_newline(mut tokens: Vec<(Token, Span)>, source: &str) -> Vec<(Token, Span)> {
     if tokens.last().is_none_or(|(t, _)| *t != Token::Newline) {
         tokens.push((Token::Newline, Span::empty(source.len())));
     }
-    let mut diagnostics = Vec::new();
-    for (token, span) in &tokens {
-        if *token == Token::Break {
-            if !lexer::break_pattern(source, *span).closed {
-                diagnostics.push(
-                    Diagnostic::new(
-                        Code::UnclosedPattern,
-                        file,
-                        *span,
-                        "`break(` has no closing `)`",
-                    )
-                    .with_label("the pattern runs to the end of the line"),
-                );
-            }
-        }
-    }
-    let (lines, errors) = lines::parse_lines(&tokens, source);
-    diagnostics.extend(
-        errors
-            .into_iter()
-            .map(|e| syntax_diagnostic(e, file, source)),
-    );
-    let tree = blocks::build(lines, source, lexed.comments, file, &mut diagnostics);
-    tree.for_each_stmt(&mut |stmt| {
-        if let StmtKind::Call { call, .. } = &stmt.kind {
-            if let Some(args) = call.args.as_ref().filter(|a| !a.closed) {
-                let at = Span::empty(args.span.end as usize);
-                diagnostics.push(
-                    Diagnostic::new(
-                        Code::UnclosedArgs,
-                        file,
-                        at,
-                        "this argument list has no closing `)`",
-                    )
-                    .with_label("`)` expected here")
-                    .with_fix("insert `)`", at, ")"),
-                );
-            }
-        }
-    });
+    tokens
+}
+
+/// Diagnostics in source order; those at one place keep the order of their kinds.
+fn finish<'s>(tree: SourceFile<'s>, kinds: [Vec<Diagnostic>; 4]) -> Parsed<'s> {
+    let mut diagnostics: Vec<Diagnostic> = kinds.into_iter().flatten().collect();
     diagnostics.sort_by_key(|d| (d.span.start, d.code));
     Parsed {
         file: tree,
         diagnostics,
     }
+}
+
+fn unclosed_pattern(source: &str, span: Span, file: FileId) -> Option<Diagnostic> {
+    if lexer::break_pattern(source, span).closed {
+        return None;
+    }
+    Some(
+        Diagnostic::new(
+            Code::UnclosedPattern,
+            file,
+            span,
+            "`break(` has no closing `)`",
+        )
+        .with_label("the pattern runs to the end of the line"),
+    )
+}
+
+fn unclosed_args(line: &Line<'_>, file: FileId) -> Option<Diagnostic> {
+    let Line::Stmt(StmtKind::Call { call, .. }) = line else {
+        return None;
+    };
+    let args = call.args.as_ref().filter(|a| !a.closed)?;
+    let at = Span::empty(args.span.end as usize);
+    Some(
+        Diagnostic::new(
+            Code::UnclosedArgs,
+            file,
+            at,
+            "this argument list has no closing `)`",
+        )
+        .with_label("`)` expected here")
+        .with_fix("insert `)`", at, ")"),
+    )
 }
 
 fn syntax_diagnostic(error: lines::ParseError<'_>, file: FileId, source: &str) -> Diagnostic {

@@ -1,0 +1,283 @@
+//! The hand-written reader and the chumsky grammar agree: `parse` (reader first, grammar
+//! for the lines it declines) gives the same tree and the same diagnostics as the
+//! grammar run over the whole file, on every program in the repository, on the benchmark
+//! corpus, and on generated and mutated lines. And the reader does take the lines it was
+//! written for, so the speed is not lost silently.
+
+use proptest::prelude::*;
+
+use super::*;
+
+#[path = "../../benches/corpus.rs"]
+mod corpus;
+
+/// The grammar alone over the whole file: how `parse` worked before the reader.
+fn reference(source: &str, file: FileId) -> Parsed<'_> {
+    let lexed = lexer::lex(source);
+    let tokens = with_final_newline(lexed.tokens, source);
+    let patterns = tokens
+        .iter()
+        .filter(|(t, _)| *t == Token::Break)
+        .filter_map(|&(_, span)| unclosed_pattern(source, span, file))
+        .collect();
+    let (lines, errors) = lines::parse_lines(&tokens, source);
+    let syntax = errors
+        .into_iter()
+        .map(|e| syntax_diagnostic(e, file, source))
+        .collect();
+    let mut builder = blocks::Builder::new(source, file);
+    let mut unclosed = Vec::new();
+    for parsed in lines {
+        unclosed.extend(unclosed_args(&parsed.line, file));
+        builder.line(parsed);
+    }
+    let (tree, structure) = builder.finish(lexed.comments);
+    finish(tree, [patterns, syntax, structure, unclosed])
+}
+
+fn assert_agree(source: &str) {
+    let fast = parse(source, FileId(0));
+    let slow = reference(source, FileId(0));
+    assert_eq!(
+        format!("{:#?}", fast.file),
+        format!("{:#?}", slow.file),
+        "trees differ for {source:?}"
+    );
+    assert_eq!(
+        fast.diagnostics, slow.diagnostics,
+        "diagnostics differ for {source:?}"
+    );
+}
+
+/// The line the reader makes of `text`, next to the grammar's.
+fn both(text: &str) -> (Option<String>, String) {
+    let mut tokens = lexer::lex(text).tokens;
+    let n = tokens.len();
+    tokens.push((Token::Newline, Span::empty(text.len())));
+    let fast = fast::line(&tokens[..n], text).map(|l| format!("{l:?}"));
+    let (lines, _) = lines::parse_lines(&tokens, text);
+    (fast, format!("{:?}", lines[0].line))
+}
+
+fn repository_programs() -> &'static [(String, String)] {
+    static PROGRAMS: std::sync::OnceLock<Vec<(String, String)>> = std::sync::OnceLock::new();
+    PROGRAMS.get_or_init(read_repository_programs)
+}
+
+fn read_repository_programs() -> Vec<(String, String)> {
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
+    let mut out = Vec::new();
+    let mut dirs = vec![
+        root.join("examples"),
+        root.join("tests"),
+        root.join("stdlib"),
+    ];
+    while let Some(dir) = dirs.pop() {
+        let Ok(entries) = std::fs::read_dir(&dir) else {
+            continue;
+        };
+        let mut paths: Vec<_> = entries.filter_map(|e| e.ok().map(|e| e.path())).collect();
+        paths.sort();
+        for path in paths {
+            if path.is_dir() {
+                dirs.push(path);
+            } else if path.extension().is_some_and(|e| e == "ilmr" || e == "ilms")
+                && let Ok(text) = std::fs::read_to_string(&path)
+            {
+                out.push((path.display().to_string(), text));
+            }
+        }
+    }
+    out
+}
+
+#[test]
+fn every_program_in_the_repository() {
+    let programs = repository_programs();
+    assert!(programs.len() > 20, "found only {}", programs.len());
+    for (_, text) in programs {
+        assert_agree(text);
+    }
+}
+
+#[test]
+fn the_benchmark_corpus() {
+    let c = corpus::generate(3_000);
+    assert_agree(&c.task);
+    assert_agree(&c.skills);
+}
+
+#[test]
+fn the_reader_takes_every_line_of_the_corpus() {
+    let c = corpus::generate(1_200);
+    for line in c.task.lines().chain(c.skills.lines()) {
+        if line.trim().is_empty() {
+            continue;
+        }
+        let (fast, slow) = both(line);
+        assert_eq!(fast.as_deref(), Some(slow.as_str()), "{line:?}");
+    }
+}
+
+#[test]
+fn edge_shapes() {
+    for text in [
+        "\n\n  \nspeed(1)\n\n",
+        "  \n",
+        "turn(d=90,c=0.5) // comment\n",
+        "x = -(-(a)) * --3 / (b - -c)",
+        "if((a) => 3)\nendif",
+        "v = while(c = 2)\nendwhile",
+        "break(turn(d=)) // x\nbreak\nbreak(while(c",
+        "priority = highest\npriority = lowest",
+        "f(1,)\nf(,)\nf(1 2)\nf(a==1)\nv = a(1) + 2\nf(1",
+        "a b\nv = \nv = while\nif(a\nif a\nwhile(a) b\ncheck(1)\nendif x",
+        "TURN1:\nSkill two:\n x :\n",
+        "v=1\r\nw = v\r\n",
+        "käännös = 1\nÄ(käännös)",
+        "g = gotoxy(1,2,3,4)\ns = sensor(scanner, door, left)\nsavepos(home)",
+        "$\nf($)\nv = 1 $",
+    ] {
+        assert_agree(text);
+    }
+}
+
+const NAMES: &[&str] = &[
+    "a",
+    "cnt",
+    "V1",
+    "turn",
+    "speed",
+    "sensor",
+    "door",
+    "left",
+    "d",
+    "c",
+    "käännös",
+    "Takebox",
+];
+
+fn expr() -> impl Strategy<Value = String> {
+    let leaf = prop_oneof![
+        (0u32..1000).prop_map(|n| n.to_string()),
+        (0u32..100, 0u32..100).prop_map(|(a, b)| format!("{a}.{b}")),
+        Just(".5".to_string()),
+        proptest::sample::select(NAMES).prop_map(str::to_string),
+    ];
+    leaf.prop_recursive(4, 24, 2, |inner| {
+        prop_oneof![
+            inner.clone().prop_map(|e| format!("-{e}")),
+            inner.clone().prop_map(|e| format!("({e})")),
+            (
+                inner.clone(),
+                proptest::sample::select(&["+", "-", "*", "/", " + ", " - "][..]),
+                inner
+            )
+                .prop_map(|(a, op, b)| format!("{a}{op}{b}")),
+        ]
+    })
+}
+
+fn condition() -> impl Strategy<Value = String> {
+    prop_oneof![
+        expr(),
+        (
+            expr(),
+            proptest::sample::select(&["<", "<=", "==", "=", "!=", ">", ">=", "=>"][..]),
+            expr()
+        )
+            .prop_map(|(a, op, b)| format!("{a} {op} {b}")),
+    ]
+}
+
+fn args() -> impl Strategy<Value = String> {
+    let arg = prop_oneof![
+        expr(),
+        (proptest::sample::select(NAMES), expr()).prop_map(|(k, v)| format!("{k}={v}")),
+    ];
+    proptest::collection::vec(arg, 0..4).prop_map(|a| format!("({})", a.join(",")))
+}
+
+/// A line the grammar accepts.
+fn clean_line() -> impl Strategy<Value = String> {
+    let name = || proptest::sample::select(NAMES);
+    prop_oneof![
+        (name(), args()).prop_map(|(n, a)| format!("{n}{a}")),
+        name().prop_map(str::to_string),
+        (name(), name(), args()).prop_map(|(v, n, a)| format!("{v} = {n}{a}")),
+        (name(), expr()).prop_map(|(v, e)| format!("{v}={e}")),
+        condition().prop_map(|c| format!("if({c})")),
+        condition().prop_map(|c| format!("While ({c})")),
+        (name(), condition()).prop_map(|(v, c)| format!("{v} = while({c})")),
+        proptest::sample::select(
+            &[
+                "endif",
+                "ENDWHILE",
+                "check",
+                "checkend",
+                "break",
+                "break(turn(d=))",
+                "priority = highest",
+                "Skill1:",
+            ][..]
+        )
+        .prop_map(str::to_string),
+    ]
+}
+
+/// Pieces that break lines in the ways people do.
+const DAMAGE: &[&str] = &[
+    "(", ")", ",", "=", "==", "-", "*", ":", "if", "while", "endif", "break(", "$", " ", "1", "x",
+    "\n",
+];
+
+fn damaged_line() -> impl Strategy<Value = String> {
+    (
+        clean_line(),
+        proptest::collection::vec((0usize..64, 0usize..3, 0..DAMAGE.len()), 0..3),
+    )
+        .prop_map(|(line, cuts)| {
+            let mut chars: Vec<char> = line.chars().collect();
+            for (at, len, piece) in cuts {
+                let at = at % (chars.len() + 1);
+                let end = (at + len).min(chars.len());
+                chars.splice(at..end, DAMAGE[piece].chars());
+            }
+            chars.into_iter().collect()
+        })
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 600, ..ProptestConfig::default() })]
+
+    #[test]
+    fn the_reader_takes_clean_lines_as_the_grammar_does(line in clean_line()) {
+        let (fast, slow) = both(&line);
+        prop_assert_eq!(fast.as_deref(), Some(slow.as_str()), "{:?}", line);
+    }
+
+    #[test]
+    fn files_of_damaged_lines_parse_alike(
+        lines in proptest::collection::vec(
+            prop_oneof![3 => damaged_line(), 1 => Just(String::new())],
+            0..16,
+        ),
+    ) {
+        assert_agree(&lines.join("\n"));
+    }
+
+    #[test]
+    fn damaged_repository_programs_parse_alike(
+        which in 0usize..1000,
+        cuts in proptest::collection::vec((0usize..100_000, 0usize..6, 0..DAMAGE.len()), 1..10),
+    ) {
+        let programs = repository_programs();
+        let mut chars: Vec<char> = programs[which % programs.len()].1.chars().collect();
+        for (at, len, piece) in cuts {
+            let at = at % (chars.len() + 1);
+            let end = (at + len).min(chars.len());
+            chars.splice(at..end, DAMAGE[piece].chars());
+        }
+        assert_agree(&chars.into_iter().collect::<String>());
+    }
+}
