@@ -4,6 +4,9 @@
 //! compiler's lowering calls and the disassembler. [`Vm`] runs a module against a
 //! [`ilmr_hal::Hal`] at 100 Hz: top-level blocks start together, issued commands run
 //! concurrently, movement commands share one reservation, and every tick has a budget.
+//! [`runtime::safety`] holds issue 7's guarantees: computed commands that could harm
+//! the robot are refused with stable codes, a supervisor checks the robot every tick,
+//! and every halt brakes within the model's deceleration (`docs/reliability.md`).
 //!
 //! Invariants: the VM never panics on a validated module or on anything the robot
 //! reports; runtime failures become trace events and variable states. Time is logical,

@@ -1,4 +1,4 @@
-use crate::types::{AsyncOp, BodyPose, HalError, OpId, OpStatus, Pose, Snapshot};
+use crate::types::{AsyncOp, BodyPose, HalError, KnownMap, OpId, OpStatus, Pose, Snapshot};
 
 /// What the VM needs from a robot. The VM calls [`Hal::update`] once at the start of
 /// every tick with the logical time, then [`Hal::snapshot`], then whatever setpoints and
@@ -32,4 +32,24 @@ pub trait Hal {
     fn start(&mut self, op: &AsyncOp) -> Result<OpId, HalError>;
 
     fn poll(&mut self, op: OpId) -> Result<OpStatus, HalError>;
+
+    /// Gives up an operation that has not answered; the robot side should stop it.
+    /// The default does nothing: a robot without cancellation lets it run out.
+    fn cancel(&mut self, _op: OpId) -> Result<(), HalError> {
+        Ok(())
+    }
+
+    /// The static map of the robot's surroundings, if it has one. The VM asks once,
+    /// when it starts, and refuses movement targets inside its solids or outside its
+    /// bounds.
+    fn known_map(&mut self) -> Option<KnownMap> {
+        None
+    }
+
+    /// The admissible reference values `(min, max)` of an actuator, from the robot
+    /// model; `None` when the robot does not say (the VM then leaves the check to
+    /// [`Hal::actuator`]).
+    fn actuator_range(&mut self, _id: &str) -> Option<(f64, f64)> {
+        None
+    }
 }

@@ -70,6 +70,12 @@ pub struct Snapshot {
     pub devices: Vec<DeviceReading>,
     /// Objects in view now.
     pub detections: Vec<Detection>,
+    /// When the latest odometry sample was taken, seconds; `None` when the robot does
+    /// not report it (then its odometry is not supervised).
+    pub odometry_t: Option<f64>,
+    /// When the latest navigation fix was taken, seconds; `None` when the robot has no
+    /// separate navigation subsystem or does not report it.
+    pub nav_t: Option<f64>,
 }
 
 impl Snapshot {
@@ -140,6 +146,58 @@ pub enum OpStatus {
     Failed(String),
 }
 
+/// A solid of the known map: every point within `radius` of the segment from `a` to
+/// `b` (a wall of thickness `2 * radius`; a round obstacle when `a == b`).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Solid {
+    pub a: (f64, f64),
+    pub b: (f64, f64),
+    pub radius: f64,
+}
+
+impl Solid {
+    /// Distance from `p` to the solid's surface; negative inside it.
+    pub fn distance(&self, p: (f64, f64)) -> f64 {
+        let (dx, dy) = (self.b.0 - self.a.0, self.b.1 - self.a.1);
+        let len2 = dx * dx + dy * dy;
+        let t = if len2 > 0.0 {
+            (((p.0 - self.a.0) * dx + (p.1 - self.a.1) * dy) / len2).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
+        let (cx, cy) = (self.a.0 + t * dx, self.a.1 + t * dy);
+        (p.0 - cx).hypot(p.1 - cy) - self.radius
+    }
+}
+
+/// What the robot knows of its surroundings before it sees them: the area it may
+/// drive in and the solids in it, in the frame of [`Snapshot::pose`]. A simulator
+/// fills it from its world; a real robot from a site plan.
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+pub struct KnownMap {
+    /// `(min x, min y, max x, max y)`; `None`: unbounded.
+    pub bounds: Option<(f64, f64, f64, f64)>,
+    pub solids: Vec<Solid>,
+}
+
+impl KnownMap {
+    /// Whether `p` lies inside the bounds (always, without bounds).
+    pub fn contains(&self, p: (f64, f64)) -> bool {
+        self.bounds
+            .is_none_or(|(x0, y0, x1, y1)| p.0 >= x0 && p.0 <= x1 && p.1 >= y0 && p.1 <= y1)
+    }
+
+    /// The solid nearest to `p` and its distance, if there is any solid.
+    pub fn nearest(&self, p: (f64, f64)) -> Option<(usize, f64)> {
+        self.solids
+            .iter()
+            .enumerate()
+            .map(|(i, s)| (i, s.distance(p)))
+            .filter(|(_, d)| !d.is_nan())
+            .min_by(|a, b| a.1.total_cmp(&b.1))
+    }
+}
+
 /// A failed HAL call.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub enum HalError {
@@ -151,6 +209,8 @@ pub enum HalError {
     UnknownOp(OpId),
     /// Communication with the robot side failed.
     Link(String),
+    /// The robot side did not answer within the call's deadline.
+    Timeout(String),
 }
 
 impl fmt::Display for HalError {
@@ -160,6 +220,7 @@ impl fmt::Display for HalError {
             HalError::Refused(why) => write!(f, "refused: {why}"),
             HalError::UnknownOp(id) => write!(f, "unknown operation {}", id.0),
             HalError::Link(why) => write!(f, "robot link: {why}"),
+            HalError::Timeout(what) => write!(f, "no answer: {what}"),
         }
     }
 }

@@ -19,4 +19,5 @@ mod write;
 
 pub use docs::parameter_table_markdown;
 pub use model::{Device, ModelName, ModelWarning, NamedValue, Object, RobotModel};
+pub use names::{SUPERVISOR, SUPERVISOR_FAULTS};
 pub use params::{PARAMETER_SPECS, ParamDefault, ParamSpec, Valid, parameter_spec};

@@ -1,6 +1,26 @@
 //! Finding things in a model by name, ignoring case.
 
+use std::sync::LazyLock;
+
 use crate::model::{Device, ModelName, NamedValue, Object, RobotModel};
+
+/// The sensor every robot has without declaring it: the VM's supervisor, read as
+/// `Fault = sensor(supervisor)`. Its value is the number of the most urgent active
+/// fault, 0 when all is well (`docs/reliability.md`).
+pub const SUPERVISOR: &str = "supervisor";
+
+/// How many fault numbers the supervisor reads out (its largest value).
+pub const SUPERVISOR_FAULTS: u32 = 8;
+
+/// Id -1: it has no number, so `sensor(n)` never names it by accident.
+static SUPERVISOR_DEVICE: LazyLock<Device> = LazyLock::new(|| Device {
+    name: SUPERVISOR.to_string(),
+    id: -1,
+    min: 0.0,
+    max: f64::from(SUPERVISOR_FAULTS),
+    readings: 1,
+    line: 0,
+});
 
 /// ILMR names are case-insensitive (`LowBattery` is `lowbattery`). Full
 /// Unicode lowercasing so that Finnish names (`Ä`, `ö`) compare too.
@@ -31,9 +51,14 @@ fn find_value<'a>(values: &'a [NamedValue], name: &str) -> Option<&'a NamedValue
 }
 
 impl RobotModel {
-    /// A sensor or actuator by name.
+    /// A sensor or actuator by name. `supervisor` is found in every model (the file's
+    /// own entry wins if it has one) but is not among `devices` or `names`, so it is
+    /// never written back nor listed as hardware.
     pub fn device(&self, name: &str) -> Option<&Device> {
-        self.devices.iter().find(|d| same_name(&d.name, name))
+        self.devices
+            .iter()
+            .find(|d| same_name(&d.name, name))
+            .or_else(|| same_name(SUPERVISOR, name).then(|| &*SUPERVISOR_DEVICE))
     }
 
     /// A sensor or actuator by its integer id (`sensor(1,0)`).
@@ -126,6 +151,16 @@ mod tests {
         assert!(same_name("Äänitin", "äänitin"));
         assert!(!same_name("leg1", "leg2"));
         assert!(!same_name("odo", "odom"));
+    }
+
+    #[test]
+    fn every_model_has_the_supervisor_but_does_not_list_it() {
+        let m = RobotModel::parse("[PARAMETERS]\nmax_speed 1\n", "bare").0;
+        let d = m.device("Supervisor").expect("virtual device");
+        assert_eq!((d.min, d.max, d.readings), (0.0, 8.0, 1));
+        assert!(m.devices.iter().all(|d| !same_name(&d.name, SUPERVISOR)));
+        assert!(m.lookup(SUPERVISOR).is_none(), "not hardware to list");
+        assert!(m.device_by_id(-1).is_none());
     }
 
     #[test]

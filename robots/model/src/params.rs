@@ -90,7 +90,7 @@ pub const MAX_SPEED: ParamSpec = ParamSpec {
     unit: "m/s",
     default: ParamDefault::Value(0.6),
     valid: Valid::Positive,
-    meaning: "Largest speed magnitude: `speed(v)` admits -max_speed..max_speed.",
+    meaning: "Largest speed magnitude: `speed(v)` admits -max_speed..max_speed (the VM refuses a computed speed beyond it).",
     readers: "compiler (range check), vm, motion, sim",
 };
 pub const POS_INTERVAL: ParamSpec = ParamSpec {
@@ -186,8 +186,8 @@ pub const LOW_BATTERY: ParamSpec = ParamSpec {
     unit: "V",
     default: ParamDefault::Value(23.0),
     valid: Valid::Positive,
-    meaning: "Battery voltage below which the task should go and charge (Figure 20: `if(Battery<LowBattery)`); below battery_full.",
-    readers: "compiler (model constant), sim",
+    meaning: "Battery voltage below which the task should go and charge (Figure 20: `if(Battery<LowBattery)`); below battery_full. The supervisor raises `battery_low` below it.",
+    readers: "compiler (model constant), vm (supervision), sim",
 };
 pub const BATTERY_FULL: ParamSpec = ParamSpec {
     name: "battery_full",
@@ -267,7 +267,7 @@ pub const MAX_ROLL: ParamSpec = ParamSpec {
     default: ParamDefault::Absent,
     valid: Valid::Between(0.0, 90.0),
     meaning: "`bodypose(r=)` admits -max_roll..max_roll; absent when the robot has no body pose.",
-    readers: "compiler (range check), hal, sim",
+    readers: "compiler (range check), vm (refusal), hal, sim",
 };
 pub const MAX_PITCH: ParamSpec = ParamSpec {
     name: "max_pitch",
@@ -275,7 +275,7 @@ pub const MAX_PITCH: ParamSpec = ParamSpec {
     default: ParamDefault::Absent,
     valid: Valid::Between(0.0, 90.0),
     meaning: "`bodypose(p=)` admits -max_pitch..max_pitch; absent when the robot has no body pose.",
-    readers: "compiler (range check), hal, sim",
+    readers: "compiler (range check), vm (refusal), hal, sim",
 };
 pub const MAX_CLEARANCE: ParamSpec = ParamSpec {
     name: "max_clearance",
@@ -283,7 +283,48 @@ pub const MAX_CLEARANCE: ParamSpec = ParamSpec {
     default: ParamDefault::Absent,
     valid: Valid::Positive,
     meaning: "`bodypose(rc=)` admits 0..max_clearance; absent when the robot has no body pose.",
-    readers: "compiler (range check), hal, sim",
+    readers: "compiler (range check), vm (refusal), hal, sim",
+};
+
+pub const STOP_MARGIN: ParamSpec = ParamSpec {
+    name: "stop_margin",
+    unit: "m",
+    default: ParamDefault::Value(0.2),
+    valid: Valid::Positive,
+    meaning: "Supervision: with obstacle avoidance off, an obstacle in the checked area nearer than the braking distance plus this stops the robot, which then stands this far from it.",
+    readers: "vm (supervision)",
+};
+pub const LOCALIZATION_JUMP: ParamSpec = ParamSpec {
+    name: "localization_jump",
+    unit: "m",
+    default: ParamDefault::Value(0.5),
+    valid: Valid::Positive,
+    meaning: "Supervision: the pose estimate moving this much further in one tick than the robot can drive is a localization jump.",
+    readers: "vm (supervision)",
+};
+pub const LOCALIZATION_JUMP_H: ParamSpec = ParamSpec {
+    name: "localization_jump_h",
+    unit: "deg",
+    default: ParamDefault::Value(20.0),
+    valid: Valid::Between(0.0, 180.0),
+    meaning: "Supervision: the heading estimate turning this much further in one tick than the robot can turn is a localization jump.",
+    readers: "vm (supervision)",
+};
+pub const OPERATION_TIMEOUT: ParamSpec = ParamSpec {
+    name: "operation_timeout",
+    unit: "s",
+    default: ParamDefault::Value(60.0),
+    valid: Valid::Positive,
+    meaning: "Supervision: an asynchronous operation (`init`, `manipulate`, `movemode`) that has not answered after this long is cancelled and refused.",
+    readers: "vm (supervision)",
+};
+pub const DEGRADED_SPEED: ParamSpec = ParamSpec {
+    name: "degraded_speed",
+    unit: "m/s",
+    default: ParamDefault::Value(0.1),
+    valid: Valid::Positive,
+    meaning: "Supervision: the speed limit while the navigation fix is missing and the robot drives on dead reckoning alone.",
+    readers: "vm (supervision)",
 };
 
 /// Every known parameter: Figure 39's ten in its order, then the additions.
@@ -315,6 +356,11 @@ pub const PARAMETER_SPECS: &[ParamSpec] = &[
     MAX_ROLL,
     MAX_PITCH,
     MAX_CLEARANCE,
+    STOP_MARGIN,
+    LOCALIZATION_JUMP,
+    LOCALIZATION_JUMP_H,
+    OPERATION_TIMEOUT,
+    DEGRADED_SPEED,
 ];
 
 /// The spec of a known parameter, by case-insensitive name.
@@ -458,6 +504,26 @@ impl RobotModel {
     pub fn max_clearance(&self) -> Option<f64> {
         self.spec_value(&MAX_CLEARANCE)
     }
+    /// m; default 0.2.
+    pub fn stop_margin(&self) -> f64 {
+        self.always(&STOP_MARGIN)
+    }
+    /// m; default 0.5.
+    pub fn localization_jump(&self) -> f64 {
+        self.always(&LOCALIZATION_JUMP)
+    }
+    /// deg; default 20.
+    pub fn localization_jump_h(&self) -> f64 {
+        self.always(&LOCALIZATION_JUMP_H)
+    }
+    /// s; default 60.
+    pub fn operation_timeout(&self) -> f64 {
+        self.always(&OPERATION_TIMEOUT)
+    }
+    /// m/s; default 0.1.
+    pub fn degraded_speed(&self) -> f64 {
+        self.always(&DEGRADED_SPEED)
+    }
 }
 
 #[cfg(test)]
@@ -513,6 +579,11 @@ mod tests {
             (&SCANNER_TIMEOUT, RobotModel::scanner_timeout),
             (&ODOMETRY_TIMEOUT, RobotModel::odometry_timeout),
             (&DEADRECKONING_RATE, RobotModel::deadreckoning_rate),
+            (&STOP_MARGIN, RobotModel::stop_margin),
+            (&LOCALIZATION_JUMP, RobotModel::localization_jump),
+            (&LOCALIZATION_JUMP_H, RobotModel::localization_jump_h),
+            (&OPERATION_TIMEOUT, RobotModel::operation_timeout),
+            (&DEGRADED_SPEED, RobotModel::degraded_speed),
         ]
     }
 

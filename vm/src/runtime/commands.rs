@@ -7,6 +7,7 @@ use ilmr_stdlib::{Command, Field};
 
 use super::clock::Clock;
 use super::nodes::{Kind, MoveSpec, NodeRef, SensorSpec, WallMode, Which};
+use super::safety::Refusal;
 use super::trace::EventKind;
 use super::vars::{How, NONE};
 use super::{Follower, Recording, Vm, stmt_of};
@@ -23,7 +24,7 @@ fn side_of(word: &str) -> Option<Side> {
 }
 
 impl<H: Hal, C: Clock> Vm<H, C> {
-    fn arg(&self, r: ArgRange, i: u32) -> Option<Arg> {
+    pub(in crate::runtime) fn arg(&self, r: ArgRange, i: u32) -> Option<Arg> {
         if i < r.len {
             self.module.args.get((r.start + i) as usize).copied()
         } else {
@@ -31,7 +32,7 @@ impl<H: Hal, C: Clock> Vm<H, C> {
         }
     }
 
-    fn word_of(&self, a: Option<Arg>) -> Option<&str> {
+    pub(in crate::runtime) fn word_of(&self, a: Option<Arg>) -> Option<&str> {
         match a {
             Some(Arg::Word(n)) => Some(self.module.name(n)),
             _ => None,
@@ -45,7 +46,7 @@ impl<H: Hal, C: Clock> Vm<H, C> {
         })
     }
 
-    fn number(&mut self, a: Option<Arg>) -> Result<f64, String> {
+    pub(in crate::runtime) fn number(&mut self, a: Option<Arg>) -> Result<f64, String> {
         match a {
             Some(Arg::Num(e)) => self.eval(e).map_err(str::to_string),
             Some(Arg::Var(v)) => {
@@ -58,7 +59,11 @@ impl<H: Hal, C: Clock> Vm<H, C> {
         }
     }
 
-    fn setting(&mut self, r: ArgRange, key: &str) -> Result<Option<f64>, String> {
+    pub(in crate::runtime) fn setting(
+        &mut self,
+        r: ArgRange,
+        key: &str,
+    ) -> Result<Option<f64>, String> {
         for i in 0..r.len {
             if let Some(Arg::Setting { key: k, value }) = self.arg(r, i)
                 && self.module.name(k).eq_ignore_ascii_case(key)
@@ -95,7 +100,13 @@ impl<H: Hal, C: Clock> Vm<H, C> {
         args: ArgRange,
         bind: u32,
     ) -> Option<NodeRef> {
-        match self.decode(command, args, bind, stmt) {
+        let decoded = match self.refuse_unsafe(command, args) {
+            Ok(()) => self
+                .decode(command, args, bind, stmt)
+                .map_err(Refusal::from),
+            Err(refusal) => Err(refusal),
+        };
+        match decoded {
             Ok(None) => {
                 if bind != NONE {
                     self.write_fields(
@@ -124,13 +135,14 @@ impl<H: Hal, C: Clock> Vm<H, C> {
                 }
                 Some(node).filter(|n| self.nodes.alive(*n))
             }
-            Err(reason) => {
+            Err(Refusal { code, message }) => {
                 self.push_event(
                     stmt_of(stmt),
                     EventKind::End {
                         how: How::Refused,
                         linked: false,
-                        reason: Some(reason),
+                        code,
+                        reason: Some(message),
                     },
                 );
                 if bind != NONE {
@@ -163,7 +175,10 @@ impl<H: Hal, C: Clock> Vm<H, C> {
                     .hal
                     .start(&AsyncOp::MoveMode(word0.to_string()))
                     .map_err(Self::refuse_hal)?;
-                Ok(Some(Kind::Async { op: op.0 }))
+                if let Some(Arg::Word(mode)) = self.arg(r, 0) {
+                    self.mode_ops.push((op.0, mode));
+                }
+                Ok(Some(self.async_kind(op)))
             }
             Command::LocMode => {
                 self.hal.locmode(word0).map_err(Self::refuse_hal)?;
@@ -195,10 +210,15 @@ impl<H: Hal, C: Clock> Vm<H, C> {
             Command::Locate => {
                 let (n, count) = self.numbers::<3>(r)?;
                 if count == 3 {
-                    self.hal
-                        .locate(Pose::new(n[0], n[1], n[2].to_radians()))
-                        .map_err(Self::refuse_hal)?;
+                    let after = Pose::new(n[0], n[1], n[2].to_radians());
+                    self.hal.locate(after).map_err(Self::refuse_hal)?;
+                    self.map_from_estimate = super::safety::frame::relocated(
+                        self.map_from_estimate,
+                        self.snap.pose,
+                        after,
+                    );
                     self.motion.relocated();
+                    self.supervisor.relocated = true;
                     return Ok(None);
                 }
                 let field = match word0.to_ascii_lowercase().as_str() {
@@ -236,9 +256,19 @@ impl<H: Hal, C: Clock> Vm<H, C> {
                 Ok(None)
             }
             Command::SavePos => {
-                if r.len > 1 {
-                    return Err("saving where a pointing device points is not supported".into());
-                }
+                // `savepos(name,laser)`: where the pointing device's beam hits,
+                // which the robot reports as that device's detection (4.5.1).
+                let pointed = match self.word_of(self.arg(r, 1)) {
+                    Some(device) => Some(
+                        self.snap
+                            .detections
+                            .iter()
+                            .find(|d| d.sensor.eq_ignore_ascii_case(device))
+                            .map(|d| ilmr_hal::Pose::new(d.x, d.y, d.h))
+                            .ok_or_else(|| format!("{device} points at nothing now"))?,
+                    ),
+                    None => None,
+                };
                 let var = if bind != NONE {
                     bind
                 } else {
@@ -247,7 +277,7 @@ impl<H: Hal, C: Clock> Vm<H, C> {
                 if var == NONE {
                     return Err(format!("no variable {word0} to save the position in"));
                 }
-                let p = self.snap.pose;
+                let p = pointed.unwrap_or(self.snap.pose);
                 self.write_fields(
                     var,
                     &[
@@ -318,7 +348,7 @@ impl<H: Hal, C: Clock> Vm<H, C> {
                     .hal
                     .start(&AsyncOp::Manipulate(task))
                     .map_err(Self::refuse_hal)?;
-                Ok(Some(Kind::Async { op: op.0 }))
+                Ok(Some(self.async_kind(op)))
             }
             Command::Init => {
                 let names = (0..r.len)
@@ -328,9 +358,16 @@ impl<H: Hal, C: Clock> Vm<H, C> {
                     .hal
                     .start(&AsyncOp::Init(names))
                     .map_err(Self::refuse_hal)?;
-                Ok(Some(Kind::Async { op: op.0 }))
+                Ok(Some(self.async_kind(op)))
             }
             other => Err(format!("{other} is not issued as a command")),
+        }
+    }
+
+    fn async_kind(&self, op: OpId) -> Kind {
+        Kind::Async {
+            op: op.0,
+            since: u32::try_from(self.tick).unwrap_or(u32::MAX),
         }
     }
 
@@ -569,14 +606,7 @@ impl<H: Hal, C: Clock> Vm<H, C> {
                 forever,
                 since,
             } => self.step_sensor(r.idx, node.bind, node.stmt, spec, forever, since),
-            Kind::Async { op } => match self.hal.poll(OpId(op)) {
-                Ok(OpStatus::Pending) => {}
-                Ok(OpStatus::Done) => self.end_node(r.idx, How::Completed, false, None, true),
-                Ok(OpStatus::Failed(why)) => {
-                    self.end_node(r.idx, How::Refused, false, Some(why), true)
-                }
-                Err(e) => self.end_node(r.idx, How::Refused, false, Some(e.to_string()), true),
-            },
+            Kind::Async { op, since } => self.step_async(r.idx, op, since),
             Kind::SpeedAfter { value, node, epoch }
                 if !self.nodes.alive(NodeRef { idx: node, epoch }) =>
             {
@@ -584,6 +614,51 @@ impl<H: Hal, C: Clock> Vm<H, C> {
                 self.end_node(r.idx, How::Completed, false, None, true);
             }
             _ => {}
+        }
+    }
+
+    /// Polls an operation; gives it up after `operation_timeout`. A poll that fails
+    /// ends it refused with the robot's error.
+    fn step_async(&mut self, idx: u32, op: u32, since: u32) {
+        let status = match self.hal.poll(OpId(op)) {
+            Ok(s) => s,
+            Err(e) => OpStatus::Failed(e.to_string()),
+        };
+        let done = match status {
+            OpStatus::Pending => {
+                let waited = self.tick.saturating_sub(u64::from(since)) as f64 * self.cfg.period;
+                let Some(limit) = self.cfg.safety.operation_timeout.filter(|l| waited >= *l) else {
+                    return;
+                };
+                if let Err(e) = self.hal.cancel(OpId(op)) {
+                    let stmt = stmt_of(self.nodes.get(idx).stmt);
+                    self.error(stmt, format!("cancelling the operation failed: {e}"));
+                }
+                let message = format!("no answer from the robot in {limit} s (operation_timeout)");
+                let fault = super::safety::Fault::OperationTimeout;
+                self.push_event(
+                    stmt_of(self.nodes.get(idx).stmt),
+                    EventKind::Fault {
+                        fault,
+                        message: message.clone(),
+                    },
+                );
+                self.mode_ops.retain(|(o, _)| *o != op);
+                self.end_coded(idx, super::safety::Code::Fault(fault), message);
+                return;
+            }
+            OpStatus::Done => {
+                if let Some(&(_, mode)) = self.mode_ops.iter().find(|(o, _)| *o == op) {
+                    self.move_mode = Some(mode);
+                }
+                None
+            }
+            OpStatus::Failed(why) => Some(why),
+        };
+        self.mode_ops.retain(|(o, _)| *o != op);
+        match done {
+            None => self.end_node(idx, How::Completed, false, None, true),
+            Some(why) => self.end_node(idx, How::Refused, false, Some(why), true),
         }
     }
 
@@ -683,6 +758,9 @@ impl<H: Hal, C: Clock> Vm<H, C> {
             }
             SensorSpec::Reading { device, which } => {
                 let name = self.module.name(crate::bytecode::NameId(device));
+                if name.eq_ignore_ascii_case(ilmr_model::SUPERVISOR) {
+                    return Ok(Some(self.supervisor.reading()));
+                }
                 if let Some(scan) = self
                     .snap
                     .scan

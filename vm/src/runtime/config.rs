@@ -1,6 +1,8 @@
 //! Tunables of the VM. The defaults are MoRo-like; a robot model overrides the
 //! physical ones (each field names the ROBO.INI parameter it comes from).
 
+use super::safety::Safety;
+
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum TraceLevel {
     /// No events (benchmarks).
@@ -63,6 +65,8 @@ pub struct Config {
     /// `record(..)` stores a point every this many metres.
     pub record_spacing: f64,
     pub trace: TraceLevel,
+    /// Thresholds of the run-time refusals and the supervisor.
+    pub safety: Safety,
 }
 
 impl Default for Config {
@@ -92,6 +96,7 @@ impl Default for Config {
             max_call_depth: 64,
             record_spacing: 0.1,
             trace: TraceLevel::Full,
+            safety: Safety::default(),
         }
     }
 }

@@ -7,7 +7,8 @@ use ilmr_stdlib::Field;
 use super::clock::Clock;
 use super::nodes::{BlockState, Kind, NodeRef};
 use super::trace::EventKind;
-use super::vars::{FieldMask, How, NONE};
+use super::vars::{FieldMask, How, NONE, Waiter, Woken};
+use super::watch::{Cmp, Shape};
 use super::{EXPR_STACK, Vm, stmt_of};
 use crate::bytecode::{ExprId, ExprOp, Op, StmtId};
 
@@ -113,36 +114,50 @@ impl<H: Hal, C: Clock> Vm<H, C> {
         }
     }
 
-    /// A queued wake of `var`: its guards' conditions are evaluated straight from the
-    /// subscription records (a false one costs its expression and touches nothing
-    /// else) and its waits ended if its status is 1. Returns false when the budget
-    /// ran out: the subscribers not yet looked at are queued first, one by one.
+    /// A queued wake of `var`: its waits are ended if its status is 1, its general
+    /// guards' conditions evaluated straight from the subscription records, and its
+    /// compiled guards that now hold evaluated and fired; compiled guards that stay
+    /// false are not touched. All in subscription order. Returns false when the
+    /// budget ran out: the subscribers not yet looked at are queued first, one by one.
     fn wake(&mut self, var: u32) -> bool {
         let mut subs = std::mem::take(&mut self.woken);
         subs.clear();
         self.vars.take_wake(var, &mut subs);
         let mut done = true;
-        for (i, &(node, cond)) in subs.iter().enumerate() {
+        for (i, w) in subs.iter().enumerate() {
+            // A dead compiled entry is no subscriber: it costs nothing, not even
+            // budget.
+            if matches!(w.waiter, Waiter::Watch { .. }) && !self.waiting(w) {
+                continue;
+            }
             if self.ops_left == 0 {
-                for &(n, _) in subs[i..].iter().rev() {
-                    if self.nodes.get(n).kind != Kind::Free && !self.nodes.get(n).queued {
-                        self.nodes.get_mut(n).queued = true;
-                        let r = self.nodes.at(n);
+                for later in subs[i..].iter().rev() {
+                    if self.waiting(later) && !self.nodes.get(later.node).queued {
+                        self.nodes.get_mut(later.node).queued = true;
+                        let r = self.nodes.at(later.node);
                         self.ready.push_front(Ready::Node(r));
                     }
                 }
-                self.overrun(node);
+                self.overrun(w.node);
                 done = false;
                 break;
             }
-            if cond == NONE {
-                if self.vars.field(var, Field::Status) >= 1.0
-                    && matches!(self.nodes.get(node).kind, Kind::WaitVar { .. })
-                {
-                    self.end_node(node, How::Completed, false, None, true);
+            let node = w.node;
+            let cond = match w.waiter {
+                Waiter::Wait => {
+                    if self.vars.field(var, Field::Status) >= 1.0
+                        && matches!(self.nodes.get(node).kind, Kind::WaitVar { .. })
+                    {
+                        self.end_node(node, How::Completed, false, None, true);
+                    }
+                    continue;
                 }
-                continue;
-            }
+                Waiter::Guard { cond } => cond,
+                Waiter::Watch { .. } => match self.nodes.get(node).kind {
+                    Kind::If { cond, .. } => cond,
+                    _ => continue,
+                },
+            };
             self.ops_left -= 1;
             match self.eval(ExprId(cond)) {
                 Ok(v) if v != 0.0 => {
@@ -160,7 +175,25 @@ impl<H: Hal, C: Clock> Vm<H, C> {
             }
         }
         self.woken = subs;
+        let nodes = &self.nodes;
+        self.vars.settle_wake(|e| {
+            watching(
+                nodes,
+                NodeRef {
+                    idx: e.node,
+                    epoch: e.epoch,
+                },
+            )
+        });
         done
+    }
+
+    /// A woken subscriber still waits: a compiled guard's entry may be dead.
+    fn waiting(&self, w: &Woken) -> bool {
+        match w.waiter {
+            Waiter::Watch { epoch } => watching(&self.nodes, NodeRef { idx: w.node, epoch }),
+            _ => self.nodes.get(w.node).kind != Kind::Free,
+        }
     }
 
     fn overrun(&mut self, idx: u32) {
@@ -330,8 +363,10 @@ impl<H: Hal, C: Clock> Vm<H, C> {
                 let child = self.nodes.alloc(blk, s, bind, Kind::WaitTime);
                 let ticks = (secs.max(0.0) / self.cfg.period).round() as u64;
                 self.timer_seq += 1;
+                // `wait(1e26)` checks (a non-negative time) and its tick count saturates;
+                // it must wait for ever, not overflow the tick or wrap round to now.
                 self.timers.push(std::cmp::Reverse((
-                    self.tick + ticks.max(1),
+                    self.tick.saturating_add(ticks.max(1)),
                     self.timer_seq,
                     child.idx,
                     child.epoch,
@@ -383,18 +418,10 @@ impl<H: Hal, C: Clock> Vm<H, C> {
             }
             Op::Call { unit, bind } => return self.call(blk, depth, s, unit.index(), bind),
             Op::Break { pattern } => self.break_pattern(pattern.0),
-            Op::BreakAll => {
-                if let Err(e) = self.hal.set_motion(0.0, 0.0) {
-                    self.error(Some(stmt), format!("stopping the robot failed: {e}"));
-                }
-                self.end_children_of(self.root, NONE);
-            }
-            Op::Stop => {
-                self.motion.stopped = true;
-                if let Err(e) = self.hal.set_motion(0.0, self.snap.curvature) {
-                    self.error(Some(stmt), format!("stopping the robot failed: {e}"));
-                }
-            }
+            // Both brake through the ramp (motion/halt.rs, drive.rs): the setpoint
+            // falls by the model's deceleration, never to 0 at once.
+            Op::BreakAll => self.end_children_of(self.root, NONE),
+            Op::Stop => self.motion.stopped = true,
             Op::Cont => self.motion.stopped = false,
             Op::Priority => self.priority_highest(blk),
             Op::Clear { var } => {
@@ -496,15 +523,7 @@ impl<H: Hal, C: Clock> Vm<H, C> {
                             a / b
                         }
                         cmp => {
-                            let eq = (a - b).abs() <= 1e-9;
-                            let r = match cmp {
-                                ExprOp::Lt => a < b && !eq,
-                                ExprOp::Le => a < b || eq,
-                                ExprOp::Eq => eq,
-                                ExprOp::Ne => !eq,
-                                ExprOp::Gt => a > b && !eq,
-                                _ => a > b || eq,
-                            };
+                            let r = Cmp::of(cmp).unwrap_or(Cmp::Ge).holds(a, b);
                             f64::from(u8::from(r))
                         }
                     }
@@ -546,8 +565,28 @@ impl<H: Hal, C: Clock> Vm<H, C> {
         if truth {
             self.fire_guard(idx);
         } else if self.nodes.get(idx).subs == NONE {
-            let mut subs = NONE;
-            self.subscribe_expr(idx, cond, &mut subs);
+            let shape = Shape::compile(self.module.expr_ops(ExprId(cond)), &self.module.consts);
+            let epoch = self.nodes.get(idx).epoch;
+            let nodes = &self.nodes;
+            let watched = shape.and_then(|shape| {
+                self.vars.watch(shape, idx, epoch, |e| {
+                    watching(
+                        nodes,
+                        NodeRef {
+                            idx: e.node,
+                            epoch: e.epoch,
+                        },
+                    )
+                })
+            });
+            let subs = match watched {
+                Some(head) => head,
+                None => {
+                    let mut subs = NONE;
+                    self.subscribe_expr(idx, cond, &mut subs);
+                    subs
+                }
+            };
             self.nodes.get_mut(idx).subs = subs;
         }
     }
@@ -698,12 +737,14 @@ impl<H: Hal, C: Clock> Vm<H, C> {
             return;
         }
         let is_command = !matches!(node.kind, Kind::Block(_) | Kind::Root);
+        let code = self.end_code.take();
         if is_command {
             self.push_event(
                 stmt_of(node.stmt),
                 EventKind::End {
                     how,
                     linked,
+                    code,
                     reason,
                 },
             );
@@ -752,6 +793,17 @@ impl<H: Hal, C: Clock> Vm<H, C> {
         if notify && parent != NONE {
             self.child_ended(parent, idx);
         }
+    }
+
+    /// Ends a node as refused with a stable code (issue 7's refusals and faults).
+    pub(super) fn end_coded(&mut self, idx: u32, code: super::safety::Code, message: String) {
+        self.end_code = Some(code);
+        self.end_node(idx, How::Refused, false, Some(message), true);
+    }
+
+    pub(super) fn end_refused(&mut self, idx: u32, refusal: super::safety::Refusal) {
+        self.end_code = refusal.code;
+        self.end_node(idx, How::Refused, false, Some(refusal.message), true);
     }
 
     fn child_ended(&mut self, parent: u32, child: u32) {
@@ -868,4 +920,9 @@ impl<H: Hal, C: Clock> Vm<H, C> {
             parent = self.nodes.get(parent).parent;
         }
     }
+}
+
+/// A compiled guard's entry is live: the same node, not yet fired.
+fn watching(nodes: &super::nodes::Nodes, r: NodeRef) -> bool {
+    nodes.alive(r) && matches!(nodes.get(r.idx).kind, Kind::If { fired: false, .. })
 }

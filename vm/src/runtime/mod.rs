@@ -8,12 +8,14 @@ pub mod config;
 mod exec;
 mod motion;
 mod nodes;
+pub mod safety;
 pub mod trace;
 pub mod vars;
+mod watch;
 
 use std::collections::{BTreeMap, BinaryHeap, VecDeque};
 
-use ilmr_hal::{Hal, Snapshot};
+use ilmr_hal::{Hal, KnownMap, Snapshot};
 
 use crate::bytecode::{BlockId, Fragment, Module, ModuleBuilder, ModuleError, StmtId};
 use activity::{Activity, REST_SPEED};
@@ -64,7 +66,7 @@ pub struct Vm<H: Hal, C: Clock> {
     root: u32,
     ready: VecDeque<exec::Ready>,
     /// Reused buffer of the subscribers of a woken variable.
-    woken: Vec<(u32, u32)>,
+    woken: Vec<vars::Woken>,
     /// Nodes stepped every tick (sensors, searches, asynchronous operations).
     active: Vec<Active>,
     /// The distinct (sensor, object) name pairs of searches, and whether this tick's
@@ -88,6 +90,19 @@ pub struct Vm<H: Hal, C: Clock> {
     lower: Vec<String>,
     scratch: Vec<u32>,
     stack: [f64; EXPR_STACK],
+    supervisor: safety::supervisor::Supervisor,
+    /// The robot's static map, asked for once at the start.
+    known_map: Option<KnownMap>,
+    /// From the frame of the robot's estimate to the known map's, moved by `locate`.
+    map_from_estimate: ilmr_hal::Pose,
+    /// The known map's surfaces as points (map frame), for the reversing check.
+    known_points: Vec<(f64, f64)>,
+    /// The movement mode the last completed `movemode` set.
+    move_mode: Option<crate::bytecode::NameId>,
+    /// `movemode` operations in progress and the mode each asks for.
+    mode_ops: Vec<(u32, crate::bytecode::NameId)>,
+    /// The stable code of the next `end` event, set by `end_coded`.
+    end_code: Option<safety::Code>,
 }
 
 /// A runtime-level failure of a call into the VM (never of the task itself).
@@ -130,8 +145,13 @@ impl<E: std::fmt::Display> std::fmt::Display for LineError<E> {
 impl<H: Hal, C: Clock> Vm<H, C> {
     /// Validates the module and starts the task's top-level blocks (they run from the
     /// first tick).
-    pub fn new(module: Module, hal: H, clock: C, config: Config) -> Result<Vm<H, C>, VmError> {
+    pub fn new(module: Module, mut hal: H, clock: C, config: Config) -> Result<Vm<H, C>, VmError> {
         module.validate().map_err(VmError::Module)?;
+        let known_map = hal.known_map();
+        let known_points = known_map
+            .as_ref()
+            .map(safety::frame::surface_points)
+            .unwrap_or_default();
         let mut nodes = Nodes::default();
         let root = nodes.alloc(NONE, NONE, NONE, Kind::Root).idx;
         let lower = module.stmts.iter().map(|s| s.text.to_lowercase()).collect();
@@ -163,6 +183,13 @@ impl<H: Hal, C: Clock> Vm<H, C> {
             lower,
             scratch: Vec::new(),
             stack: [0.0; EXPR_STACK],
+            supervisor: Default::default(),
+            known_map,
+            map_from_estimate: ilmr_hal::Pose::default(),
+            known_points,
+            move_mode: None,
+            mode_ops: Vec::new(),
+            end_code: None,
         };
         let main = vm.module.main.index();
         let blocks = vm.module.units[main].blocks.clone();
@@ -177,12 +204,18 @@ impl<H: Hal, C: Clock> Vm<H, C> {
     pub fn tick(&mut self) {
         self.clock.begin_tick(self.tick, self.cfg.period);
         let t = self.time();
+        // A failing robot is recorded and supervised (`robot_link`); the tick goes
+        // on with the last snapshot it gave.
         if let Err(e) = self.hal.update(t) {
+            self.supervisor.link_failed = true;
             self.error(None, format!("robot update failed: {e}"));
         }
         if let Err(e) = self.hal.snapshot(&mut self.snap) {
+            self.supervisor.link_failed = true;
             self.error(None, format!("robot snapshot failed: {e}"));
         }
+        self.update_map();
+        self.supervise();
         self.start_pending();
         self.fire_timers();
         self.step_motion();
@@ -233,6 +266,21 @@ impl<H: Hal, C: Clock> Vm<H, C> {
         }
     }
 
+    /// The statements of the live commands, guards, loops and skill calls (blocks
+    /// have none), sorted, one entry per live node: what a status view lists. Walks
+    /// the node arena, so it is for occasional queries, not for every tick.
+    pub fn live_statements(&self) -> Vec<StmtId> {
+        let mut live: Vec<StmtId> = self
+            .nodes
+            .all
+            .iter()
+            .filter(|n| !matches!(n.kind, Kind::Free | Kind::Root | Kind::Block(_)))
+            .filter_map(|n| stmt_of(n.stmt))
+            .collect();
+        live.sort_unstable_by_key(|s| s.0);
+        live
+    }
+
     /// Nothing is left but waiting `if` guards and the robot is at rest (the guide's
     /// end of a run); [`Vm::finished`] is the stricter "nothing is left at all".
     pub fn only_guards_waiting(&self) -> bool {
@@ -261,7 +309,7 @@ impl<H: Hal, C: Clock> Vm<H, C> {
             + self.vars.footprint()
             + self.active.capacity() * size_of::<Active>()
             + self.ready.capacity() * size_of::<exec::Ready>()
-            + self.woken.capacity() * size_of::<(u32, u32)>()
+            + self.woken.capacity() * size_of::<vars::Woken>()
             + self.timers.capacity() * size_of::<(u64, u64, u32, u32)>()
             + self.followers.capacity() * size_of::<Follower>()
     }
@@ -284,6 +332,17 @@ impl<H: Hal, C: Clock> Vm<H, C> {
 
     pub fn config(&self) -> &Config {
         &self.cfg
+    }
+
+    /// What `sensor(supervisor)` reads now: the number of the most urgent active
+    /// fault, 0 when there is none (`docs/reliability.md`).
+    pub fn supervisor_reading(&self) -> f64 {
+        self.supervisor.reading()
+    }
+
+    /// Whether a supervisor fault is active now.
+    pub fn fault_active(&self, fault: safety::Fault) -> bool {
+        self.supervisor.is_active(fault)
     }
 
     /// A variable by name (any letter case).

@@ -140,6 +140,8 @@ pub(crate) enum Kind {
     },
     Async {
         op: u32,
+        /// The tick it started, for `operation_timeout`.
+        since: u32,
     },
     SpeedAfter {
         value: f32,

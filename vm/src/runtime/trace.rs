@@ -7,6 +7,7 @@ use ilmr_motion::obstacle::AvoidState;
 
 use crate::bytecode::{Module, StmtId, VarId};
 
+use super::safety::{Code, Fault};
 use super::vars::{FIELDS, FieldMask, How, VarRecord};
 
 #[derive(Debug, Clone, PartialEq)]
@@ -20,6 +21,8 @@ pub enum EventKind {
         how: How,
         /// A movement ended early because the next one was joined to it.
         linked: bool,
+        /// The stable code of a safety refusal or of the fault that ended it.
+        code: Option<Code>,
         reason: Option<String>,
     },
     Var {
@@ -36,11 +39,21 @@ pub enum EventKind {
         /// Ground truth (`true`) or the robot's estimate.
         truth: bool,
     },
+    /// A movement got a reference path (when it started, or a behaviour re-planned
+    /// it): the path's points in the robot's frame, thinned by [`outline`] to
+    /// [`OUTLINE_TOLERANCE`]. Traced at [`super::config::TraceLevel::Full`] only, like
+    /// pose samples: it is for drawing.
+    Path { points: Vec<(f64, f64)> },
     /// Obstacle avoidance changed state while the movement ran (section 4.5.7):
     /// `avoiding` (it drives round an obstacle, the movement's output suppressed),
     /// `returning` (back to the reference after the security wait), `normal`,
     /// `blocked` (halted: `obsavoid(stop)`, or no way round).
     Avoid { state: AvoidState },
+    /// The supervisor raised a fault (`docs/reliability.md`): its reaction is in
+    /// force until `Recovered` (an operation that timed out is given up at once).
+    Fault { fault: Fault, message: String },
+    /// The fault's condition has cleared.
+    Recovered { fault: Fault },
     /// A block ran out of the tick's budget and was suspended.
     Overrun { pending: u32 },
     /// A runtime error that ended no command (a division by zero, a HAL call failing).
@@ -64,7 +77,10 @@ impl EventKind {
             EventKind::End { .. } => "end",
             EventKind::Var { .. } => "var",
             EventKind::Pose { .. } => "pose",
+            EventKind::Path { .. } => "path",
             EventKind::Avoid { .. } => "avoid",
+            EventKind::Fault { .. } => "fault",
+            EventKind::Recovered { .. } => "recovered",
             EventKind::Overrun { .. } => "overrun",
             EventKind::Error { .. } => "error",
         }
@@ -89,6 +105,53 @@ pub fn fmt_num(x: f64) -> String {
         s
     };
     if s == "-0" { "0".into() } else { s }
+}
+
+/// How far a traced reference path may stray from the planned one, metres: a plot
+/// cannot show less, and a straight leg keeps only its two ends.
+pub const OUTLINE_TOLERANCE: f64 = 0.01;
+
+/// The points of a polyline that keep it within `tolerance` of the original
+/// (Ramer-Douglas-Peucker, with an explicit stack so a long path cannot overflow
+/// the call stack). The ends are always kept.
+pub fn outline(points: &[(f64, f64)], tolerance: f64) -> Vec<(f64, f64)> {
+    if points.len() <= 2 {
+        return points.to_vec();
+    }
+    let mut keep = vec![false; points.len()];
+    keep[0] = true;
+    keep[points.len() - 1] = true;
+    let mut spans = vec![(0, points.len() - 1)];
+    while let Some((a, b)) = spans.pop() {
+        let (far, dist) = (a + 1..b)
+            .map(|i| (i, off_chord(points[i], points[a], points[b])))
+            .fold(
+                (a, 0.0),
+                |best, cur| if cur.1 > best.1 { cur } else { best },
+            );
+        if dist > tolerance {
+            keep[far] = true;
+            spans.push((a, far));
+            spans.push((far, b));
+        }
+    }
+    points
+        .iter()
+        .zip(keep)
+        .filter_map(|(p, k)| k.then_some(*p))
+        .collect()
+}
+
+/// Distance from `p` to the segment `a`-`b`.
+fn off_chord(p: (f64, f64), a: (f64, f64), b: (f64, f64)) -> f64 {
+    let (dx, dy) = (b.0 - a.0, b.1 - a.1);
+    let len2 = dx * dx + dy * dy;
+    let u = if len2 > 0.0 {
+        (((p.0 - a.0) * dx + (p.1 - a.1) * dy) / len2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    (p.0 - a.0 - u * dx).hypot(p.1 - a.1 - u * dy)
 }
 
 fn json_str(out: &mut String, s: &str) {
@@ -132,11 +195,15 @@ pub fn render_event(m: &Module, e: &Event) -> String {
         EventKind::End {
             how,
             linked,
+            code,
             reason,
         } => {
             let _ = write!(o, ",\"how\":\"{}\"", how.name());
             if *linked {
                 o.push_str(",\"linked\":true");
+            }
+            if let Some(c) = code {
+                let _ = write!(o, ",\"code\":\"{}\"", c.code());
             }
             if let Some(r) = reason {
                 o.push_str(",\"reason\":");
@@ -181,6 +248,16 @@ pub fn render_event(m: &Module, e: &Event) -> String {
                 if *truth { "true" } else { "estimated" }
             );
         }
+        EventKind::Path { points } => {
+            o.push_str(",\"points\":[");
+            for (i, (x, y)) in points.iter().enumerate() {
+                if i > 0 {
+                    o.push(',');
+                }
+                let _ = write!(o, "[{},{}]", fmt_num(*x), fmt_num(*y));
+            }
+            o.push(']');
+        }
         EventKind::Avoid { state } => {
             let name = match state {
                 AvoidState::Normal => "normal",
@@ -189,6 +266,24 @@ pub fn render_event(m: &Module, e: &Event) -> String {
                 AvoidState::Blocked => "blocked",
             };
             let _ = write!(o, ",\"state\":\"{name}\"");
+        }
+        EventKind::Fault { fault, message } => {
+            let _ = write!(
+                o,
+                ",\"fault\":\"{}\",\"code\":\"{}\",\"reaction\":\"{}\",\"message\":",
+                fault.name(),
+                Code::Fault(*fault).code(),
+                fault.reaction().name()
+            );
+            json_str(&mut o, message);
+        }
+        EventKind::Recovered { fault } => {
+            let _ = write!(
+                o,
+                ",\"fault\":\"{}\",\"code\":\"{}\"",
+                fault.name(),
+                Code::Fault(*fault).code()
+            );
         }
         EventKind::Overrun { pending } => {
             let _ = write!(o, ",\"pending\":{pending}");
@@ -235,5 +330,44 @@ mod tests {
         assert_eq!(fmt_num(-0.00001), "0");
         assert_eq!(fmt_num(1.23456), "1.2346");
         assert_eq!(fmt_num(2.0), "2");
+    }
+
+    #[test]
+    fn an_outline_keeps_the_ends_and_the_bends() {
+        let line: Vec<(f64, f64)> = (0..=100).map(|i| (f64::from(i) * 0.05, 0.0)).collect();
+        assert_eq!(outline(&line, 0.01), vec![(0.0, 0.0), (5.0, 0.0)]);
+        let arc: Vec<(f64, f64)> = (0..=90)
+            .map(|d| {
+                let a = f64::from(d).to_radians();
+                (2.0 * a.sin(), 2.0 - 2.0 * a.cos())
+            })
+            .collect();
+        let kept = outline(&arc, 0.01);
+        assert!(kept.len() > 2 && kept.len() < 20, "{} points", kept.len());
+        assert_eq!((kept[0], kept[kept.len() - 1]), (arc[0], arc[90]));
+        for p in &arc {
+            let near = kept
+                .windows(2)
+                .map(|w| off_chord(*p, w[0], w[1]))
+                .fold(f64::INFINITY, f64::min);
+            assert!(near <= 0.01 + 1e-12, "{p:?} is {near} m off the outline");
+        }
+    }
+
+    #[test]
+    fn a_path_event_lists_its_points() {
+        let m = crate::bytecode::ModuleBuilder::new().into_extended().0;
+        let e = Event {
+            tick: 3,
+            t: 0.03,
+            stmt: None,
+            kind: EventKind::Path {
+                points: vec![(1.0, 2.0), (3.25, -0.5)],
+            },
+        };
+        assert_eq!(
+            render_event(&m, &e),
+            r#"{"t":0.03,"event":"path","points":[[1,2],[3.25,-0.5]]}"#
+        );
     }
 }

@@ -1,12 +1,21 @@
 //! Variable records (Table 8 plus how the command ended) and the subscriptions that wake
 //! guards and waits when a variable changes. Subscriptions are intrusive lists in one
-//! pool: a doubly linked list per variable (wake order = subscription order) and a
-//! singly linked list per node (so a node drops all of its subscriptions at once).
+//! pool: a doubly linked list per variable and a singly linked list per node (so a node
+//! drops all of its subscriptions at once). Guards of the shape `var.field <op> const`
+//! wait in [`Watches`] instead. Every subscription takes a sequence number, so a wake
+//! puts both kinds back into subscription order.
 
 use ilmr_stdlib::Field;
 use serde::Serialize;
 
+use super::watch::{Entry, MAX_LISTS, Shape, Taken, Watches};
+
 pub(crate) const NONE: u32 = u32::MAX;
+
+/// A node's subscription head with this bit set names the [`Watches`] list of its
+/// compiled guard (the rest of the bits) rather than a pool chain; the pool stays
+/// below 2^31 entries.
+const WATCH: u32 = MAX_LISTS;
 
 /// How a command ended.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
@@ -99,6 +108,7 @@ impl VarRecord {
 
 #[derive(Debug, Clone, Copy)]
 struct Sub {
+    seq: u64,
     node: u32,
     /// The guard's condition, so that waking evaluates it without touching the
     /// node; NONE for a `wait(v)`.
@@ -123,21 +133,51 @@ const EMPTY: Head = Head {
     queued: false,
 };
 
+/// What a woken subscriber is.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Waiter {
+    /// A `wait(v)`.
+    Wait,
+    /// A guard on the general path, with its condition.
+    Guard { cond: u32 },
+    /// A compiled guard whose condition held when the wake began; `epoch` tells a
+    /// dead entry (the node ended or was reused) from a live one.
+    Watch { epoch: u32 },
+}
+
+/// A subscriber of a woken variable.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) struct Woken {
+    pub seq: u64,
+    pub node: u32,
+    pub waiter: Waiter,
+}
+
 #[derive(Debug, Default)]
 pub(crate) struct Vars {
     pub records: Vec<VarRecord>,
     heads: Vec<Head>,
     subs: Vec<Sub>,
     free_subs: u32,
+    watches: Watches,
+    /// The next subscription's sequence number.
+    seq: u64,
+    /// Reused: the watch groups the wake being evaluated took.
+    taken: Vec<Taken>,
 }
 
 impl Vars {
     pub fn new(n: usize) -> Vars {
+        let mut watches = Watches::default();
+        watches.grow(n);
         Vars {
             records: vec![VarRecord::default(); n],
             heads: vec![EMPTY; n],
             subs: Vec::new(),
             free_subs: NONE,
+            watches,
+            seq: 0,
+            taken: Vec::new(),
         }
     }
 
@@ -146,12 +186,15 @@ impl Vars {
         self.records.capacity() * size_of::<VarRecord>()
             + self.heads.capacity() * size_of::<Head>()
             + self.subs.capacity() * size_of::<Sub>()
+            + self.watches.footprint()
+            + self.taken.capacity() * size_of::<Taken>()
     }
 
     pub fn grow(&mut self, n: usize) {
         if n > self.records.len() {
             self.records.resize(n, VarRecord::default());
             self.heads.resize(n, EMPTY);
+            self.watches.grow(n);
         }
     }
 
@@ -165,10 +208,12 @@ impl Vars {
         self.records.get(v as usize).map_or(0.0, |r| r.get(f))
     }
 
-    /// Marks a wake of `v` as queued; returns false if one already was.
+    /// Marks a wake of `v` as queued; returns false if one already was or nothing
+    /// subscribes to `v`.
     pub fn queue_wake(&mut self, v: u32) -> bool {
+        let watched = self.watches.live(v) > 0;
         match self.heads.get_mut(v as usize) {
-            Some(h) if !h.queued && h.first != NONE => {
+            Some(h) if !h.queued && (h.first != NONE || watched) => {
                 h.queued = true;
                 true
             }
@@ -176,9 +221,11 @@ impl Vars {
         }
     }
 
-    /// Takes the queued wake of `v`: appends `(node, cond)` of every subscriber, in
-    /// subscription order, to `out`.
-    pub fn take_wake(&mut self, v: u32, out: &mut Vec<(u32, u32)>) {
+    /// Takes the queued wake of `v`: appends to `out`, in subscription order, every
+    /// wait and general guard subscribed to `v` and the compiled guards whose
+    /// condition now holds (some of them may have ended: see [`Waiter::Watch`]).
+    /// Compiled guards that stay false are not looked at.
+    pub fn take_wake(&mut self, v: u32, out: &mut Vec<Woken>) {
         let Some(h) = self.heads.get_mut(v as usize) else {
             return;
         };
@@ -186,9 +233,63 @@ impl Vars {
         let mut id = h.first;
         while id != NONE {
             let s = &self.subs[id as usize];
-            out.push((s.node, s.cond));
+            let waiter = if s.cond == NONE {
+                Waiter::Wait
+            } else {
+                Waiter::Guard { cond: s.cond }
+            };
+            out.push(Woken {
+                seq: s.seq,
+                node: s.node,
+                waiter,
+            });
             id = s.next;
         }
+        let general = out.len();
+        let record = self.get(v);
+        self.taken.clear();
+        self.watches.take_true(
+            v,
+            |f| record.get(f),
+            &mut |_, e: Entry| {
+                out.push(Woken {
+                    seq: e.seq,
+                    node: e.node,
+                    waiter: Waiter::Watch { epoch: e.epoch },
+                })
+            },
+            &mut self.taken,
+        );
+        // Each source is in subscription order already; the stable sort merges runs.
+        if out.len() > general && !out.is_sorted_by_key(|w| w.seq) {
+            out.sort_by_key(|w| w.seq);
+        }
+    }
+
+    /// After the wake taken last: forgets the compiled guards that fired or ended.
+    pub fn settle_wake(&mut self, is_live: impl Fn(&Entry) -> bool) {
+        let taken = std::mem::take(&mut self.taken);
+        self.watches.settle(&taken, is_live);
+        self.taken = taken;
+    }
+
+    /// Subscribes compiled guard `node` (of generation `epoch`); returns the node's
+    /// subscription head, or None (nothing subscribed) for a variable out of range.
+    pub fn watch(
+        &mut self,
+        shape: Shape,
+        node: u32,
+        epoch: u32,
+        is_live: impl Fn(&Entry) -> bool,
+    ) -> Option<u32> {
+        let entry = Entry {
+            seq: self.seq,
+            node,
+            epoch,
+        };
+        let list = self.watches.add(shape, entry, is_live)?;
+        self.seq += 1;
+        Some(WATCH | list)
     }
 
     /// Writes one field; returns whether it changed.
@@ -232,7 +333,11 @@ impl Vars {
         let Some(tail) = self.heads.get(var as usize).map(|h| h.last) else {
             return;
         };
+        if self.free_subs == NONE && self.subs.len() >= WATCH as usize {
+            return;
+        }
         let sub = Sub {
+            seq: self.seq,
             node,
             cond,
             var,
@@ -256,10 +361,16 @@ impl Vars {
         }
         self.heads[var as usize].last = id;
         *node_head = id;
+        self.seq += 1;
     }
 
     /// Drops every subscription of a node.
     pub fn unsubscribe_all(&mut self, node_head: &mut u32) {
+        if *node_head != NONE && *node_head & WATCH != 0 {
+            self.watches.drop_one(*node_head & !WATCH);
+            *node_head = NONE;
+            return;
+        }
         let mut id = *node_head;
         while id != NONE {
             let s = self.subs[id as usize];

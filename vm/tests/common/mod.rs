@@ -13,6 +13,8 @@ pub enum A<'a> {
     W(&'a str),
     S(&'a str, f64),
     V(&'a str),
+    /// A computed number (`gotoxy(x,0)` with `x` a number variable).
+    E(ExprId),
 }
 
 /// An expression term in postfix.
@@ -120,6 +122,7 @@ impl Asm {
                     value: self.b.num(v).expect("num"),
                 },
                 A::V(name) => Arg::Var(self.vid(name)),
+                A::E(e) => Arg::Num(e),
             });
         }
         let args = self.b.args(&list).expect("args");

@@ -5,14 +5,15 @@ mod kinematics;
 mod script;
 
 pub use kinematics::Limits;
-pub use script::{OpMatch, OpOutcome};
+pub use script::{Call, OpMatch, OpOutcome, Stream};
 
 use kinematics::{Kinematics, wrap};
-use script::{OpRule, Script, Sighting, TimedReading, TimedScan};
+use script::{OpRule, Periodic, Script, Sighting, TimedReading, TimedScan};
 
 use crate::hal::Hal;
 use crate::types::{
-    AsyncOp, BodyPose, Detection, DeviceReading, HalError, OpId, OpStatus, Pose, Scan, Snapshot,
+    AsyncOp, BodyPose, Detection, DeviceReading, HalError, KnownMap, OpId, OpStatus, Pose, Scan,
+    Snapshot,
 };
 
 /// Largest integration step; `update` subdivides longer intervals.
@@ -43,6 +44,11 @@ pub struct ScriptedRobot {
     actuator_log: Vec<(String, f64)>,
     locmode: Option<String>,
     bodypose: BodyPose,
+    /// Scripted jumps of the estimate already applied.
+    next_jump: usize,
+    cancelled: Vec<OpId>,
+    /// Every speed and curvature setpoint accepted, in order.
+    setpoints: Vec<(f64, f64)>,
 }
 
 impl ScriptedRobot {
@@ -60,6 +66,9 @@ impl ScriptedRobot {
             actuator_log: Vec::new(),
             locmode: None,
             bodypose: BodyPose::default(),
+            next_jump: 0,
+            cancelled: Vec::new(),
+            setpoints: Vec::new(),
         }
     }
 
@@ -125,6 +134,93 @@ impl ScriptedRobot {
         self
     }
 
+    /// From time 0 a copy of `scan` is the latest every `period` seconds (stamped
+    /// with the time it was taken), after any scans scripted one by one.
+    pub fn scan_every(mut self, period: f64, scan: Scan) -> ScriptedRobot {
+        self.script.scan_every = Some((
+            Periodic {
+                period,
+                dropouts: Vec::new(),
+            },
+            scan,
+        ));
+        self
+    }
+
+    /// The robot reports an odometry sample every `period` seconds
+    /// ([`Snapshot::odometry_t`]).
+    pub fn odometry_every(mut self, period: f64) -> ScriptedRobot {
+        self.script.odometry = Some(Periodic {
+            period,
+            dropouts: Vec::new(),
+        });
+        self
+    }
+
+    /// The robot reports a navigation fix every `period` seconds
+    /// ([`Snapshot::nav_t`]).
+    pub fn nav_every(mut self, period: f64) -> ScriptedRobot {
+        self.script.nav = Some(Periodic {
+            period,
+            dropouts: Vec::new(),
+        });
+        self
+    }
+
+    /// The stream gives no new sample from `from` until `until` seconds: its latest
+    /// sample stays the one before `from`. Only for a stream given with
+    /// `scan_every`, `odometry_every` or `nav_every`.
+    pub fn dropout(mut self, stream: Stream, from: f64, until: f64) -> ScriptedRobot {
+        let periodic = match stream {
+            Stream::Scanner => self.script.scan_every.as_mut().map(|(p, _)| p),
+            Stream::Odometry => self.script.odometry.as_mut(),
+            Stream::Nav => self.script.nav.as_mut(),
+        };
+        if let Some(p) = periodic {
+            p.dropouts.push((from, until));
+        }
+        self
+    }
+
+    /// At time `t` the estimate jumps by `shift` (x, y in the estimate's frame,
+    /// heading added), as a wrong navigation fix would move it.
+    pub fn jump(mut self, t: f64, shift: Pose) -> ScriptedRobot {
+        self.script.jumps.push((t, shift));
+        self.script.jumps.sort_by(|a, b| a.0.total_cmp(&b.0));
+        self
+    }
+
+    /// Calls of `call` fail with `error` from `from` until `until` seconds of robot
+    /// time.
+    pub fn fail(mut self, call: Call, from: f64, until: f64, error: HalError) -> ScriptedRobot {
+        self.script.failures.push((call, from, until, error));
+        self
+    }
+
+    /// The actuator admits `min..=max`, as its robot model says; the robot itself
+    /// still accepts any value (the VM is what refuses).
+    pub fn actuator_range(mut self, actuator: &str, min: f64, max: f64) -> ScriptedRobot {
+        self.script
+            .actuator_ranges
+            .push((actuator.to_string(), min, max));
+        self
+    }
+
+    pub fn known_map(mut self, map: KnownMap) -> ScriptedRobot {
+        self.script.known_map = Some(map);
+        self
+    }
+
+    /// Every speed and curvature setpoint accepted, in order.
+    pub fn setpoints(&self) -> &[(f64, f64)] {
+        &self.setpoints
+    }
+
+    /// Operations the VM gave up on.
+    pub fn cancelled(&self) -> &[OpId] {
+        &self.cancelled
+    }
+
     pub fn true_pose(&self) -> Pose {
         self.kin.pose
     }
@@ -156,6 +252,25 @@ impl ScriptedRobot {
         )
     }
 
+    fn apply_jumps(&mut self) {
+        while let Some(&(t, shift)) = self.script.jumps.get(self.next_jump) {
+            if t > self.t + 1e-9 {
+                break;
+            }
+            self.offset.x += shift.x;
+            self.offset.y += shift.y;
+            self.offset.h = wrap(self.offset.h + shift.h);
+            self.next_jump += 1;
+        }
+    }
+
+    fn failing(&self, call: Call) -> Result<(), HalError> {
+        match self.script.failure(call, self.t) {
+            Some(e) => Err(e),
+            None => Ok(()),
+        }
+    }
+
     fn apply_readings(&mut self) {
         while let Some(r) = self.script.readings.get(self.next_reading) {
             if r.t > self.t + 1e-9 {
@@ -185,6 +300,8 @@ impl Hal for ScriptedRobot {
                 t, self.t
             )));
         }
+        // The robot's time goes on whether or not the call is answered.
+        let failure = self.script.failure(Call::Update, t);
         let mut left = t - self.t;
         while left > 1e-12 {
             let dt = left.min(MAX_STEP);
@@ -194,11 +311,18 @@ impl Hal for ScriptedRobot {
         self.t = t;
         self.ticks += 1;
         self.apply_readings();
-        Ok(())
+        self.apply_jumps();
+        match failure {
+            Some(e) => Err(e),
+            None => Ok(()),
+        }
     }
 
     fn snapshot(&mut self, out: &mut Snapshot) -> Result<(), HalError> {
+        self.failing(Call::Snapshot)?;
         out.t = self.t;
+        out.odometry_t = self.script.odometry.as_ref().and_then(|p| p.latest(self.t));
+        out.nav_t = self.script.nav.as_ref().and_then(|p| p.latest(self.t));
         out.pose = self.estimated();
         out.true_pose = Some(self.kin.pose);
         out.speed = self.kin.speed;
@@ -220,6 +344,14 @@ impl Hal for ScriptedRobot {
             (Some(s), Some(o)) => o.clone_from(s),
             (Some(s), None) => out.scan = Some(s.clone()),
             (None, _) => out.scan = None,
+        }
+        if let Some((periodic, scan)) = &self.script.scan_every
+            && let Some(at) = periodic.latest(self.t)
+            && latest_scan.is_none_or(|s| s.t <= at)
+        {
+            let o = out.scan.get_or_insert_with(Scan::default);
+            o.clone_from(scan);
+            o.t = at;
         }
         let t = self.t;
         let mut n = 0;
@@ -243,12 +375,15 @@ impl Hal for ScriptedRobot {
                 "setpoint is not a number (speed {speed}, curvature {curvature})"
             )));
         }
+        self.failing(Call::SetMotion)?;
         self.kin.speed_set = speed;
         self.kin.curvature_set = curvature;
+        self.setpoints.push((speed, curvature));
         Ok(())
     }
 
     fn actuator(&mut self, id: &str, value: f64) -> Result<(), HalError> {
+        self.failing(Call::Actuator)?;
         if let Some((_, why)) = self
             .script
             .refused_actuators
@@ -276,6 +411,7 @@ impl Hal for ScriptedRobot {
     }
 
     fn bodypose(&mut self, pose: BodyPose) -> Result<(), HalError> {
+        self.failing(Call::BodyPose)?;
         self.bodypose = pose;
         Ok(())
     }
@@ -296,6 +432,7 @@ impl Hal for ScriptedRobot {
     }
 
     fn start(&mut self, op: &AsyncOp) -> Result<OpId, HalError> {
+        self.failing(Call::Start)?;
         let rule = self.script.op_rules.iter().find(|r| r.matcher.matches(op));
         let (ticks, outcome) = match rule {
             Some(r) => (r.ticks, r.outcome.clone()),
@@ -312,7 +449,11 @@ impl Hal for ScriptedRobot {
     }
 
     fn poll(&mut self, op: OpId) -> Result<OpStatus, HalError> {
+        self.failing(Call::Poll)?;
         let running = self.ops.get(op.0 as usize).ok_or(HalError::UnknownOp(op))?;
+        if self.cancelled.contains(&op) {
+            return Ok(OpStatus::Failed("cancelled".into()));
+        }
         if self.ticks < running.due_tick {
             return Ok(OpStatus::Pending);
         }
@@ -320,6 +461,28 @@ impl Hal for ScriptedRobot {
             OpOutcome::Done => OpStatus::Done,
             OpOutcome::Failed(why) => OpStatus::Failed(why.clone()),
         })
+    }
+
+    fn cancel(&mut self, op: OpId) -> Result<(), HalError> {
+        if self.ops.get(op.0 as usize).is_none() {
+            return Err(HalError::UnknownOp(op));
+        }
+        if !self.cancelled.contains(&op) {
+            self.cancelled.push(op);
+        }
+        Ok(())
+    }
+
+    fn known_map(&mut self) -> Option<KnownMap> {
+        self.script.known_map.clone()
+    }
+
+    fn actuator_range(&mut self, id: &str) -> Option<(f64, f64)> {
+        self.script
+            .actuator_ranges
+            .iter()
+            .find(|(a, _, _)| a.eq_ignore_ascii_case(id))
+            .map(|(_, min, max)| (*min, *max))
     }
 }
 
@@ -383,6 +546,69 @@ mod tests {
             Ok(OpStatus::Failed("gripper empty".into()))
         );
         assert_eq!(robot.poll(OpId(9)), Err(HalError::UnknownOp(OpId(9))));
+    }
+
+    #[test]
+    fn streams_stop_in_their_dropouts_and_calls_fail_when_scripted() {
+        let mut robot = ScriptedRobot::new(Limits::default())
+            .odometry_every(0.1)
+            .dropout(Stream::Odometry, 1.0, 2.0)
+            .nav_every(0.5)
+            .fail(Call::SetMotion, 0.5, 0.6, HalError::Link("cable".into()))
+            .jump(0.3, Pose::new(1.0, 0.0, 0.0));
+        let s = run_to(&mut robot, 0.25);
+        assert_eq!((s.odometry_t, s.nav_t), (Some(0.2), Some(0.0)));
+        assert_eq!(s.pose, Pose::default());
+        let s = run_to(&mut robot, 1.55);
+        assert_eq!(
+            s.odometry_t,
+            Some(0.9),
+            "the last sample before the dropout"
+        );
+        assert_eq!(s.nav_t, Some(1.5));
+        assert_eq!(s.pose.x, 1.0, "the estimate jumped at 0.3 s");
+        let s = run_to(&mut robot, 2.05);
+        assert_eq!(s.odometry_t, Some(2.0));
+        robot.update(2.1).expect("time");
+        assert!(robot.set_motion(0.1, 0.0).is_ok());
+        let mut early = ScriptedRobot::new(Limits::default()).fail(
+            Call::SetMotion,
+            0.0,
+            1.0,
+            HalError::Link("cable".into()),
+        );
+        assert_eq!(
+            early.set_motion(0.1, 0.0),
+            Err(HalError::Link("cable".into()))
+        );
+        assert!(early.setpoints().is_empty());
+    }
+
+    #[test]
+    fn a_known_map_measures_from_its_solids_surface() {
+        let map = KnownMap {
+            bounds: Some((0.0, 0.0, 10.0, 5.0)),
+            solids: vec![
+                crate::types::Solid {
+                    a: (2.0, 0.0),
+                    b: (2.0, 4.0),
+                    radius: 0.1,
+                },
+                crate::types::Solid {
+                    a: (6.0, 2.0),
+                    b: (6.0, 2.0),
+                    radius: 0.5,
+                },
+            ],
+        };
+        let (i, d) = map.nearest((1.0, 2.0)).expect("solids");
+        assert_eq!(i, 0);
+        assert!((d - 0.9).abs() < 1e-12);
+        let (i, d) = map.nearest((6.0, 2.2)).expect("solids");
+        assert_eq!(i, 1);
+        assert!(d < 0.0, "inside the round obstacle");
+        assert!(map.contains((9.0, 4.0)) && !map.contains((11.0, 1.0)));
+        assert!(KnownMap::default().contains((1e9, -1e9)), "unbounded");
     }
 
     #[test]

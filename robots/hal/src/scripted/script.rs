@@ -1,7 +1,7 @@
 //! The timed script of a [`super::ScriptedRobot`]: what its sensors report when, and
 //! how its asynchronous operations end.
 
-use crate::types::{AsyncOp, Detection, ManipTask, Scan};
+use crate::types::{AsyncOp, Detection, HalError, KnownMap, ManipTask, Pose, Scan};
 
 #[derive(Debug, Clone, PartialEq)]
 pub(crate) struct TimedReading {
@@ -56,6 +56,58 @@ pub(crate) struct OpRule {
     pub outcome: OpOutcome,
 }
 
+/// A stream of samples a [`super::ScriptedRobot`] can report and lose.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Stream {
+    Scanner,
+    Odometry,
+    Nav,
+}
+
+/// A HAL call a [`super::ScriptedRobot`] can be scripted to fail.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Call {
+    Update,
+    Snapshot,
+    SetMotion,
+    Actuator,
+    BodyPose,
+    Start,
+    Poll,
+}
+
+/// Samples every `period` seconds from time 0, except in its dropouts.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct Periodic {
+    pub period: f64,
+    pub dropouts: Vec<(f64, f64)>,
+}
+
+impl Periodic {
+    /// When the latest sample at or before `t` was taken: the last multiple of the
+    /// period outside every dropout `[from, until)`.
+    pub fn latest(&self, t: f64) -> Option<f64> {
+        if self.period.is_nan() || self.period <= 0.0 || t < 0.0 {
+            return None;
+        }
+        let mut at = (t / self.period + 1e-9).floor() * self.period;
+        while at >= 0.0 {
+            match self
+                .dropouts
+                .iter()
+                .find(|(from, until)| at >= *from - 1e-9 && at < *until - 1e-9)
+            {
+                // Back to the last sample before the dropout began.
+                Some((from, _)) => {
+                    at = ((from / self.period) - 1e-9).ceil() * self.period - self.period
+                }
+                None => return Some(at),
+            }
+        }
+        None
+    }
+}
+
 /// The script, kept sorted by time where order matters.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub(crate) struct Script {
@@ -68,4 +120,24 @@ pub(crate) struct Script {
     pub refused_actuators: Vec<(String, String)>,
     /// Navigation modes the robot has; empty means any.
     pub locmodes: Vec<String>,
+    /// A scan repeated every period (its `t` restamped), after the scripted ones.
+    pub scan_every: Option<(Periodic, Scan)>,
+    pub odometry: Option<Periodic>,
+    pub nav: Option<Periodic>,
+    /// `(t, shift)`: from time `t` the estimate is moved by `shift` (a bad fix).
+    pub jumps: Vec<(f64, Pose)>,
+    /// `(call, from, until, error)`.
+    pub failures: Vec<(Call, f64, f64, HalError)>,
+    /// `(actuator, min, max)`.
+    pub actuator_ranges: Vec<(String, f64, f64)>,
+    pub known_map: Option<KnownMap>,
+}
+
+impl Script {
+    pub fn failure(&self, call: Call, t: f64) -> Option<HalError> {
+        self.failures
+            .iter()
+            .find(|(c, from, until, _)| *c == call && t >= *from - 1e-9 && t < *until - 1e-9)
+            .map(|(_, _, _, e)| e.clone())
+    }
 }

@@ -118,6 +118,7 @@ impl<H: Hal, C: Clock> Vm<H, C> {
             if mode == Mode::Path {
                 self.motion.goal = super::hpose(run.path.end_pose());
             }
+            self.trace_reference();
         }
         Ok(())
     }

@@ -48,7 +48,7 @@ impl<H: Hal, C: Clock> Vm<H, C> {
         }
     }
 
-    fn speed_limits(&self) -> SpeedLimits {
+    pub(super) fn speed_limits(&self) -> SpeedLimits {
         SpeedLimits {
             max_accel: self.cfg.acceleration,
             max_decel: self.cfg.deceleration,
@@ -56,7 +56,7 @@ impl<H: Hal, C: Clock> Vm<H, C> {
     }
 
     /// Takes a new scan into the environmental map.
-    pub(super) fn update_map(&mut self) {
+    pub(in crate::runtime) fn update_map(&mut self) {
         let pose = mpose(self.snap.pose);
         self.motion
             .map
@@ -67,10 +67,12 @@ impl<H: Hal, C: Clock> Vm<H, C> {
     pub(in crate::runtime) fn step_motion(&mut self) {
         self.update_map();
         let Some(head) = self.motion.head else {
+            self.ramp_down();
             return;
         };
         if !self.nodes.alive(head) || self.motion.run.is_none() {
             self.motion.head = None;
+            self.ramp_down();
             return;
         }
         let pose = mpose(self.snap.pose);
@@ -82,8 +84,13 @@ impl<H: Hal, C: Clock> Vm<H, C> {
         let params = self.controller_params();
         let limits = self.speed_limits();
         let dt = self.cfg.period;
-        let target_speed = self.motion.speed.abs();
-        let (v_now, c_now, stopped) = (self.motion.v, self.motion.c, self.motion.stopped);
+        let target_speed = match self.motion.limit {
+            Some(limit) => self.motion.speed.abs().min(limit),
+            None => self.motion.speed.abs(),
+        };
+        // The supervisor's hold pauses the movement exactly as `stop` does.
+        let stopped = self.motion.stopped || self.motion.held;
+        let (v_now, c_now, last_sign) = (self.motion.v, self.motion.c, self.motion.sign);
         let super::Motion {
             run, avoider, map, ..
         } = &mut self.motion;
@@ -156,8 +163,21 @@ impl<H: Hal, C: Clock> Vm<H, C> {
                 stop_in(&run.path, run.k, &pose, run.advance, drive_through),
             )
         };
-        let v = next_speed(v_now, target, stop, &limits, dt);
-        let c = out.curvature;
+        // The braking curve towards a stop point falls a little faster than the
+        // deceleration in its last steps (and wins over it for a late
+        // `advancestop`); the setpoint never does: the robot cannot brake harder.
+        let mut v = next_speed(v_now, target, stop, &limits, dt).max(v_now - limits.max_decel * dt);
+        let mut sign = sign;
+        let mut c = out.curvature;
+        if sign != last_sign && v_now > 0.0 {
+            // Still rolling the other way (a movement started during a halt ramp,
+            // or the last few centimetres before a cusp): brake to rest first, at
+            // most by the deceleration, along the old arc. Flipping the sign at
+            // any speed above 0 would step the setpoint through zero.
+            v = next_speed(v_now, 0.0, None, &limits, dt);
+            sign = last_sign;
+            c = c_now;
+        }
         let dist = run.dist(&here);
         // A movement that nothing is linked to ends standing: the next one
         // starts from rest, as `wait(m)` between them asks.
@@ -181,13 +201,16 @@ impl<H: Hal, C: Clock> Vm<H, C> {
         }
         self.motion.v = v;
         self.motion.c = c;
+        self.motion.sign = sign;
         if avoid_state != self.motion.avoid_state {
             self.motion.avoid_state = avoid_state;
             let stmt = stmt_of(self.nodes.get(head.idx).stmt);
             self.push_event(stmt, EventKind::Avoid { state: avoid_state });
         }
 
-        if let Err(e) = self.hal.set_motion(sign * v, c) {
+        let sent = self.hal.set_motion(sign * v, c);
+        self.motion.unsent = sent.is_err();
+        if let Err(e) = sent {
             let stmt = stmt_of(self.nodes.get(head.idx).stmt);
             self.error(stmt, format!("setting speed and curvature failed: {e}"));
         }

@@ -5,6 +5,7 @@
 //! scan.
 
 use std::collections::BTreeMap;
+use std::f64::consts::TAU;
 
 use ilmr_hal::Scan;
 use ilmr_motion::Pose;
@@ -17,6 +18,9 @@ pub(crate) const MAP_RANGE: f64 = 8.0;
 /// Closer than this is the scanner's own housing.
 const MIN_RANGE: f64 = 0.05;
 const CELL: f64 = 0.05;
+/// A beam must reach this far past a mapped point to clear it: well above the
+/// scanner's noise.
+const SEEN_THROUGH: f64 = 0.15;
 
 #[derive(Debug, Clone, Default, PartialEq)]
 pub(crate) struct EnvMap {
@@ -52,6 +56,7 @@ impl EnvMap {
         }
         self.last_scan = Some(scan.t);
         let origin = pose.to_world(&Point2::new(mount, 0.0));
+        self.forget_seen_through(scan, &origin, pose.h);
         for (i, &r) in scan.ranges.iter().enumerate() {
             if !(r.is_finite() && (MIN_RANGE..MAP_RANGE).contains(&r)) {
                 continue;
@@ -72,12 +77,56 @@ impl EnvMap {
         let kept = prune_map(&self.points, pose);
         if kept.len() != self.points.len() {
             self.points = kept;
-            self.cells.clear();
-            for (i, p) in self.points.iter().enumerate() {
-                self.cells.insert(cell(p), i);
-            }
+            self.reindex();
         }
         true
+    }
+
+    fn reindex(&mut self) {
+        self.cells.clear();
+        for (i, p) in self.points.iter().enumerate() {
+            self.cells.insert(cell(p), i);
+        }
+    }
+
+    /// Drops the points that the beams of `scan` pass through: an obstacle that
+    /// has gone (a person who walked on, a box taken away) must stop holding the
+    /// robot. A point goes only when the beam nearest its bearing and both
+    /// neighbours reach past it by `SEEN_THROUGH`, so that the edge of a thing
+    /// and a wall seen at a grazing angle stay.
+    fn forget_seen_through(&mut self, scan: &Scan, origin: &Point2<f64>, heading: f64) {
+        let n = scan.ranges.len();
+        if n < 3 || !(scan.angle_step.is_finite() && scan.angle_step > 0.0) {
+            return;
+        }
+        // No return within range means free space as far as the map looks.
+        let reach = |i: usize| {
+            let r = scan.ranges[i];
+            if r.is_nan() || r < MIN_RANGE {
+                0.0
+            } else {
+                r.min(MAP_RANGE)
+            }
+        };
+        let before = self.points.len();
+        self.points.retain(|p| {
+            let (dx, dy) = (p.x - origin.x, p.y - origin.y);
+            let d = dx.hypot(dy);
+            if d >= MAP_RANGE {
+                return true;
+            }
+            let bearing = (dy.atan2(dx) - heading - scan.angle_min).rem_euclid(TAU);
+            let beam = (bearing / scan.angle_step).round();
+            if !(1.0..(n - 1) as f64).contains(&beam) {
+                return true;
+            }
+            let i = beam as usize;
+            let nearest = reach(i - 1).min(reach(i)).min(reach(i + 1));
+            nearest < d + SEEN_THROUGH
+        });
+        if self.points.len() != before {
+            self.reindex();
+        }
     }
 }
 
@@ -109,6 +158,39 @@ mod tests {
         let s2 = scan(1.0, vec![30.0, 30.0, 30.0]);
         assert!(m.update(Some(&s2), &Pose::new(4.0, 0.0, 0.0), 0.5));
         assert_eq!(m.points().len(), 1);
+    }
+
+    #[test]
+    fn a_thing_that_has_gone_is_forgotten_and_a_wall_is_not() {
+        let mut m = EnvMap::default();
+        // Something 1 m ahead, a wall 3 m ahead behind it.
+        let mut ranges = vec![3.0; 181];
+        for r in &mut ranges[85..96] {
+            *r = 1.0;
+        }
+        m.update(Some(&scan(0.0, ranges)), &Pose::new(0.0, 0.0, 0.0), 0.0);
+        let near = |m: &EnvMap| m.points().iter().filter(|p| p.x.hypot(p.y) < 1.5).count();
+        assert!(near(&m) >= 3, "{}", near(&m));
+        // It has gone: the beams reach the wall.
+        m.update(
+            Some(&scan(1.0, vec![3.0; 181])),
+            &Pose::new(0.0, 0.0, 0.0),
+            0.0,
+        );
+        assert_eq!(near(&m), 0);
+        assert!(
+            m.points().len() > 100,
+            "the wall stays: {}",
+            m.points().len()
+        );
+        // Seen again from 1 m nearer, the wall is still there.
+        let n = m.points().len();
+        m.update(
+            Some(&scan(2.0, vec![2.0; 181])),
+            &Pose::new(1.0, 0.0, 0.0),
+            0.0,
+        );
+        assert!(m.points().len() >= n / 2);
     }
 
     #[test]

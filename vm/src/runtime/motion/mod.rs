@@ -8,6 +8,7 @@
 
 mod behave;
 mod drive;
+mod halt;
 mod map;
 mod plan;
 
@@ -21,11 +22,13 @@ use nalgebra::Point2;
 
 use super::Vm;
 use super::clock::Clock;
-use super::config::Config;
+use super::config::{Config, TraceLevel};
 use super::nodes::{Kind, NodeRef};
+use super::safety::Refusal;
 use super::stmt_of;
-use super::trace::EventKind;
-use super::vars::{How, NONE};
+use super::trace::{self, EventKind};
+use super::vars::NONE;
+use ilmr_stdlib::Command;
 use map::EnvMap;
 
 /// The wall `followwall` keeps to.
@@ -119,7 +122,21 @@ pub(crate) struct Motion {
     /// v and c_now.
     v: f64,
     c: f64,
+    /// The direction of the speed commanded last tick (+1 or -1).
+    sign: f64,
+    /// Nothing is commanded: the robot was brought to rest (or never moved).
+    /// With no movement holding the reservation and `idle` false, the halt ramp
+    /// runs.
     idle: bool,
+    /// The robot did not take the last setpoint (the call failed): at rest the
+    /// VM keeps sending 0 until it does, or a drive that comes back would go on
+    /// with the last speed it took.
+    unsent: bool,
+    /// The supervisor holds the running movement (as `stop` does).
+    pub held: bool,
+    /// The supervisor's speed limit, m/s.
+    pub limit: Option<f64>,
+    avoid_mode: AvoidMode,
 }
 
 fn avoid_params(cfg: &Config) -> AvoidParams {
@@ -167,8 +184,46 @@ impl Motion {
             map: EnvMap::default(),
             v: 0.0,
             c: 0.0,
+            sign: 1.0,
             idle: true,
+            unsent: false,
+            held: false,
+            limit: None,
+            avoid_mode: AvoidMode::Off,
         }
+    }
+
+    pub fn is_idle(&self) -> bool {
+        self.idle
+    }
+
+    pub fn avoid_mode(&self) -> AvoidMode {
+        self.avoid_mode
+    }
+
+    /// The direction of the speed commanded last, +1 or -1.
+    pub fn last_sign(&self) -> f64 {
+        self.sign
+    }
+
+    pub fn commanded_curvature(&self) -> f64 {
+        if self.idle { 0.0 } else { self.c }
+    }
+
+    /// The running movement's reference and index.
+    pub fn running_path(&self) -> Option<(&Path, usize)> {
+        self.run.as_ref().map(|r| (&r.path, r.k))
+    }
+
+    /// The direction the running movement's reference goes at its index.
+    pub fn running_direction(&self) -> Option<ilmr_motion::Direction> {
+        self.running_path()
+            .map(|(p, k)| p.points()[p.clamp_index(k)].direction)
+    }
+
+    /// The environmental map's points, world coordinates.
+    pub fn map_points(&self) -> &[Point2<f64>] {
+        self.map.points()
     }
 
     /// The speed magnitude commanded last tick, m/s.
@@ -193,6 +248,7 @@ impl Motion {
         .map(|(_, m)| m)
         .ok_or_else(|| format!("obsavoid takes on, off or stop, not {word}"))?;
         self.avoider.set_mode(mode);
+        self.avoid_mode = mode;
         Ok(())
     }
 }
@@ -216,23 +272,23 @@ impl<H: Hal, C: Clock> Vm<H, C> {
                 .copied()
                 .find(|r| self.nodes.alive(*r) && !self.nodes.get(r.idx).dying);
             let Some(next) = next else {
+                // Nothing to drive: the halt ramp brings the robot to rest from the
+                // next tick on (`halt.rs`), never a jump of the setpoint to 0.
                 self.motion.joined = None;
-                if !self.motion.idle {
-                    self.motion.idle = true;
-                    self.motion.v = 0.0;
-                    if let Err(e) = self.hal.set_motion(0.0, 0.0) {
-                        self.error(None, format!("stopping the robot failed: {e}"));
-                    }
-                }
                 return;
             };
             self.motion.queue.retain(|r| *r != next);
-            match self.plan_movement(next.idx, linked) {
+            let planned = match self.check_movement_allowed() {
+                Ok(()) => self.plan_movement(next.idx, linked),
+                Err(refusal) => Err(refusal),
+            };
+            match planned {
                 Ok(()) => {
                     self.motion.head = Some(next);
                     self.motion.idle = false;
                     let node = *self.nodes.get(next.idx);
                     self.push_event(stmt_of(node.stmt), EventKind::Start { iteration: None });
+                    self.trace_reference();
                     if node.bind != NONE {
                         self.write_fields(
                             node.bind,
@@ -244,14 +300,14 @@ impl<H: Hal, C: Clock> Vm<H, C> {
                     }
                     return;
                 }
-                Err(why) => self.end_node(next.idx, How::Refused, false, Some(why), true),
+                Err(refusal) => self.end_refused(next.idx, refusal),
             }
         }
     }
 
-    fn plan_movement(&mut self, idx: u32, linked: bool) -> Result<(), String> {
-        let Kind::Movement { spec, .. } = self.nodes.get(idx).kind else {
-            return Err("not a movement".into());
+    fn plan_movement(&mut self, idx: u32, linked: bool) -> Result<(), Refusal> {
+        let Kind::Movement { spec, command } = self.nodes.get(idx).kind else {
+            return Err(Refusal::from("not a movement".to_string()));
         };
         let current = self.snap.pose;
         let joined = if linked {
@@ -266,6 +322,10 @@ impl<H: Hal, C: Clock> Vm<H, C> {
         };
         self.update_map();
         let planned = self.plan_spec(spec, start)?;
+        if matches!(command, Command::GotoXY | Command::GotoRelXY) {
+            let end = planned.path.end_pose();
+            self.check_target(end.x, end.y)?;
+        }
         let (path, offset) = match joined {
             Some(j) => match j.concat(&planned.path, JOIN_TOLERANCE) {
                 Ok(p) => (p, j.length()),
@@ -273,11 +333,15 @@ impl<H: Hal, C: Clock> Vm<H, C> {
             },
             None => (planned.path, 0.0),
         };
-        if !linked {
-            // Start from what the drive does now (a broken movement may still roll).
-            self.motion.v = self.snap.speed.abs();
+        if !linked && self.motion.idle {
+            // Steer on from where the wheel stands. The speed starts from the
+            // last setpoint (0 at rest), not from what the drive still rolls:
+            // starting from a drive that lags its setpoint would step it.
+            self.motion.v = 0.0;
             self.motion.c = self.snap.curvature;
         }
+        // Otherwise the setpoint goes on from what was commanded last (a halt ramp
+        // in progress), so that it never jumps.
         let advance = self.motion.advance_stop.take().unwrap_or(0.0).max(0.0);
         self.motion.goal = hpose(path.end_pose());
         self.motion.run = Some(Run {
@@ -290,6 +354,20 @@ impl<H: Hal, C: Clock> Vm<H, C> {
             detour: None,
         });
         Ok(())
+    }
+
+    /// Traces the running movement's reference path (a `path` event), for plots.
+    pub(super) fn trace_reference(&mut self) {
+        if self.cfg.trace != TraceLevel::Full {
+            return;
+        }
+        let (Some(head), Some(run)) = (self.motion.head, self.motion.run.as_ref()) else {
+            return;
+        };
+        let points: Vec<(f64, f64)> = run.path.points().iter().map(|p| (p.x, p.y)).collect();
+        let points = trace::outline(&points, trace::OUTLINE_TOLERANCE);
+        let stmt = self.nodes.get(head.idx).stmt;
+        self.push_event(stmt_of(stmt), EventKind::Path { points });
     }
 
     /// A successor is queued and nothing waits on the running movement's variable.

@@ -1,7 +1,8 @@
 //! Reference paths for each movement command, built with ilmr-motion:
 //! straights and arcs (`goahead`, `turn(d=..,c=..)`), Bezier curves to a
 //! pose with the reverse-and-turn fallback of `r` (`gotoxy`, `gotorelxy`,
-//! `turn(variable)`, `approach`), filleted polylines (`followpath`), and the
+//! `turn(variable)`, `approach`), taught paths made drivable (`followpath`,
+//! joined where the robot can meet them), and the
 //! first leg of the behaviours (`followwall`, `turn(left|right)`,
 //! `followtarget`).
 
@@ -9,7 +10,7 @@ use std::f64::consts::FRAC_PI_2;
 
 use ilmr_hal::Hal;
 use ilmr_motion::obstacle::check_length;
-use ilmr_motion::path::{TurnSpec, polyline, straight, turn};
+use ilmr_motion::path::{TurnSpec, straight, taught, turn};
 use ilmr_motion::wall::{
     FOLLOWWALL_AHEAD, WallParams, fit_wall, followwall_goal, middle_goal, turn_space_free,
 };
@@ -32,9 +33,14 @@ pub(crate) const ENDLESS_LEG: f64 = 30.0;
 /// the map's 5 cm cells at a wall's corner; with 0.1 m the turn round the
 /// end of Figure 58's lab bench began 1 cm too early and ended blocked.
 pub(crate) const TURN_MARGIN: f64 = 0.25;
-/// Recorded paths are thinned to waypoints at least this far apart, in turn,
-/// until their corners fit the robot's curvature.
-const THINNING: [f64; 5] = [0.0, 0.3, 0.6, 1.2, 2.5];
+/// `followpath` may join its path this many turning radii past the first
+/// point. A three-point turn at a path's end leaves the robot a radius
+/// back and a radius aside, facing across the path; the Bezier of
+/// equations (2)-(3) bends up to about 1.4 times as sharply as a circle, so
+/// it meets the path some three to four radii along.
+const JOIN_REACH: f64 = 5.0;
+/// Candidate joins are this far apart along the path, m.
+const JOIN_STEP: f64 = 0.25;
 
 pub(crate) fn side(s: ilmr_hal::Side) -> Side {
     match s {
@@ -206,12 +212,22 @@ impl<H: Hal, C: Clock> Vm<H, C> {
             }
             MoveSpec::ToVar { var, rel, r } => {
                 let (x, y) = self.var_position(var)?;
-                let to = if rel {
-                    Self::relative(&start, x, y)
+                let (to, h) = if rel {
+                    (Self::relative(&start, x, y), start.h + self.vars.get(var).h)
                 } else {
-                    Point2::new(x, y)
+                    (Point2::new(x, y), self.vars.get(var).h)
                 };
-                Planned::path(self.goto(start, to, None, r)?)
+                // A position variable has a heading (Table 8): through a door
+                // found by the scanner, or where the robot faced when it was
+                // saved. Arriving with it lines the robot up with a door, as
+                // Figures 20 and 58 need to turn on from there; where that
+                // curve is too tight and `r` is not given, the robot arrives
+                // facing the point instead.
+                let path = match self.goto(start, to, Some(h), r) {
+                    Ok(path) => path,
+                    Err(_) => self.goto(start, to, None, r)?,
+                };
+                Planned::path(path)
             }
             MoveSpec::ApproachVar { var, d } => {
                 let (x, y) = self.var_position(var)?;
@@ -331,65 +347,61 @@ impl<H: Hal, C: Clock> Vm<H, C> {
         } else {
             self.travel_direction()
         };
-        let mut last = None;
-        let mut path = None;
-        for gap in THINNING {
-            let thinned = thin(&waypoints, gap);
-            match polyline(&thinned, self.cfg.max_curvature, dir, SPACING) {
-                Ok(p) => {
-                    path = Some(p);
-                    break;
-                }
-                Err(e) => last = Some(e),
-            }
-        }
-        let path = match (path, last) {
-            (Some(p), _) => p,
-            (None, Some(e)) => return Err(format!("path {key}: {e}")),
-            (None, None) => return Err(format!("path {key} is empty")),
-        };
-        // From where the robot stands to the path's first point.
+        let path = taught(&waypoints, self.cfg.max_curvature, dir, SPACING)
+            .map_err(|e| format!("path {key}: {e}"))?;
         let first = path.start_pose();
         if start.distance_to(&first.position()) <= 0.05 {
             return Ok(path);
         }
-        let lead = self.bezier(start, first, dir, true)?;
-        lead.concat(&path, ilmr_motion::path::JOIN_TOLERANCE)
+        let joined = self
+            .bezier(start, first, dir, false)
+            .ok()
+            .map(|lead| (lead, path.clone()))
+            .or_else(|| self.join_later(start, &path, dir));
+        let (lead, rest) = match joined {
+            Some(j) => j,
+            // Nowhere near reachable going on: reverse and turn to its start.
+            None => (self.bezier(start, first, dir, true)?, path),
+        };
+        lead.concat(&rest, ilmr_motion::path::JOIN_TOLERANCE)
             .map_err(err)
     }
-}
 
-/// Waypoints at least `gap` apart, always keeping the first and the last.
-fn thin(points: &[Point2<f64>], gap: f64) -> Vec<Point2<f64>> {
-    let mut out: Vec<Point2<f64>> = Vec::with_capacity(points.len());
-    for (i, p) in points.iter().enumerate() {
-        let last = i + 1 == points.len();
-        match out.last() {
-            Some(q) if (p - q).norm() < gap && !last => {}
-            Some(q) if last && (p - q).norm() < gap && out.len() > 1 => {
-                let n = out.len();
-                out[n - 1] = *p;
-            }
-            _ => out.push(*p),
-        }
-    }
-    out
-}
-
-#[cfg(test)]
-mod tests {
-    use super::thin;
-    use nalgebra::Point2;
-
-    #[test]
-    fn thinning_keeps_the_ends() {
-        let pts: Vec<_> = (0..=10)
-            .map(|i| Point2::new(f64::from(i) * 0.1, 0.0))
-            .collect();
-        let t = thin(&pts, 0.3);
-        assert_eq!(t.first(), pts.first());
-        assert_eq!(t.last(), pts.last());
-        assert!(t.len() < pts.len());
-        assert_eq!(thin(&pts, 0.0), pts);
+    /// Joins `path` past its first point where a lead-in from `start` fits
+    /// the robot's curvature: after a three-point turn at the end of a taught
+    /// path (Figure 56's TURN1), the robot faces across the path and can only
+    /// meet it a turning diameter or more along, as a driver would. The
+    /// search looks no further than `JOIN_REACH` turning radii along the
+    /// path. TURN1 reverses on full lock, which leaves the path exactly one
+    /// turning radius ahead: no curve within the robot's curvature meets it
+    /// going on, so the second pass lets the robot back up a little first
+    /// (the `r` manoeuvre) at a few whole radii along.
+    fn join_later(&self, start: Pose, path: &Path, dir: Direction) -> Option<(Path, Path)> {
+        let radius = 1.0 / self.cfg.max_curvature;
+        let reach = JOIN_REACH * radius;
+        let step = (JOIN_STEP / SPACING).ceil().max(1.0) as usize;
+        let pts = path.points();
+        let going_on = pts
+            .iter()
+            .enumerate()
+            .skip(1)
+            .step_by(step)
+            .take_while(|(_, p)| p.s <= reach)
+            .find_map(|(k, p)| {
+                let lead = self.bezier(start, p.pose(), dir, false).ok()?;
+                Some((lead, path.tail_from(k)))
+            });
+        // The shortest lead-in of these wins: the nearest join may need the
+        // longest reversing.
+        going_on.or_else(|| {
+            (2..=JOIN_REACH as usize)
+                .filter_map(|n| {
+                    let k = path.index_at_remaining(path.length() - n as f64 * radius);
+                    (k > 0).then_some(())?;
+                    let lead = self.bezier(start, pts[k].pose(), dir, true).ok()?;
+                    Some((lead, path.tail_from(k)))
+                })
+                .min_by(|a, b| a.0.length().total_cmp(&b.0.length()))
+        })
     }
 }
