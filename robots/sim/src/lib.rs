@@ -15,15 +15,18 @@
 //! ```
 
 pub mod config;
+pub mod faults;
 pub mod geometry;
 pub mod kinematics;
 pub mod rng;
 mod robot;
 pub mod sensors;
 mod sim;
+mod vm_config;
 pub mod world;
 
 pub use config::{RobotConfig, RobotKind};
+pub use faults::{FaultKind, FaultPlan, FaultSpec};
 pub use geometry::{Pose, Vec2};
 pub use kinematics::{BodyPose, MovementMode};
 pub use robot::{
@@ -31,4 +34,5 @@ pub use robot::{
     config_from_model,
 };
 pub use sim::{Contact, EventKind, Faults, SensorSnapshot, SimError, SimEvent, Simulator};
+pub use vm_config::{TURN_SHARE, vm_config};
 pub use world::{World, WorldError};

@@ -1,6 +1,7 @@
 //! Test 4 (section 5.6.3): `obsavoid(on)` then `goahead(5)` on MoRo at
 //! 0.3 m/s with a box on the path (tests/worlds/obstacle.toml); and the
-//! `stop` and `off` modes of the same run.
+//! `stop` and `off` modes of the same run (with `off` the avoider ignores the
+//! box and the VM's supervisor holds the robot before it).
 
 mod experiment;
 
@@ -76,9 +77,20 @@ fn obsavoid_stop_halts_before_the_obstacle() {
 }
 
 #[test]
-fn obsavoid_off_drives_into_the_obstacle() {
+fn obsavoid_off_ignores_the_obstacle_until_the_supervisor_holds() {
+    // The avoider ignores the box; the VM's supervisor (issue 7) still
+    // holds the robot when the box comes inside its stopping distance.
     let mut vm = vm(task("off"), moro(world("obstacle.toml"), SEED));
     let out = run(&mut vm, 30.0);
     assert!(!out.finished);
-    assert!(vm.hal().sim().contact_count() > 0, "off ignores obstacles");
+    let held = vm
+        .events()
+        .iter()
+        .any(|e| ilmr_vm::render_event(vm.module(), e).contains("\"obstacle_near\""));
+    let end = out.trace.last().expect("moved");
+    let front = end.x + vm.config().front_offset;
+    println!("obsavoid(off): held by the supervisor, front at x = {front:.3} m");
+    assert!(held, "an obstacle_near fault");
+    assert_eq!(vm.hal().sim().contact_count(), 0);
+    assert!(vm.hal().sim().true_speed().abs() < 1e-3);
 }

@@ -48,14 +48,22 @@ pub fn stop_in(path: &Path, k: usize, pose: &Pose, advance_stop: f64, linked: bo
 
 /// True when a movement command following `path` has done its job: the
 /// robot is past the end, or within `advance_stop` (plus `tolerance`) of it.
+/// "Past the end" counts only on the path's last `PASSED_WINDOW` metres: a
+/// path that comes back (a taught loop round a bench) starts beyond the
+/// line through its own end.
 pub fn has_arrived(path: &Path, k: usize, pose: &Pose, advance_stop: f64, tolerance: f64) -> bool {
     let k = path.clamp_index(k);
     let p = pose.position();
     let last_leg = path.distance_to_stop(k) >= path.remaining(k) - 1e-9;
+    let near_end = path.remaining(k) <= PASSED_WINDOW;
     last_leg
         && (path.remaining_from(k, &p) <= advance_stop.max(0.0) + tolerance
-            || (advance_stop <= 0.0 && path.passed_end(&p)))
+            || (advance_stop <= 0.0 && near_end && path.passed_end(&p)))
 }
+
+/// See `has_arrived`, m: more than the robot's reference index lags behind
+/// its position in a cycle, less than any loop a robot can drive.
+pub const PASSED_WINDOW: f64 = 0.5;
 
 /// Next speed magnitude after `dt`: towards `target` within the limits, and
 /// never faster than lets the robot stop in `stop_in` metres.
@@ -93,6 +101,25 @@ mod tests {
         max_accel: 0.5,
         max_decel: 0.5,
     };
+
+    #[test]
+    fn a_path_that_comes_back_has_not_arrived_at_its_start() {
+        // Out 4 m, round and 2 m back: the start lies beyond the end's line.
+        let wp = [
+            nalgebra::Point2::new(0.0, 0.0),
+            nalgebra::Point2::new(4.0, 0.0),
+            nalgebra::Point2::new(4.0, 3.0),
+            nalgebra::Point2::new(2.0, 3.0),
+        ];
+        let path = crate::path::polyline(&wp, 1.33, crate::path::Direction::Forward, 0.05)
+            .expect("drivable");
+        let start = Pose::new(0.0, 0.0, 0.0);
+        assert!(path.passed_end(&start.position()));
+        assert!(!has_arrived(&path, 0, &start, 0.0, 0.02));
+        let last = path.points().len() - 1;
+        let beyond = Pose::new(1.9, 3.0, std::f64::consts::PI);
+        assert!(has_arrived(&path, last, &beyond, 0.0, 0.02));
+    }
 
     /// Drives a point mass along a straight with the profile.
     fn run(length: f64, target: f64, advance: f64, linked: bool) -> (f64, f64, Vec<f64>) {

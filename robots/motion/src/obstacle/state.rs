@@ -9,6 +9,7 @@ use crate::path::{Direction, Path};
 use crate::pose::Pose;
 use nalgebra::Point2;
 use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
 
 /// `obsavoid(on|off|stop)`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
@@ -76,6 +77,21 @@ const SAME_OBSTACLE: f64 = 0.25;
 /// in steps shorter than `SAME_OBSTACLE`, in map order. The area only sees
 /// the near face of an obstacle; its far side decides when it is passed.
 fn cluster(points: &[Point2<f64>], seeds: &[usize]) -> Vec<Point2<f64>> {
+    // Points bucketed in cells as wide as the linking distance, so each
+    // step looks at the 3 x 3 cells around a point, not the whole map: a
+    // robot standing blocked in a walled room searches every tick.
+    let cell = |p: &Point2<f64>| {
+        (
+            (p.x / SAME_OBSTACLE).floor() as i64,
+            (p.y / SAME_OBSTACLE).floor() as i64,
+        )
+    };
+    let mut grid: BTreeMap<(i64, i64), Vec<usize>> = BTreeMap::new();
+    for (i, p) in points.iter().enumerate() {
+        if p.x.is_finite() && p.y.is_finite() {
+            grid.entry(cell(p)).or_default().push(i);
+        }
+    }
     let mut member = vec![false; points.len()];
     let mut stack: Vec<usize> = seeds
         .iter()
@@ -86,10 +102,18 @@ fn cluster(points: &[Point2<f64>], seeds: &[usize]) -> Vec<Point2<f64>> {
         member[i] = true;
     }
     while let Some(i) = stack.pop() {
-        for (j, q) in points.iter().enumerate() {
-            if !member[j] && (q - points[i]).norm() < SAME_OBSTACLE {
-                member[j] = true;
-                stack.push(j);
+        let (cx, cy) = cell(&points[i]);
+        for dx in -1..=1 {
+            for dy in -1..=1 {
+                let Some(near) = grid.get(&(cx + dx, cy + dy)) else {
+                    continue;
+                };
+                for &j in near {
+                    if !member[j] && (points[j] - points[i]).norm() < SAME_OBSTACLE {
+                        member[j] = true;
+                        stack.push(j);
+                    }
+                }
             }
         }
     }
@@ -342,5 +366,27 @@ impl Avoider {
         } else {
             AvoidState::Avoiding
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::cluster;
+    use nalgebra::Point2;
+
+    #[test]
+    fn a_cluster_follows_chains_of_near_points_only() {
+        // A 3 m wall sampled every 5 cm, a box 1 m off it, and a wall
+        // piece in the next cell but beyond the linking distance.
+        let mut pts: Vec<Point2<f64>> = (0..=60)
+            .map(|i| Point2::new(f64::from(i) * 0.05, 0.0))
+            .collect();
+        pts.push(Point2::new(1.0, 1.0));
+        pts.push(Point2::new(3.3, 0.0));
+        let wall = cluster(&pts, &[30]);
+        assert_eq!(wall.len(), 61);
+        assert_eq!(wall[0], pts[0], "in map order");
+        assert_eq!(cluster(&pts, &[61]), vec![Point2::new(1.0, 1.0)]);
+        assert!(cluster(&pts, &[99]).is_empty(), "a stale seed is ignored");
     }
 }

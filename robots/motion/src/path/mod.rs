@@ -15,9 +15,11 @@ mod link;
 pub use link::{JOIN_TOLERANCE, LINK_REMAINING};
 mod polyline;
 mod shapes;
+mod taught;
 
 pub use polyline::polyline;
 pub use shapes::{TurnSpec, straight, turn};
+pub use taught::{SIMPLIFY_TOLERANCE, taught};
 
 use crate::pose::{Pose, normalize_angle};
 use nalgebra::Point2;
@@ -137,6 +139,9 @@ pub enum PathError {
     /// A polyline corner cannot be rounded within the robot's curvature:
     /// the corner's waypoint index and the curvature it would need.
     CornerTooSharp { index: usize, curvature: f64 },
+    /// A taught path could only be made drivable by leaving its recorded
+    /// point `index` this many metres away.
+    StraysFromRecord { index: usize, distance: f64 },
 }
 
 impl fmt::Display for PathError {
@@ -155,6 +160,10 @@ impl fmt::Display for PathError {
             PathError::CornerTooSharp { index, curvature } => write!(
                 f,
                 "corner at waypoint {index} needs curvature {curvature:.3} 1/m"
+            ),
+            PathError::StraysFromRecord { index, distance } => write!(
+                f,
+                "a drivable path passes {distance:.2} m from waypoint {index}"
             ),
         }
     }

@@ -13,6 +13,8 @@ pub enum SolidRef {
     Obstacle(usize),
     PickupBox(usize),
     Target(usize),
+    /// An obstacle that a fault made appear, by the fault's index in the world.
+    Fault(usize),
 }
 
 #[derive(Debug, Clone, PartialEq)]

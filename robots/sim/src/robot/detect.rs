@@ -1,14 +1,11 @@
-//! What the robot recognises, as the HAL reports it: coloured objects found
-//! by the camera and ranged by the scanner (Figure 33), and door openings
-//! found in the scan.
+//! Coloured objects found by the camera and ranged by the scanner
+//! (Figure 33), and where the laser pointer on the same head points
+//! (`savepos(name,laser)`), as the HAL reports them.
 
 use crate::geometry::{Pose, Vec2};
 use crate::sensors::{CameraFrame, Scan};
 use ilmr_hal::{Detection, Side};
 use ilmr_model::RobotModel;
-
-/// A range step at least this large starts or ends an opening, m.
-const EDGE_JUMP: f64 = 0.5;
 
 /// World points of the scan's beams that returned, with their bearing from
 /// the robot's heading.
@@ -78,62 +75,32 @@ pub fn camera_objects(
     }
 }
 
-/// Openings in the scan as wide as the model's `door` (its two parameters
-/// are the smallest and largest width): a run of beams that reach at least
-/// `EDGE_JUMP` further than the returns on both sides of it. The door's
-/// pose is the middle of the gap, heading through it away from the robot.
-pub fn doors(model: &RobotModel, scan: &Scan, pose: Pose, out: &mut Vec<Detection>) {
-    let Some(door) = model.object("door") else {
+/// Where the laser pointer's beam meets something, on the floor plan: the
+/// slant distance `frame.laser` taken along the head's pan, shortened by its
+/// tilt. Reported as a detection by the `laser` device (object `spot`),
+/// heading along the beam, so that `savepos(name,laser)` stores the point.
+pub fn laser_spot(
+    model: &RobotModel,
+    frame: &CameraFrame,
+    eye: Vec2,
+    pose: Pose,
+    out: &mut Vec<Detection>,
+) {
+    let (Some(device), Some(slant)) = (model.device("laser"), frame.laser) else {
         return;
     };
-    let widths: Vec<f64> = door
-        .params
-        .iter()
-        .filter_map(|p| p.parse::<f64>().ok())
-        .collect();
-    let (min_w, max_w) = match widths.as_slice() {
-        [a, b, ..] => (a.min(*b), a.max(*b)),
-        _ => return,
-    };
-    let r = &scan.ranges;
-    let point =
-        |i: usize| pose.transform(scan.mount + Vec2::from_angle(scan.bearing(i)).scale(r[i]));
-    let mut i = 0;
-    while i + 1 < r.len() {
-        if r[i + 1] - r[i] < EDGE_JUMP || r[i] >= scan.max_range {
-            i += 1;
-            continue;
-        }
-        // Beams i+1.. go through the opening until one comes back near.
-        let start = i;
-        let mut j = i + 1;
-        while j < r.len() && r[j] - r[start] >= EDGE_JUMP && r[j] - EDGE_JUMP > 0.0 {
-            j += 1;
-        }
-        if j >= r.len() || r[j] >= scan.max_range {
-            i = j;
-            continue;
-        }
-        let (a, b) = (point(start), point(j));
-        let width = a.distance(b);
-        if (min_w..=max_w).contains(&width) {
-            let mid = (a + b).scale(0.5);
-            let along = b - a;
-            // The normal to the gap that points away from the robot.
-            let mut normal = along.perp();
-            if normal.dot(mid - pose.position()) < 0.0 {
-                normal = normal.scale(-1.0);
-            }
-            let rel = crate::geometry::wrap_angle((mid - pose.position()).angle() - pose.h);
-            out.push(Detection {
-                sensor: "scanner".into(),
-                object: door.name.clone(),
-                x: mid.x,
-                y: mid.y,
-                h: normal.angle(),
-                side: side_of(rel),
-            });
-        }
-        i = j;
+    let along = slant * frame.tilt.cos();
+    let bearing = pose.h + frame.pan;
+    let spot = eye + Vec2::from_angle(bearing).scale(along);
+    if !spot.is_finite() {
+        return;
     }
+    out.push(Detection {
+        sensor: device.name.clone(),
+        object: "spot".into(),
+        x: spot.x,
+        y: spot.y,
+        h: bearing,
+        side: side_of(frame.pan),
+    });
 }

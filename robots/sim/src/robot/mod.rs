@@ -6,6 +6,8 @@
 //! is stepped in 10 ms steps up to `t`, so both run in lockstep.
 
 mod detect;
+mod doors;
+mod known_map;
 mod model;
 mod ops;
 
@@ -18,8 +20,8 @@ use crate::kinematics::{BodyPose as SimBodyPose, MovementMode};
 use crate::sim::{SimError, Simulator};
 use crate::world::World;
 use ilmr_hal::{
-    AsyncOp, BodyPose, DeviceReading, Hal, HalError, ManipTask, OpId, OpStatus, Pose, Scan,
-    Snapshot,
+    AsyncOp, BodyPose, DeviceReading, Hal, HalError, KnownMap, ManipTask, OpId, OpStatus, Pose,
+    Scan, Snapshot,
 };
 use ilmr_model::RobotModel;
 use ops::Ops;
@@ -39,6 +41,8 @@ pub struct SimRobot {
     setpoint: (f64, f64),
     /// Sequence number of the last scan searched for doors.
     seen_scan: u64,
+    /// Operations whose answer a silent manipulator lost: they never complete.
+    lost_ops: Vec<OpId>,
 }
 
 fn hal_err(e: SimError) -> HalError {
@@ -66,6 +70,7 @@ impl SimRobot {
             actuators: Vec::new(),
             setpoint: (0.0, 0.0),
             seen_scan: u64::MAX,
+            lost_ops: Vec::new(),
         })
     }
 
@@ -126,6 +131,13 @@ impl SimRobot {
     /// Ends the operations that are due, deciding their outcome now.
     fn complete_ops(&mut self) {
         for (id, op) in self.ops.due(self.sim.time()) {
+            if self.lost_ops.contains(&id) {
+                continue;
+            }
+            if self.sim.faults.manipulator_silent && matches!(op, AsyncOp::Manipulate(_)) {
+                self.lost_ops.push(id);
+                continue;
+            }
             let status = match op {
                 AsyncOp::Init(_) => OpStatus::Done,
                 AsyncOp::Manipulate(ManipTask::Take) => outcome(self.sim.take_box().map(drop)),
@@ -226,6 +238,8 @@ impl Hal for SimRobot {
         out.speed = seen.speed;
         out.curvature = seen.curvature;
         out.battery = Some(seen.battery.voltage);
+        out.odometry_t = Some(seen.odometry_time);
+        out.nav_t = seen.nav_fix.map(|f| f.time);
         match &seen.scan {
             Some(s) => {
                 let scan = out.scan.get_or_insert_with(Scan::default);
@@ -248,7 +262,7 @@ impl Hal for SimRobot {
             // A door is reported once, when the scan that shows it arrives.
             if scan.seq != self.seen_scan {
                 self.seen_scan = scan.seq;
-                detect::doors(&self.model, scan, stamp, &mut out.detections);
+                doors::doors(&self.model, scan, stamp, &mut out.detections);
             }
             if let (Some(frame), Some(cam)) = (&seen.camera, &self.sim.config().camera) {
                 let points = detect::scan_points(scan, stamp);
@@ -263,6 +277,11 @@ impl Hal for SimRobot {
                 );
             }
         }
+        if let (Some(frame), Some(cam)) = (&seen.camera, &self.sim.config().camera) {
+            let stamp = SimPose::new(p.x, p.y, p.h);
+            let eye = stamp.transform(cam.head);
+            detect::laser_spot(&self.model, frame, eye, stamp, &mut out.detections);
+        }
         Ok(())
     }
 
@@ -270,6 +289,11 @@ impl Hal for SimRobot {
         if !(speed.is_finite() && curvature.is_finite()) {
             return Err(HalError::Refused(
                 "speed and curvature must be finite".into(),
+            ));
+        }
+        if self.sim.faults.drive_unresponsive {
+            return Err(HalError::Timeout(
+                "the drive controller does not answer".into(),
             ));
         }
         self.setpoint = (speed, curvature);
@@ -285,6 +309,9 @@ impl Hal for SimRobot {
                 "{} takes {}..{}, not {value}",
                 d.name, d.min, d.max
             )));
+        }
+        if self.sim.faults.actuator_dead(&d.name) {
+            return Err(HalError::Timeout(format!("{} does not answer", d.name)));
         }
         let name = d.name.clone();
         match self.actuators.iter_mut().find(|(n, _)| *n == name) {
@@ -365,10 +392,27 @@ impl Hal for SimRobot {
         Ok(self.ops.push(op.clone(), self.sim.time()))
     }
 
+    fn cancel(&mut self, op: OpId) -> Result<(), HalError> {
+        let pending = self.ops.get(op).ok_or(HalError::UnknownOp(op))?;
+        if pending.status == OpStatus::Pending {
+            self.ops
+                .finish(op, OpStatus::Failed("cancelled by the VM".into()));
+        }
+        Ok(())
+    }
+
     fn poll(&mut self, op: OpId) -> Result<OpStatus, HalError> {
         self.ops
             .get(op)
             .map(|p| p.status.clone())
             .ok_or(HalError::UnknownOp(op))
+    }
+
+    fn known_map(&mut self) -> Option<KnownMap> {
+        Some(known_map::known_map(self.sim.world()))
+    }
+
+    fn actuator_range(&mut self, id: &str) -> Option<(f64, f64)> {
+        self.model.device(id).map(|d| (d.min, d.max))
     }
 }

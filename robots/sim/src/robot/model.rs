@@ -26,6 +26,12 @@ pub fn config_from_model(model: &RobotModel, kind: RobotKind) -> RobotConfig {
         Steering::FrontWheel { wheelbase, .. } => *wheelbase = model.wheelbase(),
         Steering::Articulated { half_length, .. } => *half_length = model.wheelbase() / 2.0,
     }
+    // The model owns the voltages the task compares against `LowBattery`; the
+    // simulated chemistry keeps its discharge depth (empty over full).
+    let bat = &mut cfg.battery;
+    let depth = bat.v_empty / bat.v_full;
+    bat.v_full = model.battery_full();
+    bat.v_empty = bat.v_full * depth;
     cfg.scanner.rate_hz = model.scanner_rate();
     cfg.scanner.max_range = model.scanner_range();
     if let Some(scanner) = model.device("scanner") {
@@ -38,4 +44,22 @@ pub fn config_from_model(model: &RobotModel, kind: RobotKind) -> RobotConfig {
         nav.dead_reckoning_hz = model.deadreckoning_rate();
     }
     cfg
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn an_empty_battery_is_below_low_battery_on_both_robots() {
+        for (name, kind) in [
+            ("moro", RobotKind::Moro),
+            ("workpartner", RobotKind::Workpartner),
+        ] {
+            let model = RobotModel::builtin(name).unwrap_or_else(|| unreachable!("{name} ships"));
+            let cfg = config_from_model(&model, kind);
+            assert_eq!(cfg.battery.v_full, model.battery_full());
+            assert!(cfg.battery.v_empty < model.low_battery(), "{name}");
+        }
+    }
 }

@@ -5,15 +5,18 @@
 
 mod error;
 mod estimate;
+mod faulting;
 mod manipulate;
 mod sensing;
 mod snapshot;
 mod targets;
 
+pub use crate::faults::Faults;
 pub use error::{Contact, SimError};
 pub use snapshot::{EventKind, SensorSnapshot, SimEvent};
 
 use crate::config::{RobotConfig, SlipConfig};
+use crate::faults::FaultPlan;
 use crate::geometry::{Obb, Pose, Scene, SolidRef, Vec2};
 use crate::kinematics::{
     BodyPose, MovementMode, advance, next_curvature, next_speed, steering_angle, wheel_travel,
@@ -27,20 +30,6 @@ use crate::world::World;
 use estimate::Estimator;
 use std::sync::Arc;
 use targets::Walker;
-
-/// Faults to inject; all off by default. Set them directly between steps.
-#[derive(Debug, Clone, PartialEq, Default)]
-pub struct Faults {
-    /// No new scans arrive; the last one stays in the snapshot.
-    pub scanner_dropout: bool,
-    /// Relative scale error added to every wheel's pulse count.
-    pub odometry_scale_error: f64,
-    /// Fixes keep arriving but repeat the last good pose, so the pilot keeps
-    /// snapping back to it.
-    pub nav_fix_frozen: bool,
-    /// The battery reads empty and the drive has no power.
-    pub dead_battery: bool,
-}
 
 /// Independent noise streams, one per source, so that one sensor's draws never
 /// shift another's.
@@ -85,6 +74,11 @@ pub struct Simulator {
     rng: Streams,
     timers: Timers,
     pub faults: Faults,
+    /// The world's scheduled faults; they set `faults` as they start and end.
+    plan: FaultPlan,
+    /// The odometry reading the robot last received and when (a dropout
+    /// holds it; `None` while the counters report).
+    odometry_held: Option<(crate::sensors::OdometryReading, u64)>,
 
     time_us: u64,
     pose: Pose,
@@ -153,6 +147,8 @@ impl Simulator {
             rng: Streams::new(seed),
             timers,
             faults: Faults::default(),
+            plan: FaultPlan::new(Vec::new(), seed),
+            odometry_held: None,
             time_us: 0,
             pose: start,
             v: 0.0,
@@ -185,6 +181,7 @@ impl Simulator {
         if let Some(c) = sim.contact_at(start) {
             return Err(SimError::StartInCollision(c));
         }
+        sim.install_fault_plan(seed)?;
         // Pulse counters start at zero with the wheel count set.
         sim.odometry.update(
             &wheel_travel(&sim.cfg.steering, 0.0, 0.0),
@@ -362,6 +359,8 @@ impl Simulator {
         }
         let dt_us = (dt * 1e6).round() as u64;
         let dt = dt_us as f64 * 1e-6;
+        // A step ending at t is governed by the faults in force at t.
+        self.apply_fault_plan(self.time_us + dt_us);
 
         for (i, w) in self.walkers.iter_mut().enumerate() {
             w.step(dt);
@@ -374,7 +373,8 @@ impl Simulator {
         let (v1, c1) = self.drive(dt);
         let slip = self.draw_slip();
         let ds_wheels = (v0 + v1) / 2.0 * dt;
-        let ds = ds_wheels * (1.0 - slip.0);
+        let fault_slip = self.plan.draw_slip(self.faults.odometry_slip);
+        let ds = ds_wheels * (1.0 - slip.0) * (1.0 - fault_slip);
         let dh = ds * c1 * slip.1;
         let before = self.pose;
         let candidate = advance(before, ds, dh);
@@ -415,7 +415,9 @@ impl Simulator {
             (Some(g), Some(gc)) => Some(g.update(gc, turned, dt, &mut self.rng.gyro)),
             _ => None,
         };
-        self.estimator.integrate(&self.cfg, &self.odometry, gyro_dh);
+        if !self.hold_odometry() {
+            self.estimator.integrate(&self.cfg, &self.odometry, gyro_dh);
+        }
         self.detect_plates(before);
         self.update_battery(v0, dt);
         if let Some(bp) = &self.cfg.body_pose {
@@ -446,7 +448,9 @@ impl Simulator {
 
     /// The actuators' response to the setpoints over one step.
     fn drive(&self, dt: f64) -> (f64, f64) {
-        let powered = !self.faults.dead_battery && self.battery.charge > 0.0;
+        let powered = !self.faults.dead_battery
+            && !self.faults.drive_unresponsive
+            && self.battery.charge > 0.0;
         let top = match (self.mode, &self.cfg.rolking) {
             (MovementMode::Rolking, Some(r)) => self.cfg.limits.max_speed * r.speed_factor,
             _ => self.cfg.limits.max_speed,
@@ -458,7 +462,7 @@ impl Simulator {
         };
         (
             next_speed(self.v, v_target, &self.cfg.limits, dt),
-            next_curvature(self.c, self.c_set, &self.cfg.limits, dt),
+            next_curvature(self.c, self.curvature_target(), &self.cfg.limits, dt),
         )
     }
 
@@ -513,7 +517,11 @@ impl Simulator {
             curvature: self.c,
             steering_angle: steering_angle(&self.cfg.steering, self.c),
             scan: self.scan.clone(),
-            odometry: self.odometry.reading(&self.cfg.odometry),
+            odometry: match &self.odometry_held {
+                Some((held, _)) => held.clone(),
+                None => self.odometry.reading(&self.cfg.odometry),
+            },
+            odometry_time: self.odometry_time(),
             gyro: self.gyro.as_ref().map(Gyro::reading),
             plate: self.plate,
             nav_fix: self.nav_fix.map(|f| NavFix {

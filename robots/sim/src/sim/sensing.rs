@@ -66,6 +66,8 @@ impl Simulator {
         let now = self.time_us;
         let time = self.time();
         let counts = self.odometry.pulses();
+        let odometry_held = self.odometry_held.is_some();
+        let fix_stale = self.faults.nav_fix_stale;
         if let (
             Estimator::Pilot {
                 dr,
@@ -75,10 +77,10 @@ impl Simulator {
             Some(nc),
         ) = (&mut self.estimator, &self.cfg.nav)
         {
-            if dr_timer.due(now) {
+            if dr_timer.due(now) && !odometry_held {
                 dr.update(counts);
             }
-            if fix_timer.due(now) {
+            if fix_timer.due(now) && !fix_stale {
                 let pose = match (&self.nav_fix, self.faults.nav_fix_frozen) {
                     (Some(old), true) => old.pose,
                     _ => {

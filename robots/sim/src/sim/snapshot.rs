@@ -27,6 +27,8 @@ pub struct SensorSnapshot {
     /// The latest scan; compare `seq` to tell a new one.
     pub scan: Option<Arc<Scan>>,
     pub odometry: OdometryReading,
+    /// When `odometry` was read, s; behind `time` while the counters are silent.
+    pub odometry_time: f64,
     pub gyro: Option<GyroReading>,
     /// The latest floor-plate detection.
     pub plate: Option<PlateEvent>,
@@ -52,6 +54,9 @@ pub enum EventKind {
     BoxTaken(String),
     BoxLeft(String),
     BatteryEmpty,
+    /// An injected fault (by its kind's name) came into force.
+    FaultBegan(String),
+    FaultEnded(String),
 }
 
 /// Something that happened during a step, for traces.

@@ -28,6 +28,8 @@ pub struct WorldFile {
     pub charger: Option<Spanned<ChargerDef>>,
     #[serde(default)]
     pub plate: Vec<Spanned<PlateDef>>,
+    #[serde(default)]
+    pub fault: Vec<Spanned<crate::faults::world::FaultDef>>,
 }
 
 #[derive(Debug, Deserialize)]

@@ -122,6 +122,9 @@ pub struct World {
     pub targets: Vec<Target>,
     pub charger: Option<Charger>,
     pub plates: Vec<Plate>,
+    /// Faults to inject, in file order (`[[fault]]`, see `crate::faults`).
+    #[serde(default)]
+    pub faults: Vec<crate::faults::FaultSpec>,
 }
 
 impl World {

@@ -296,6 +296,18 @@ impl Checker<'_> {
             });
         }
 
+        let mut faults = Vec::new();
+        for (i, d) in f.fault.iter().enumerate() {
+            let label = format!("fault #{}", i + 1);
+            let e = Entry {
+                at: d.span().start,
+                label: &label,
+            };
+            let spec = crate::faults::world::spec(d.get_ref())
+                .map_err(|(key, message)| self.err(e, key, message))?;
+            faults.push(spec);
+        }
+
         Ok(World {
             name: f.name,
             description: f.description,
@@ -308,6 +320,7 @@ impl Checker<'_> {
             targets,
             charger,
             plates,
+            faults,
         })
     }
 

@@ -8,31 +8,49 @@ use ilmr_stdlib::{Command, VarKind};
 use ilmr_vm::bytecode::{Arg, FileId, Instr, Op};
 use ilmr_vm::{Config, Module, ModuleBuilder, SimClock, TraceLevel, Vm};
 
-/// The VM's physical tunables from a ROBO.INI model (what `ilmrc run` does
-/// for a simulated or real robot).
+/// The VM configured as `ilmrc run` configures it for a simulated robot,
+/// tracing everything and the pose every 10 ticks.
 pub fn vm_config(model: &RobotModel, sim: &ilmr_sim::RobotConfig) -> Config {
     Config {
-        default_speed: model.default_speed(),
-        max_curvature: model.max_curvature(),
-        curinc: model.curinc(),
-        // turn(left|right): a comfortable three quarters of full lock.
-        turn_curvature: 0.75 * model.max_curvature(),
-        acceleration: model.max_acceleration(),
-        deceleration: model.max_deceleration(),
-        robot_width: model.robot_width(),
-        robot_length: model.robot_length(),
-        front_offset: sim.body.length - sim.body.rear_overhang,
-        scanner_offset: sim.scanner.mount.x,
-        followwall_d: model.followwall_d(),
-        obstacle_curvature: model.omax_curvature(),
-        security_wait: model.bs_security(),
         trace: TraceLevel::Full,
         pose_every: 10,
-        ..Config::default()
+        ..ilmr_sim::vm_config(model, Some(sim))
     }
 }
 
 pub type SimVm = Vm<SimRobot, SimClock>;
+
+/// The repository's `examples/` directory.
+pub fn examples() -> std::path::PathBuf {
+    std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples")
+}
+
+/// An example task file compiled for `model` as `ilmrc run` compiles it,
+/// with every skill file of `examples/skills` as its library.
+pub fn compile_example(file: &str, model: &RobotModel) -> Module {
+    let text = std::fs::read_to_string(examples().join(file)).expect("example readable");
+    compile(&format!("examples/{file}"), &text, model)
+}
+
+/// ILMR source compiled for `model`, with `examples/skills` as its library.
+pub fn compile(name: &str, text: &str, model: &RobotModel) -> Module {
+    use ilmr_compiler::check::{Source, analyze};
+    let dir = examples().join("skills");
+    let mut sources = vec![Source::new(name, text)];
+    let mut skills: Vec<_> = std::fs::read_dir(&dir)
+        .expect("examples/skills")
+        .map(|e| e.expect("entry").path())
+        .collect();
+    skills.sort();
+    for p in skills {
+        let file = p.file_name().expect("file").to_string_lossy().into_owned();
+        let text = std::fs::read_to_string(&p).expect("skill file readable");
+        sources.push(Source::library(format!("examples/skills/{file}"), text));
+    }
+    let analysis = analyze(&sources, model);
+    ilmr_compiler::lower::lower(&analysis, model, ilmr_compiler::FileId(0))
+        .unwrap_or_else(|d| panic!("{name} does not compile: {d:?}"))
+}
 
 pub fn world(file: &str) -> World {
     let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))

@@ -1,0 +1,320 @@
+//! Door openings found in one laser scan, for `sensor(scanner,door[,side])`.
+//!
+//! A door is a gap in a wall (section 4.1: an opening 0.8-1.2 m wide, the
+//! model's `door` parameters). In a scan it shows as two jambs: a return
+//! where the wall ends, beams that go on through the opening (or find
+//! nothing), and a return where the wall starts again. Seen obliquely, as a
+//! robot driving along a wall sees a door, the far jamb is further away than
+//! the near one, so the opening is closed by the first beam that comes back
+//! nearer than the beam before it, not by one as near as the first jamb.
+//! Both jambs must lie on one wall: a few returns before the first and after
+//! the second run along the line between them, which tells a door from a
+//! gap between furniture.
+
+use crate::geometry::{Pose, Vec2};
+use crate::sensors::Scan;
+use ilmr_hal::{Detection, Side};
+use ilmr_model::RobotModel;
+
+/// A range step at least this large starts or ends an opening, m. The
+/// scanner's noise is a centimetre; a person standing in a doorway is
+/// further behind it than this.
+const EDGE_JUMP: f64 = 0.4;
+/// The far jamb is looked for within this angle of the near one, radians:
+/// a 1.2 m door seen from 1 m away spans about 60 degrees.
+const SEARCH_WINDOW: f64 = std::f64::consts::FRAC_PI_3;
+/// What a jamb's face adds to a measured width beside the beam spacing, m.
+const JAMB_SLACK: f64 = 0.03;
+/// Beams through the opening meet something at least this far behind the
+/// line between the jambs, m.
+const BEHIND: f64 = 0.3;
+/// Wall returns beside a jamb that are checked against the jambs' line, m.
+const WALL_REACH: f64 = 1.0;
+/// At least this many of them, so one stray return is not a wall.
+const WALL_RETURNS: usize = 3;
+/// How far a jamb may lie off its wall's line, m: the wall's thickness (a
+/// jamb may be measured on its face) and the scanner's noise. Returns along
+/// the wall keep within half of it.
+const WALL_OFF: f64 = 0.2;
+
+/// The model's door widths, smallest and largest, m.
+fn widths(model: &RobotModel) -> Option<(String, f64, f64)> {
+    let door = model.object("door")?;
+    let w: Vec<f64> = door
+        .params
+        .iter()
+        .filter_map(|p| p.parse::<f64>().ok())
+        .collect();
+    match w.as_slice() {
+        [a, b, ..] if a.is_finite() && b.is_finite() => {
+            Some((door.name.clone(), a.min(*b), a.max(*b)))
+        }
+        _ => None,
+    }
+}
+
+/// Appends a detection for every door opening in `scan`, taken at `pose`
+/// (the robot's estimate): the middle of the gap, heading through it away
+/// from the robot, on the side of the robot it lies.
+pub fn doors(model: &RobotModel, scan: &Scan, pose: Pose, out: &mut Vec<Detection>) {
+    let Some((name, min_w, max_w)) = widths(model) else {
+        return;
+    };
+    let r = &scan.ranges;
+    let hit = |i: usize| r[i].is_finite() && r[i] < scan.max_range;
+    let local = |i: usize| scan.mount + Vec2::from_angle(scan.bearing(i)).scale(r[i]);
+    let window = (SEARCH_WINDOW / scan.angle_increment.abs().max(1e-6)).ceil() as usize;
+    let mut i = 0;
+    while i + 1 < r.len() {
+        if !(hit(i) && r[i + 1] - r[i] >= EDGE_JUMP) {
+            i += 1;
+            continue;
+        }
+        // Each beam that comes back nearer than the one before it may be the
+        // far jamb; beams through the door may also pass through a door
+        // behind it, which makes such a step too.
+        let a = local(i);
+        let door = (i + 2..r.len().min(i + 2 + window))
+            .filter(|&j| hit(j) && r[j - 1] - r[j] >= EDGE_JUMP)
+            .find_map(|j| {
+                let b = local(j);
+                let width = a.distance(b);
+                // A jamb is measured to a beam's spacing, and a beam may graze its face.
+                let slack = JAMB_SLACK + r[i].max(r[j]) * scan.angle_increment.abs();
+                let fits = (min_w - slack..=max_w + slack).contains(&width);
+                (fits && through(scan, i, j, a, b))
+                    .then(|| wall_line(scan, a, b, i, j))
+                    .flatten()
+                    .map(|along| (j, b, along))
+            });
+        let Some((j, b, along)) = door else {
+            i += 1;
+            continue;
+        };
+        let (wa, wb) = (pose.transform(a), pose.transform(b));
+        let mid = (wa + wb).scale(0.5);
+        let mut normal = Vec2::from_angle(pose.h + along.angle()).perp();
+        if normal.dot(mid - pose.position()) < 0.0 {
+            normal = normal.scale(-1.0);
+        }
+        let rel = crate::geometry::wrap_angle((mid - pose.position()).angle() - pose.h);
+        out.push(Detection {
+            sensor: "scanner".into(),
+            object: name.clone(),
+            x: mid.x,
+            y: mid.y,
+            h: normal.angle(),
+            side: if rel >= 0.0 { Side::Left } else { Side::Right },
+        });
+        i = j;
+    }
+}
+
+/// Whether every beam between the jambs `i` and `j` passes the line `a`-`b`
+/// by at least `BEHIND` (or returns nothing).
+fn through(scan: &Scan, i: usize, j: usize, a: Vec2, b: Vec2) -> bool {
+    let o = scan.mount;
+    (i + 1..j).all(|k| {
+        let dir = Vec2::from_angle(scan.bearing(k));
+        // Where the beam crosses the line through the jambs.
+        let ab = b - a;
+        let denom = dir.cross(ab);
+        if denom.abs() < 1e-12 {
+            return false;
+        }
+        let t = (a - o).cross(ab) / denom;
+        scan.ranges[k] >= t + BEHIND
+    })
+}
+
+/// The returns in `order` within `WALL_REACH` of `jamb`, up to the first
+/// beam without one.
+fn beside(scan: &Scan, jamb: Vec2, order: impl Iterator<Item = usize>) -> Vec<Vec2> {
+    order
+        .map_while(|k| {
+            let r = scan.ranges[k];
+            (r.is_finite() && r < scan.max_range)
+                .then(|| scan.mount + Vec2::from_angle(scan.bearing(k)).scale(r))
+        })
+        .take_while(|p| p.distance(jamb) <= WALL_REACH)
+        .collect()
+}
+
+fn centroid(pts: &[Vec2]) -> Vec2 {
+    let n = pts.len().max(1) as f64;
+    pts.iter()
+        .fold(Vec2::new(0.0, 0.0), |acc, p| acc + *p)
+        .scale(1.0 / n)
+}
+
+/// The direction of the wall the jambs `a` (beam `i`) and `b` (beam `j`)
+/// stand in, in the scanner's frame: at least `WALL_RETURNS` returns beside
+/// each jamb, outside the gap, all within `WALL_OFF` of the line through the
+/// two sides' centroids, and the jambs on that line too. `None` when the
+/// gap is not in a wall.
+fn wall_line(scan: &Scan, a: Vec2, b: Vec2, i: usize, j: usize) -> Option<Vec2> {
+    let near = beside(scan, a, (0..i).rev());
+    let far = beside(scan, b, j + 1..scan.ranges.len());
+    if near.len() < WALL_RETURNS || far.len() < WALL_RETURNS {
+        return None;
+    }
+    let (c0, c1) = (centroid(&near), centroid(&far));
+    let along = c1 - c0;
+    let len = along.length();
+    if len < 1e-9 {
+        return None;
+    }
+    let u = along.scale(1.0 / len);
+    let off = |p: Vec2| (p - c0).cross(u).abs();
+    let (sa, sb) = ((a - c0).dot(u), (b - c0).dot(u));
+    let (lo, hi) = (sa.min(sb), sa.max(sb));
+    let beside_gap = |p: &Vec2| {
+        let s = (*p - c0).dot(u);
+        s <= lo + 0.05 || s >= hi - 0.05
+    };
+    let straight = near
+        .iter()
+        .chain(&far)
+        .all(|p| off(*p) <= WALL_OFF / 2.0 && beside_gap(p));
+    (straight && off(a) <= WALL_OFF && off(b) <= WALL_OFF).then_some(u)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::config::RobotConfig;
+    use crate::geometry::{Obb, Scene, Shape, Solid, SolidRef};
+    use crate::sensors::cast_scan;
+
+    fn wall(x0: f64, y0: f64, x1: f64, y1: f64, id: usize) -> Solid {
+        Solid::new(
+            Shape::Box(Obb::from_segment(
+                Vec2::new(x0, y0),
+                Vec2::new(x1, y1),
+                0.15,
+            )),
+            SolidRef::Wall(id),
+        )
+    }
+
+    fn scan_at(scene: &Scene, pose: Pose) -> Scan {
+        let cfg = RobotConfig::moro().scanner;
+        let fov = cfg.fov_deg.to_radians();
+        Scan {
+            seq: 0,
+            time: 0.0,
+            pose,
+            angle_min: -fov / 2.0,
+            angle_increment: fov / (cfg.readings - 1) as f64,
+            max_range: cfg.max_range,
+            mount: cfg.mount,
+            ranges: cast_scan(scene, &cfg, pose),
+        }
+    }
+
+    fn moro() -> RobotModel {
+        RobotModel::builtin("moro").unwrap_or_else(|| unreachable!())
+    }
+
+    /// A corridor wall along y = 2.75 with a door of `width` centred at
+    /// x = 5, a far wall 2 m behind it, and the robot at (9, 0) facing -x
+    /// (Figure 58's lab, the door ahead on the right).
+    fn lab(width: f64) -> Scene {
+        let half = width / 2.0;
+        Scene::new(vec![
+            wall(-5.0, 2.75, 5.0 - half, 2.75, 0),
+            wall(5.0 + half, 2.75, 15.0, 2.75, 1),
+            wall(-5.0, 4.75, 15.0, 4.75, 2),
+        ])
+    }
+
+    fn found(scene: &Scene, pose: Pose) -> Vec<Detection> {
+        let mut out = Vec::new();
+        doors(&moro(), &scan_at(scene, pose), pose, &mut out);
+        out
+    }
+
+    #[test]
+    fn a_door_seen_obliquely_ahead_right_is_found_at_its_middle() {
+        let pose = Pose::new(9.0, 0.0, std::f64::consts::PI);
+        let d = found(&lab(1.2), pose);
+        assert_eq!(d.len(), 1, "{d:?}");
+        // The jambs' faces are 7.5 cm from the wall's line.
+        assert!((d[0].x - 5.0).abs() < 0.1, "{:?}", d[0]);
+        assert!((d[0].y - 2.75).abs() < 0.1, "{:?}", d[0]);
+        assert_eq!(d[0].side, Side::Right);
+        // Heading through it, away from the robot: north.
+        assert!((d[0].h - std::f64::consts::FRAC_PI_2).abs() < 0.1);
+    }
+
+    #[test]
+    fn the_same_door_from_the_corridor_and_from_abeam() {
+        // From the far side, facing east: the door is on the right.
+        let d = found(&lab(1.0), Pose::new(1.0, 3.75, 0.0));
+        assert_eq!(d.len(), 1, "{d:?}");
+        assert!((d[0].x - 5.0).abs() < 0.1);
+        assert_eq!(d[0].side, Side::Right);
+        assert!(
+            (d[0].h + std::f64::consts::FRAC_PI_2).abs() < 0.1,
+            "{:?}",
+            d[0]
+        );
+        // Facing east below it: on the left, ahead and nearly abeam of the
+        // scanner (0.85 m ahead of MoRo's reference point).
+        for x in [2.0, 3.0] {
+            let d = found(&lab(1.0), Pose::new(x, 0.5, 0.0));
+            assert_eq!(d.len(), 1, "{x}: {d:?}");
+            assert_eq!(d[0].side, Side::Left);
+            assert!((d[0].x - 5.0).abs() < 0.1);
+        }
+    }
+
+    #[test]
+    fn the_office_lab_door_from_where_figure_58_looks_for_it() {
+        // After the two left turns round the bench, facing west.
+        let office = crate::world::shipped("office")
+            .and_then(Result::ok)
+            .unwrap_or_else(|| unreachable!());
+        let pose = Pose::new(9.13, 8.81, std::f64::consts::PI);
+        let d = found(&office.scene(), pose);
+        assert_eq!(d.len(), 1, "{d:?}");
+        assert!((d[0].x - 5.0).abs() < 0.1 && (d[0].y - 11.5).abs() < 0.1);
+        assert_eq!(d[0].side, Side::Right);
+    }
+
+    #[test]
+    fn openings_too_narrow_or_too_wide_are_not_doors() {
+        let pose = Pose::new(9.0, 0.0, std::f64::consts::PI);
+        assert!(found(&lab(0.5), pose).is_empty());
+        assert!(found(&lab(2.0), pose).is_empty());
+    }
+
+    #[test]
+    fn a_gap_between_two_boxes_is_not_a_door() {
+        // Two cabinets 1 m apart, their faces not in line with each other.
+        let scene = Scene::new(vec![
+            Solid::new(
+                Shape::Box(Obb::new(Vec2::new(4.0, 2.5), 0.0, 0.5, 0.5)),
+                SolidRef::Obstacle(0),
+            ),
+            Solid::new(
+                Shape::Box(Obb::new(Vec2::new(5.5, 3.5), 0.0, 0.5, 0.5)),
+                SolidRef::Obstacle(1),
+            ),
+            wall(-5.0, 6.0, 15.0, 6.0, 0),
+        ]);
+        assert!(found(&scene, Pose::new(9.0, 0.0, std::f64::consts::PI)).is_empty());
+    }
+
+    #[test]
+    fn nothing_without_a_door_in_the_model() {
+        let mut model = moro();
+        model
+            .objects
+            .retain(|o| !o.name.eq_ignore_ascii_case("door"));
+        let pose = Pose::new(9.0, 0.0, std::f64::consts::PI);
+        let mut out = Vec::new();
+        doors(&model, &scan_at(&lab(1.0), pose), pose, &mut out);
+        assert!(out.is_empty());
+    }
+}
