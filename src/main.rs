@@ -4,9 +4,11 @@ mod build;
 mod check;
 mod fmt;
 mod inputs;
+mod live;
 mod replay;
 mod run;
 mod serve;
+mod shell;
 
 use std::process::ExitCode;
 
@@ -42,6 +44,8 @@ enum Cmd {
     Run(run::RunArgs),
     /// Run a simulated robot in real time and take ILMR lines from clients over TCP.
     Serve(serve::ServeArgs),
+    /// Run a simulated robot in real time and type ILMR lines into it.
+    Shell(shell::ShellArgs),
     /// Redraw a finished run from its trace, without running it.
     Replay(replay::ReplayArgs),
     /// Print the syntax tree of a file, one node per line.
@@ -72,6 +76,7 @@ fn main() -> ExitCode {
         Cmd::Run(args) => run::run(args),
         Cmd::Replay(args) => replay::run(args),
         Cmd::Serve(args) => serve::run(args),
+        Cmd::Shell(args) => shell::run(args),
         Cmd::Parse { file } => match inputs::read_source(&file) {
             Ok(source) => {
                 let parsed = ilmr_compiler::parser::parse(&source.text, ilmr_compiler::FileId(0));

@@ -374,3 +374,27 @@ fn a_task_starts_with_the_server_and_a_bad_one_is_refused() {
     assert!(stdout.contains("E0301"), "{stdout}");
     assert!(!stdout.contains("listening"), "{stdout}");
 }
+
+#[test]
+fn an_accepted_line_brings_its_warnings() {
+    let server = Server::start(&[]);
+    let mut c = server.connect();
+    let warned = c.ask(r#"{"ilmr": "turn(d=90,c=2)", "id": 4}"#);
+    assert_eq!(warned["ok"], json!(true), "{warned}");
+    let warnings = warned["warnings"].as_array().expect("warnings");
+    assert_eq!(warnings.len(), 1, "{warned}");
+    assert_eq!(warnings[0]["code"], json!("W0405"));
+    assert_eq!(warnings[0]["severity"], json!("warning"));
+    assert_eq!(
+        (warnings[0]["file"].as_str(), warnings[0]["column"].as_u64()),
+        (Some("<line>"), Some(13))
+    );
+    // A clean line's answer has no `warnings`.
+    let clean = c.ask(r#"{"ilmr": "speed(0.2)"}"#);
+    assert_eq!(clean["ok"], json!(true));
+    assert!(clean.get("warnings").is_none(), "{clean}");
+}
+
+// Garbage request lines over TCP, through this file's `Server` and `Client`.
+#[path = "fuzz/serve_garbage.rs"]
+mod serve_garbage;

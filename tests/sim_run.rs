@@ -1,7 +1,9 @@
 //! `ilmrc run` on the simulated robots and `ilmrc replay`, as a user runs them: the
-//! dissertation's Figures 52 and 58 on MoRo in the office and test 1's turn on
-//! Workpartner in the yard (trace snapshots, byte-identical per seed, plot, MCAP read
-//! back), and every failure a user can cause with its message and exit code.
+//! dissertation's Figure 52 on MoRo in the office, Figure 58 in the lab world of
+//! `robots/sim/tests/worlds/lab.toml` (to the end: the door found, out and into the
+//! lobby), and test 1's turn on Workpartner in the yard (trace snapshots,
+//! byte-identical per seed, plot, MCAP read back), and every failure a user can cause
+//! with its message and exit code.
 
 mod support;
 
@@ -68,12 +70,12 @@ const CASES: [(&str, &[&str]); 3] = [
     (
         "fig58_way_out",
         &[
-            "--start",
-            "4,6,0",
+            "--world",
+            "robots/sim/tests/worlds/lab.toml",
             "--max-time",
-            "40",
+            "120",
             "--pose-every",
-            "200",
+            "500",
             "examples/way_out.ilmr",
         ],
     ),

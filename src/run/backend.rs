@@ -1,7 +1,9 @@
 //! The robots `ilmrc run` can drive. Every backend is a [`Hal`]; the run loop sees only
 //! [`Robot`]: the HAL, plus what a run records of a robot that has a world around it.
 
-use ilmr_hal::{AsyncOp, BodyPose, Hal, HalError, OpId, OpStatus, Pose, ScriptedRobot, Snapshot};
+use ilmr_hal::{
+    AsyncOp, BodyPose, Hal, HalError, KnownMap, OpId, OpStatus, Pose, ScriptedRobot, Snapshot,
+};
 use ilmr_sim::SimRobot;
 
 /// What the run loop needs beyond the HAL: whether the robot has come to rest, since a
@@ -147,6 +149,15 @@ macro_rules! forward_hal {
             }
             fn poll(&mut self, op: OpId) -> Result<OpStatus, HalError> {
                 self.$($field).+.poll(op)
+            }
+            fn cancel(&mut self, op: OpId) -> Result<(), HalError> {
+                self.$($field).+.cancel(op)
+            }
+            fn known_map(&mut self) -> Option<KnownMap> {
+                self.$($field).+.known_map()
+            }
+            fn actuator_range(&mut self, id: &str) -> Option<(f64, f64)> {
+                self.$($field).+.actuator_range(id)
             }
         }
     };

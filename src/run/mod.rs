@@ -56,6 +56,11 @@ pub struct RunArgs {
     /// Seed of the simulated robot's noise.
     #[arg(long, default_value_t = 0)]
     pub seed: u64,
+    /// Injects a fault into the simulated robot, besides the world's `[[fault]]`
+    /// entries: `KIND[@START[+DURATION]][:PARAM]`, such as `scanner_dropout@5+3` or
+    /// `obstacle_appears@6:1.2`. Repeatable. Kinds and parameters: robots/worlds/README.md.
+    #[arg(long = "fault", value_name = "KIND[@T[+D]][:PARAM]", value_parser = ilmr_sim::faults::flag::parse)]
+    pub faults: Vec<ilmr_sim::FaultSpec>,
     /// Stop after this many seconds of logical time.
     #[arg(long, default_value_t = 600.0)]
     pub max_time: f64,
@@ -100,12 +105,20 @@ fn execute(args: &RunArgs) -> Result<ExitCode, String> {
     if !(args.scan_every.is_finite() && args.scan_every > 0.0) {
         return Err(format!("--scan-every {} is not a period", args.scan_every));
     }
-    let setup = setup::choose(&Choice {
+    let mut setup = setup::choose(&Choice {
         robot: &args.robot,
         model: args.model.as_deref(),
         world: args.world.as_deref(),
         start: args.start.as_deref(),
     })?;
+    if !args.faults.is_empty() {
+        let Some(loaded) = setup.world.as_mut() else {
+            return Err(
+                "--fault needs a simulated robot (--robot moro|workpartner|ROBO.INI)".into(),
+            );
+        };
+        loaded.world.faults.extend(args.faults.iter().cloned());
+    }
     let scenario = match &args.scenario {
         Some(p) => Scenario::load(p)?,
         None => Scenario::default(),

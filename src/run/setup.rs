@@ -4,14 +4,9 @@
 use ilmr_hal::Limits;
 use ilmr_model::RobotModel;
 use ilmr_sim::{RobotKind, SimRobot, World};
-use ilmr_vm::Config;
 
 use super::backend::{AnyRobot, NoRobot, Simulated};
 use super::scenario::Scenario;
-
-/// `turn(left|right)` on a simulated body: three quarters of full lock, the setting
-/// the dissertation's tests were reproduced with (docs/experiments.md).
-const TURN_SHARE: f64 = 0.75;
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Backend {
@@ -251,31 +246,6 @@ fn limits(model: &RobotModel) -> Limits {
     }
 }
 
-/// The VM's tunables for a run: the physical ones from the ROBO.INI model (each
-/// `Config` field names the parameter it stands for), and the body's geometry (front
-/// and scanner offsets) from the simulator when the robot is simulated. Without a
-/// body the VM's defaults stand for what the model does not say, as they did for every
-/// scripted trace recorded so far.
-pub fn vm_config(model: &RobotModel, body: Option<&ilmr_sim::RobotConfig>) -> Config {
-    let base = Config::default();
-    let mut config = Config {
-        default_speed: model.default_speed(),
-        max_curvature: model.max_curvature(),
-        curinc: model.curinc(),
-        turn_curvature: base.turn_curvature.min(model.max_curvature()),
-        acceleration: model.max_acceleration(),
-        deceleration: model.max_deceleration(),
-        robot_width: model.robot_width(),
-        robot_length: model.robot_length(),
-        followwall_d: model.followwall_d(),
-        obstacle_curvature: model.omax_curvature(),
-        ..base
-    };
-    if let Some(body) = body {
-        config.turn_curvature = TURN_SHARE * model.max_curvature();
-        config.front_offset = body.body.length - body.body.rear_overhang;
-        config.scanner_offset = body.scanner.mount.x;
-        config.security_wait = model.bs_security();
-    }
-    config
-}
+/// The VM's tunables for a run live with the simulator, which both `ilmrc run` and
+/// the experiment tests use.
+pub use ilmr_sim::vm_config;

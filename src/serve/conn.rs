@@ -9,8 +9,9 @@ use std::time::Duration;
 
 use serde_json::{Map, Value};
 
-use super::engine::Job;
 use super::protocol::{self, Parsed, Request};
+use super::reply;
+use crate::live::engine::Job;
 
 /// The longest request line, bytes; a longer one is refused and the connection closed
 /// (a client cannot make the server hold unbounded input).
@@ -105,24 +106,38 @@ fn ask(
     jobs: &Sender<Job>,
     out: &SyncSender<String>,
 ) -> Option<Map<String, Value>> {
-    let (reply, answer) = mpsc::channel();
-    let job = match &parsed.request {
-        Request::Invalid(why) => return Some(protocol::error(why)),
-        Request::Ilmr(text) => Job::Line {
-            text: text.clone(),
-            reply,
-        },
-        Request::Status => Job::Status { reply },
-        Request::Subscribe => return subscribe(conn, parsed.id.clone(), jobs, out),
-    };
-    if jobs.send(job).is_err() {
-        return Some(protocol::error("the robot has stopped"));
+    match &parsed.request {
+        Request::Invalid(why) => Some(protocol::error(why)),
+        Request::Ilmr(text) => {
+            let (reply, answer) = mpsc::channel();
+            let job = Job::Line {
+                text: text.clone(),
+                reply,
+            };
+            Some(await_answer(jobs, job, &answer).map_or_else(|e| e, |a| reply::line(&a, text)))
+        }
+        Request::Status => {
+            let (reply, answer) = mpsc::channel();
+            let job = Job::Status { reply };
+            Some(await_answer(jobs, job, &answer).map_or_else(|e| e, |s| reply::status(&s)))
+        }
+        Request::Subscribe => subscribe(conn, parsed.id.clone(), jobs, out),
     }
-    Some(
-        answer
-            .recv_timeout(ANSWER_WAIT)
-            .unwrap_or_else(|_| protocol::error("the robot did not answer")),
-    )
+}
+
+/// Sends `job` and waits for what it answers on `answer`; an error object when the VM
+/// thread is gone or silent.
+fn await_answer<T>(
+    jobs: &Sender<Job>,
+    job: Job,
+    answer: &mpsc::Receiver<T>,
+) -> Result<T, Map<String, Value>> {
+    if jobs.send(job).is_err() {
+        return Err(protocol::error("the robot has stopped"));
+    }
+    answer
+        .recv_timeout(ANSWER_WAIT)
+        .map_err(|_| protocol::error("the robot did not answer"))
 }
 
 /// Subscribes this connection; the engine queues the answer itself (so it comes
@@ -137,7 +152,7 @@ fn subscribe(
     let job = Job::Subscribe {
         conn,
         out: out.clone(),
-        id,
+        first: Box::new(move |t| protocol::answer(reply::subscribed(t), id.as_ref())),
         done,
     };
     if jobs.send(job).is_err() {

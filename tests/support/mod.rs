@@ -2,6 +2,8 @@
 
 #![allow(dead_code)]
 
+pub mod taskgen;
+
 use std::path::{Path, PathBuf};
 
 use ilmr_compiler::check::{Analysis, Source, analyze};

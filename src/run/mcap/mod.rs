@@ -8,6 +8,7 @@
 //! | `/motion` | `ilmr.Motion` | speed and curvature at the same samples, for Foxglove's plot panel |
 //! | `/scan` | `foxglove.LaserScan` | every scan, placed at the scanner's true pose |
 //! | `/commands` | `foxglove.Log` | issue, start, end, overrun and error events with their source line |
+//! | `/paths` | `foxglove.SceneUpdate` | each reference path a movement planned (the VM's `path` events) as a line strip, one entity per path, kept |
 //!
 //! Everything is in frame `world`; log time is the run's logical time, so the file is
 //! the same for the same task, robot, world and seed.
@@ -31,7 +32,7 @@ const FRAME: &str = "world";
 const MOTION_SCHEMA: &str = r#"{"title":"ilmr.Motion","description":"The robot's speed and curvature","type":"object","properties":{"timestamp":{"type":"object","title":"time","properties":{"sec":{"type":"integer","minimum":0},"nsec":{"type":"integer","minimum":0,"maximum":999999999}}},"speed":{"type":"number","description":"m/s"},"curvature":{"type":"number","description":"1/m"}}}"#;
 
 /// Topic, schema name and schema text of each channel, in channel order.
-const CHANNELS: [(&str, &str, &str); 5] = [
+const CHANNELS: [(&str, &str, &str); 6] = [
     (
         "/world",
         "foxglove.SceneUpdate",
@@ -53,6 +54,11 @@ const CHANNELS: [(&str, &str, &str); 5] = [
         "foxglove.Log",
         include_str!("schemas/foxglove.Log.json"),
     ),
+    (
+        "/paths",
+        "foxglove.SceneUpdate",
+        include_str!("schemas/foxglove.SceneUpdate.json"),
+    ),
 ];
 
 #[derive(Clone, Copy)]
@@ -62,6 +68,7 @@ enum Topic {
     Motion,
     Scan,
     Commands,
+    Paths,
 }
 
 pub struct McapOut {
@@ -70,6 +77,8 @@ pub struct McapOut {
     channels: Vec<u16>,
     sequence: u32,
     task: String,
+    /// Reference paths written so far: the next one's entity id.
+    paths: u32,
 }
 
 fn stamp(t: f64) -> Value {
@@ -115,6 +124,7 @@ impl McapOut {
             channels,
             sequence: 0,
             task: task.display().to_string(),
+            paths: 0,
         };
         if let Some(w) = world {
             out.write(Topic::World, 0.0, &scene(&w.world))?;
@@ -160,6 +170,15 @@ impl McapOut {
                     self.write(Topic::Motion, e.t, &m)?;
                 }
                 EventKind::Var { .. } => {}
+                EventKind::Path { points } => {
+                    self.paths += 1;
+                    let label = e
+                        .stmt
+                        .and_then(|s| module.stmt(s))
+                        .map(|s| format!("line {}: {}", s.line, s.text));
+                    let m = path_scene(e.t, self.paths, label.as_deref(), points);
+                    self.write(Topic::Paths, e.t, &m)?;
+                }
                 _ => {
                     let log = self.log(module, e);
                     self.write(Topic::Commands, e.t, &log)?;
@@ -290,9 +309,108 @@ fn scene(w: &World) -> Value {
     })
 }
 
+/// A reference path as a scene entity of its own (`path-N`, never replaced, so the
+/// scene keeps every path the run planned), a line strip on the floor.
+fn path_scene(t: f64, n: u32, label: Option<&str>, points: &[(f64, f64)]) -> Value {
+    let points: Vec<Value> = points
+        .iter()
+        .map(|(x, y)| json!({"x": x, "y": y, "z": 0.0}))
+        .collect();
+    let metadata: Vec<Value> = label
+        .map(|l| json!({"key": "command", "value": l}))
+        .into_iter()
+        .collect();
+    json!({
+        "deletions": [],
+        "entities": [{
+            "timestamp": stamp(t),
+            "frame_id": FRAME,
+            "id": format!("path-{n}"),
+            "lifetime": {"sec": 0, "nsec": 0},
+            "frame_locked": false,
+            "metadata": metadata,
+            "arrows": [], "cubes": [], "spheres": [], "cylinders": [],
+            "lines": [{
+                "type": 0,
+                "pose": pose_z(0.0, 0.0, 0.0, 0.0),
+                "thickness": 0.03,
+                "scale_invariant": false,
+                "points": points,
+                "color": {"r": 0.15, "g": 0.15, "b": 0.15, "a": 1.0},
+                "colors": [],
+                "indices": [],
+            }],
+            "triangles": [], "texts": [], "models": [],
+        }],
+    })
+}
+
 fn pose_z(x: f64, y: f64, z: f64, h: f64) -> Value {
     json!({
         "position": {"x": x, "y": y, "z": z},
         "orientation": {"x": 0.0, "y": 0.0, "z": (h / 2.0).sin(), "w": (h / 2.0).cos()}
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn empty_module() -> Module {
+        let model = ilmr_model::RobotModel::builtin("moro").expect("shipped model");
+        let sources = [ilmr_compiler::check::Source::new("t.ilmr", "")];
+        let analysis = ilmr_compiler::check::analyze(&sources, &model);
+        ilmr_compiler::lower::lower(&analysis, &model, ilmr_compiler::FileId(0))
+            .expect("an empty task lowers")
+    }
+
+    #[test]
+    fn a_reference_path_is_a_line_strip_on_its_own_topic() {
+        let path =
+            std::env::temp_dir().join(format!("ilmr-mcap-paths-{}.mcap", std::process::id()));
+        let module = empty_module();
+        let mut out = McapOut::create(&path, None, Path::new("t.ilmr")).expect("create");
+        let event = |t: f64, points: Vec<(f64, f64)>| Event {
+            tick: (t * 100.0) as u64,
+            t,
+            stmt: None,
+            kind: EventKind::Path { points },
+        };
+        let events = [
+            event(0.5, vec![(0.0, 0.0), (1.5, 0.0)]),
+            event(2.0, vec![(1.5, 0.0), (2.0, 0.5), (2.5, 1.0)]),
+        ];
+        out.tick(&module, &events, None).expect("write");
+        out.finish().expect("finish");
+        let bytes = std::fs::read(&path).expect("read back");
+        let _ = std::fs::remove_file(&path);
+
+        let mut paths = Vec::new();
+        for m in mcap::MessageStream::new(&bytes).expect("an MCAP file") {
+            let m = m.expect("a message");
+            assert_ne!(m.channel.topic, "/commands", "a path is not a log line");
+            if m.channel.topic == "/paths" {
+                let schema = m.channel.schema.as_ref().expect("a schema");
+                assert_eq!(schema.name, "foxglove.SceneUpdate");
+                let v: Value = serde_json::from_slice(&m.data).expect("JSON");
+                paths.push((m.log_time, v));
+            }
+        }
+        assert_eq!(paths.len(), 2);
+        let (time, second) = &paths[1];
+        assert_eq!(*time, 2_000_000_000);
+        let entity = &second["entities"][0];
+        assert_eq!(entity["id"], json!("path-2"));
+        assert_eq!(entity["frame_id"], json!("world"));
+        let line = &entity["lines"][0];
+        assert_eq!(line["type"], json!(0));
+        assert_eq!(
+            line["points"],
+            json!([
+                {"x": 1.5, "y": 0.0, "z": 0.0},
+                {"x": 2.0, "y": 0.5, "z": 0.0},
+                {"x": 2.5, "y": 1.0, "z": 0.0}
+            ])
+        );
+    }
 }

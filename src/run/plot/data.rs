@@ -1,5 +1,5 @@
 //! What a plot is drawn from, read back from trace lines: the `run` header, `pose`
-//! samples, `scan` hits, `mark`s and reference paths (`ref`). Other events are skipped,
+//! samples, `scan` hits, `mark`s and reference paths (the VM's `path` events). Other events are skipped,
 //! so any trace of `ilmrc run` reads; one of a robot without a world draws without one.
 
 use ilmr_sim::World;
@@ -120,7 +120,7 @@ impl RunRecord {
                 y: num(&v, "y")?,
                 how: v["how"].as_str().map(str::to_string),
             }),
-            "ref" => self.refs.push(RefPath {
+            "path" => self.refs.push(RefPath {
                 line: num(&v, "line")? as u32,
                 points: points(&v, "points")?,
             }),

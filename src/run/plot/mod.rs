@@ -59,3 +59,35 @@ fn title(record: &RunRecord) -> String {
         None => "ILMR run".to_string(),
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const POSES: &str = r#"{"t":0,"event":"pose","x":0,"y":0,"h":0,"v":0,"c":0,"source":"true"}
+{"t":1,"event":"pose","x":1,"y":0.1,"h":0,"v":0.4,"c":0,"source":"true"}
+"#;
+
+    #[test]
+    fn reference_paths_are_drawn_from_path_events() {
+        let path = r#"{"t":0,"event":"path","line":3,"text":"goahead(3)","points":[[0,0],[3,0]]}"#;
+        let without = render_svg(&RunRecord::from_jsonl(POSES).expect("a trace")).expect("drawn");
+        let record = RunRecord::from_jsonl(&format!("{POSES}{path}\n")).expect("a trace");
+        assert_eq!(record.refs.len(), 1);
+        assert_eq!(record.refs[0].line, 3);
+        assert_eq!(record.refs[0].points, vec![(0.0, 0.0), (3.0, 0.0)]);
+        let with = render_svg(&record).expect("drawn");
+        assert!(with.contains("reference path"), "the legend names it");
+        assert!(!without.contains("reference path"));
+        // Dashes: more line pieces than the run without the path.
+        let pieces = |svg: &str| svg.matches("<polyline").count() + svg.matches("<line").count();
+        assert!(pieces(&with) > pieces(&without) + 3);
+    }
+
+    #[test]
+    fn a_path_event_without_points_is_an_error_naming_the_key() {
+        let bad = r#"{"t":0,"event":"path","line":3,"points":[[0]]}"#;
+        let err = RunRecord::from_jsonl(bad).expect_err("not a path");
+        assert!(err.contains("points"), "{err}");
+    }
+}

@@ -1,5 +1,6 @@
-//! The simulated robot `ilmrc serve` drives: `--robot`, `--world` and `--seed` to a
-//! model, a `SimRobot` in its world, and the VM's `Config`, by `run`'s own setup.
+//! The simulated robot `ilmrc serve` and `ilmrc shell` drive: `--robot`, `--world` and
+//! `--seed` to a model, a `SimRobot` in its world, and the VM's `Config`, by `run`'s
+//! own setup.
 
 use ilmr_model::RobotModel;
 use ilmr_sim::SimRobot;
@@ -26,8 +27,8 @@ pub fn open(spec: &str, world: Option<&str>, seed: u64) -> Result<Opened, String
         .any(|n| n.eq_ignore_ascii_case(spec))
     {
         return Err(format!(
-            "--robot {spec}: `ilmrc serve` drives a simulated robot; use moro, workpartner \
-             or a path to a ROBO.INI file"
+            "--robot {spec}: a live robot is a simulated one; use moro, workpartner or a \
+             path to a ROBO.INI file"
         ));
     }
     let model = crate::inputs::load_robot(spec)?.model;

@@ -1,0 +1,302 @@
+//! The thread that owns the VM: it ticks every 10 ms of wall time and, between ticks,
+//! answers its front end's jobs at once. Nothing a front end does can block it: answers
+//! go back on a channel per request, events on bounded channels with `try_send`.
+//!
+//! Answers are typed ([`LineAnswer`], [`Status`]); `serve` writes them as JSON and the
+//! shell as text.
+
+use std::sync::mpsc::{Receiver, RecvTimeoutError, Sender, SyncSender, TrySendError};
+use std::time::{Duration, Instant};
+
+use ilmr_compiler::Diagnostic;
+use ilmr_compiler::lower::{LineOptions, lower_line_warned};
+use ilmr_hal::Pose;
+use ilmr_model::RobotModel;
+use ilmr_sim::SimRobot;
+use ilmr_stdlib::VarKind;
+use ilmr_vm::runtime::trace::fmt_num;
+use ilmr_vm::{Activity, LineError, ModuleBuilder, SimClock, VarRecord, Vm};
+
+/// What a front end asks of the VM thread.
+pub enum Job {
+    /// Join ILMR text to the running task.
+    Line {
+        text: String,
+        reply: Sender<LineAnswer>,
+    },
+    /// Check ILMR text against the running task as a line would be, and join nothing
+    /// (`check` ... `checkend`).
+    Check {
+        text: String,
+        reply: Sender<LineAnswer>,
+    },
+    Status {
+        reply: Sender<Status>,
+    },
+    /// Send every event from now on to `out`, as trace lines. `first` makes the line
+    /// queued before the first event (the subscription's answer) from the VM's time;
+    /// then the engine acknowledges on `done`.
+    Subscribe {
+        conn: u64,
+        out: SyncSender<String>,
+        first: Box<dyn FnOnce(f64) -> String + Send>,
+        done: Sender<()>,
+    },
+    /// The front end has gone: stop sending to it.
+    Unsubscribe {
+        conn: u64,
+    },
+}
+
+/// What became of ILMR text, at simulated time `t`.
+#[derive(Debug)]
+pub struct LineAnswer {
+    pub t: f64,
+    pub outcome: Outcome,
+}
+
+#[derive(Debug)]
+pub enum Outcome {
+    /// Joined (or, for a check, would join), with the warnings the checker gave.
+    Accepted { warnings: Vec<Diagnostic> },
+    /// Nothing joined; the diagnostics point into the text.
+    Rejected { diagnostics: Vec<Diagnostic> },
+    /// Nothing joined, for a reason that is not in the text.
+    Failed(String),
+}
+
+/// A variable of the running task.
+#[derive(Debug, Clone)]
+pub struct VarState {
+    pub name: String,
+    pub kind: VarKind,
+    pub record: VarRecord,
+}
+
+/// A live command: its statement's text and where it came from.
+#[derive(Debug, Clone)]
+pub struct LiveCommand {
+    /// The task file or `<line N>`.
+    pub file: String,
+    pub line: u32,
+    pub text: String,
+}
+
+/// The robot and the task at simulated time `t`.
+#[derive(Debug, Clone)]
+pub struct Status {
+    pub t: f64,
+    pub ticks: u64,
+    /// Ground truth, world frame.
+    pub pose: Pose,
+    pub speed: f64,
+    pub curvature: f64,
+    pub activity: Activity,
+    pub finished: bool,
+    /// One entry per live command, guard, loop or skill call, in program order.
+    pub live: Vec<LiveCommand>,
+    pub vars: Vec<VarState>,
+    /// The skills lines may call.
+    pub skills: Vec<String>,
+}
+
+pub struct Engine {
+    /// The VM's clock is logical; the engine keeps it to the wall clock itself, so that
+    /// it can wait for jobs and ticks at once (`RealClock` would sleep in `tick`).
+    vm: Vm<SimRobot, SimClock>,
+    model: RobotModel,
+    subscribers: Vec<(u64, SyncSender<String>)>,
+}
+
+impl Engine {
+    pub fn new(vm: Vm<SimRobot, SimClock>, model: RobotModel) -> Engine {
+        Engine {
+            vm,
+            model,
+            subscribers: Vec::new(),
+        }
+    }
+
+    /// Runs until every sender of `jobs` is gone. Tick `n` is due `n` periods after the
+    /// start; a late engine catches up without waiting, as `RealClock` does.
+    pub fn run(mut self, jobs: Receiver<Job>) {
+        let start = Instant::now();
+        let period = self.vm.config().period;
+        loop {
+            let due = start + Duration::from_secs_f64(self.vm.ticks() as f64 * period);
+            loop {
+                let now = Instant::now();
+                if now >= due {
+                    break;
+                }
+                match jobs.recv_timeout(due - now) {
+                    Ok(job) => self.handle(job),
+                    Err(RecvTimeoutError::Timeout) => break,
+                    Err(RecvTimeoutError::Disconnected) => return,
+                }
+            }
+            while let Ok(job) = jobs.try_recv() {
+                self.handle(job);
+            }
+            self.vm.tick();
+            let events = self.vm.take_events();
+            if !self.subscribers.is_empty() {
+                for e in &events {
+                    let line = ilmr_vm::render_event(self.vm.module(), e);
+                    self.publish(&line);
+                }
+            }
+        }
+    }
+
+    fn handle(&mut self, job: Job) {
+        match job {
+            Job::Line { text, reply } => {
+                let answer = self.line(&text);
+                let _ = reply.send(answer);
+            }
+            Job::Check { text, reply } => {
+                let _ = reply.send(self.check(&text));
+            }
+            Job::Status { reply } => {
+                let _ = reply.send(self.status());
+            }
+            Job::Subscribe {
+                conn,
+                out,
+                first,
+                done,
+            } => {
+                if out.try_send(first(self.vm.time())).is_ok()
+                    && !self.subscribers.iter().any(|(c, _)| *c == conn)
+                {
+                    self.subscribers.push((conn, out));
+                }
+                let _ = done.send(());
+            }
+            Job::Unsubscribe { conn } => self.subscribers.retain(|(c, _)| *c != conn),
+        }
+    }
+
+    /// Joins `text` to the running task, or says why not; subscribers see a `line`
+    /// event either way, as in `ilmrc run`'s trace.
+    fn line(&mut self, text: &str) -> LineAnswer {
+        let model = &self.model;
+        let options = LineOptions { robotless: false };
+        let t = self.vm.time();
+        let mut warnings = Vec::new();
+        let result = self
+            .vm
+            .add_line(|b| lower_line_warned(text, b, model, options, &mut warnings));
+        let outcome = match result {
+            Ok(()) => Outcome::Accepted { warnings },
+            Err(LineError::Lower(diagnostics)) => Outcome::Rejected { diagnostics },
+            Err(LineError::Invalid(e)) => Outcome::Failed(format!("the line was not joined: {e}")),
+            Err(LineError::Replaced) => Outcome::Failed(
+                "the line was not joined: the lowering did not return the program".into(),
+            ),
+        };
+        if !self.subscribers.is_empty() {
+            self.publish(&line_event(t, text, &outcome));
+        }
+        LineAnswer { t, outcome }
+    }
+
+    /// Lowers `text` against a copy of the running module and throws the result away:
+    /// the diagnostics are a line's, and the VM does not change.
+    fn check(&self, text: &str) -> LineAnswer {
+        let mut b = ModuleBuilder::extending(self.vm.module());
+        let mut warnings = Vec::new();
+        let options = LineOptions { robotless: false };
+        let outcome = match lower_line_warned(text, &mut b, &self.model, options, &mut warnings) {
+            Ok(_) => Outcome::Accepted { warnings },
+            Err(diagnostics) => Outcome::Rejected { diagnostics },
+        };
+        LineAnswer {
+            t: self.vm.time(),
+            outcome,
+        }
+    }
+
+    fn status(&self) -> Status {
+        let sim = self.vm.hal().sim();
+        let module = self.vm.module();
+        let live = self
+            .vm
+            .live_statements()
+            .into_iter()
+            .filter_map(|id| module.stmt(id))
+            .map(|s| LiveCommand {
+                file: module
+                    .files
+                    .get(s.file.0 as usize)
+                    .cloned()
+                    .unwrap_or_default(),
+                line: s.line,
+                text: s.text.clone(),
+            })
+            .collect();
+        let vars = module
+            .globals
+            .iter()
+            .filter_map(|g| {
+                self.vm.var(&g.name).map(|record| VarState {
+                    name: g.name.clone(),
+                    kind: g.kind,
+                    record,
+                })
+            })
+            .collect();
+        let skills = module
+            .units
+            .iter()
+            .filter(|u| u.skill)
+            .map(|u| u.name.clone())
+            .collect();
+        Status {
+            t: self.vm.time(),
+            ticks: self.vm.ticks(),
+            pose: self.vm.hal().true_pose(),
+            speed: sim.true_speed(),
+            curvature: sim.true_curvature(),
+            activity: self.vm.activity(),
+            finished: self.vm.finished(),
+            live,
+            vars,
+            skills,
+        }
+    }
+
+    /// Sends a line to every subscriber. One that has gone, or has let its queue fill
+    /// (it stopped reading), is dropped: the robot never waits for a front end.
+    fn publish(&mut self, line: &str) {
+        self.subscribers
+            .retain(|(_, out)| match out.try_send(line.to_string()) {
+                Ok(()) => true,
+                Err(TrySendError::Full(_) | TrySendError::Disconnected(_)) => false,
+            });
+    }
+}
+
+/// The `line` event of `ilmrc run`'s trace, written as it writes it, plus the codes
+/// of a joined line's warnings.
+fn line_event(t: f64, text: &str, outcome: &Outcome) -> String {
+    let text = serde_json::to_string(text).unwrap_or_else(|_| "\"\"".into());
+    let accepted = matches!(outcome, Outcome::Accepted { .. });
+    let mut line = format!(
+        "{{\"t\":{},\"event\":\"line\",\"text\":{text},\"accepted\":{accepted}",
+        fmt_num(t)
+    );
+    let codes: Vec<&str> = match outcome {
+        Outcome::Accepted { warnings: d } | Outcome::Rejected { diagnostics: d } => {
+            d.iter().map(|d| d.code.as_str()).collect()
+        }
+        Outcome::Failed(_) => Vec::new(),
+    };
+    if !codes.is_empty() {
+        line.push_str(",\"codes\":");
+        line.push_str(&serde_json::to_string(&codes).unwrap_or_else(|_| "[]".into()));
+    }
+    line.push('}');
+    line
+}

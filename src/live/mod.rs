@@ -1,0 +1,91 @@
+//! A simulated robot running in real time on its own thread, driven by jobs: what
+//! `ilmrc serve` (for planners over TCP) and `ilmrc shell` (for a person at a prompt)
+//! both put in front of the dissertation's language process.
+
+pub mod engine;
+mod robot;
+
+use std::path::{Path, PathBuf};
+use std::sync::mpsc::{self, Sender};
+
+use ilmr_compiler::FileId;
+use ilmr_compiler::check::{Source, analyze};
+use ilmr_model::RobotModel;
+use ilmr_vm::{SimClock, Vm};
+
+use crate::build::{Compiled, compile, render_diagnostics};
+use engine::{Engine, Job};
+
+/// The robot and task options `serve` and `shell` share.
+#[derive(clap::Args)]
+pub struct RobotArgs {
+    /// The simulated robot: `moro`, `workpartner` or a ROBO.INI path.
+    #[arg(long, default_value = "moro")]
+    pub robot: String,
+    /// The robot's world: `office`, `yard`, `empty` or a world file (default: office
+    /// for MoRo, yard for Workpartner).
+    #[arg(long)]
+    pub world: Option<String>,
+    /// Seed of the simulated robot's noise.
+    #[arg(long, default_value_t = 0)]
+    pub seed: u64,
+    /// A directory of skill files (`*.ilms`) lines may call.
+    #[arg(long)]
+    pub skills: Option<PathBuf>,
+    /// A task to start with (checked as `ilmrc check` does); without one the robot
+    /// waits for lines.
+    #[arg(long)]
+    pub task: Option<PathBuf>,
+}
+
+/// A robot whose VM runs on its own thread.
+pub struct Live {
+    /// The VM thread's queue; it stops when every sender is gone.
+    pub jobs: Sender<Job>,
+    pub model: RobotModel,
+    /// The world's name or file.
+    pub world: String,
+}
+
+/// Opens the robot, compiles the task (or an empty one) and starts the VM's thread;
+/// `None` when the task has errors (they were printed).
+pub fn start(args: &RobotArgs) -> Result<Option<Live>, String> {
+    let opened = robot::open(&args.robot, args.world.as_deref(), args.seed)?;
+    let module = match &args.task {
+        Some(task) => compile(task, &opened.spec, args.skills.as_deref(), |_| Vec::new())?,
+        None => no_task(&opened.spec, args.skills.as_deref())?,
+    };
+    let module = match module {
+        Compiled::Module(m) => *m,
+        Compiled::Rejected => return Ok(None),
+    };
+    let vm = Vm::new(module, opened.robot, SimClock, opened.config).map_err(|e| e.to_string())?;
+    let (jobs, queue) = mpsc::channel();
+    let engine = Engine::new(vm, opened.model.clone());
+    std::thread::Builder::new()
+        .name("ilmr-vm".into())
+        .spawn(move || engine.run(queue))
+        .map_err(|e| format!("cannot start the robot's thread: {e}"))?;
+    Ok(Some(Live {
+        jobs,
+        model: opened.model,
+        world: opened.world,
+    }))
+}
+
+/// The module of an empty task, with the skills lines may call.
+fn no_task(robot: &str, skills: Option<&Path>) -> Result<Compiled, String> {
+    let model = crate::inputs::load_robot(robot)?.model;
+    let mut sources = vec![Source::new("<live>", "")];
+    if let Some(dir) = skills {
+        sources.extend(crate::inputs::read_skill_dir(dir)?);
+    }
+    let analysis = analyze(&sources, &model);
+    match ilmr_compiler::lower::lower(&analysis, &model, FileId(0)) {
+        Ok(module) => Ok(Compiled::Module(Box::new(module))),
+        Err(problems) => {
+            print!("{}", render_diagnostics(&analysis, &problems));
+            Ok(Compiled::Rejected)
+        }
+    }
+}

@@ -1,0 +1,58 @@
+//! Fuzzing of everything `ilmrc` reads from outside: task and skill files, ROBO.INI
+//! robot models, `.ilmb` modules and `serve` request lines. Each target must never
+//! panic and must answer bad input with an error value.
+//!
+//! `cargo test --test fuzz` runs a fixed, seeded number of inputs per target (CI).
+//! For a longer hunt (see tests/fuzz/README.md):
+//!
+//! ```sh
+//! ILMR_FUZZ_SECS=600 ILMR_FUZZ_SEED=7 cargo test --release --test fuzz -- --nocapture
+//! ```
+//!
+//! The compiler's own `never_panics.rs` throws token soup and random text at the
+//! parser; these targets start from real files and keep their structure, so inputs
+//! get past the parser into the checker, the lowering, the VM and the model loader.
+
+mod engine;
+mod mutate;
+mod pipeline;
+mod targets;
+#[path = "../support/taskgen.rs"]
+mod taskgen;
+
+use engine::Budget;
+
+#[test]
+fn task_files_never_panic() {
+    let stats = targets::tasks::fuzz(Budget::from_env(300));
+    assert!(stats.corpus >= 10, "{stats:?}");
+}
+
+#[test]
+fn skill_files_never_panic() {
+    let stats = targets::skills::fuzz(Budget::from_env(250));
+    assert!(stats.corpus >= 3, "{stats:?}");
+}
+
+#[test]
+fn robot_models_never_panic() {
+    let stats = targets::models::fuzz(Budget::from_env(100));
+    assert!(stats.corpus >= 3, "{stats:?}");
+}
+
+#[test]
+fn bytecode_modules_are_checked_before_they_run() {
+    let stats = targets::modules::fuzz(Budget::from_env(1000));
+    assert!(stats.corpus >= 10, "{stats:?}");
+}
+
+#[test]
+fn serve_requests_are_answered() {
+    let stats = targets::requests::fuzz(Budget::from_env(5000));
+    assert!(stats.corpus >= 5, "{stats:?}");
+}
+
+#[test]
+fn the_module_loader_says_what_is_wrong() {
+    targets::modules::errors_are_clear();
+}

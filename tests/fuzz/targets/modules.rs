@@ -1,0 +1,103 @@
+//! `.ilmb` bytes through `Module::from_bytes` (what `ilmrc disasm` does with a file
+//! from anywhere), the disassembler and, when a module validates, the VM: a module
+//! that passes validation must run without a panic.
+
+use ilmr_compiler::check::Source;
+use ilmr_vm::Module;
+use ilmr_vm::bytecode::{ModuleError, disassemble};
+
+use super::corpus::{self, ROBOTS};
+use crate::engine::{self, Budget, Rng, Stats};
+use crate::{mutate, pipeline};
+
+/// Every corpus task that lowers, on either robot, as module bytes.
+fn modules() -> Vec<Vec<u8>> {
+    let mut out = Vec::new();
+    for robot in ROBOTS {
+        let model = corpus::model(robot);
+        for task in corpus::tasks() {
+            let mut sources = vec![Source::new("task.ilmr", String::from_utf8_lossy(task))];
+            sources.extend(corpus::library().iter().cloned());
+            if let Some(module) = pipeline::compile(&sources, &model) {
+                out.push(module.to_bytes());
+            }
+        }
+    }
+    out
+}
+
+pub fn fuzz(budget: Budget) -> Stats {
+    let corpus = modules();
+    engine::run(
+        "module",
+        &corpus,
+        budget,
+        |base, rng: &mut Rng| {
+            if rng.chance(90) {
+                mutate::json(base, rng)
+            } else {
+                mutate::bytes(base.to_vec(), rng)
+            }
+        },
+        |input| {
+            let module = match Module::from_bytes(input) {
+                Ok(m) => m,
+                Err(e) => {
+                    assert!(!e.to_string().is_empty());
+                    return;
+                }
+            };
+            let listing = disassemble(&module);
+            assert!(module.code.is_empty() || !listing.is_empty());
+            let Some(mut vm) = pipeline::vm(module) else {
+                panic!("Vm::new refused a module that from_bytes accepted");
+            };
+            for _ in 0..pipeline::TICKS {
+                vm.tick();
+            }
+        },
+    )
+}
+
+/// Hand-made bad modules: each is refused with the error that names the problem.
+pub fn errors_are_clear() {
+    let good = corpus::live_module("workpartner");
+    let encode = |m: &Module| m.to_bytes();
+    let refuse = |bytes: &[u8]| match Module::from_bytes(bytes) {
+        Ok(_) => panic!("accepted {}", String::from_utf8_lossy(bytes)),
+        Err(e) => e,
+    };
+
+    assert!(matches!(refuse(b""), ModuleError::Decode(_)));
+    assert!(matches!(refuse(b"\xff\xfe"), ModuleError::Decode(_)));
+    assert!(matches!(
+        refuse(br#"{"header":{"magic":"ILMX","version":1}}"#),
+        ModuleError::BadMagic(m) if m == "ILMX"
+    ));
+    assert!(matches!(
+        refuse(br#"{"header":{"magic":"ILMB","version":99}}"#),
+        ModuleError::Version { found: 99, .. }
+    ));
+
+    let mut m = good.clone();
+    m.main = ilmr_vm::bytecode::UnitId(m.units.len() as u32);
+    assert!(matches!(
+        refuse(&encode(&m)),
+        ModuleError::Index {
+            what: "main unit",
+            ..
+        }
+    ));
+
+    let mut m = good.clone();
+    if let Some(b) = m.blocks.first_mut() {
+        b.len = u32::MAX;
+    }
+    let e = refuse(&encode(&m));
+    assert!(e.to_string().contains("out of range"), "{e}");
+
+    let mut m = good.clone();
+    m.expr_code.clear();
+    let e = refuse(&encode(&m));
+    assert!(e.to_string().contains("expression"), "{e}");
+}
