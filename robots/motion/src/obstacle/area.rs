@@ -142,6 +142,14 @@ impl CheckArea {
 
     pub fn hit(&self, index: usize, p: &Point2<f64>) -> Option<Hit> {
         let half = 0.5 * self.width;
+        // Every point of the area lies within its length along the path plus
+        // half its width of the start: most mapped points are rejected here,
+        // before the trigonometry of the arc's coordinates.
+        let reach = self.arc.length.max(0.0) + self.straight.max(0.0) + half;
+        let (dx, dy) = (p.x - self.arc.start.x, p.y - self.arc.start.y);
+        if dx * dx + dy * dy > reach * reach {
+            return None;
+        }
         let (s, n) = self.arc.coords(p);
         if s >= 0.0 && s <= self.arc.length && n.abs() <= half {
             return Some(Hit { index, s, n });

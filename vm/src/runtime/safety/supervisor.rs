@@ -271,12 +271,14 @@ impl<H: Hal, C: Clock> Vm<H, C> {
             .map(|h| h.s)
             .fold(f64::INFINITY, f64::min);
         let reach = KNOWN_MAP_REACH + v * v / (2.0 * self.cfg.deceleration.max(1e-6));
-        let here = (self.snap.pose.x, self.snap.pose.y);
+        // Near the robot first, in the map's frame (a distance is the same in
+        // both), so that only the few points left are carried over.
+        let here = frame::to_map(self.map_from_estimate, (self.snap.pose.x, self.snap.pose.y));
         let planned = self
             .known_points
             .iter()
-            .map(|&p| frame::from_map(self.map_from_estimate, p))
-            .filter(|p| (p.0 - here.0).abs() < reach && (p.1 - here.1).abs() < reach)
+            .filter(|q| (q.0 - here.0).powi(2) + (q.1 - here.1).powi(2) < reach * reach)
+            .map(|&q| frame::from_map(self.map_from_estimate, q))
             .enumerate()
             .filter_map(|(i, p)| area.hit(i, &nalgebra::Point2::new(p.0, p.1)))
             .map(|h| h.s)
@@ -316,7 +318,7 @@ impl<H: Hal, C: Clock> Vm<H, C> {
         let known = self
             .known_points
             .iter()
-            .filter(|q| (q.0 - here.0).abs() < reach && (q.1 - here.1).abs() < reach)
+            .filter(|q| (q.0 - here.0).powi(2) + (q.1 - here.1).powi(2) < reach * reach)
             .map(|&q| {
                 let e = frame::from_map(self.map_from_estimate, q);
                 nalgebra::Point2::new(e.0, e.1)

@@ -46,11 +46,14 @@ impl Footprint {
     ) -> f64 {
         let reach = distance + self.front.max(self.rear).hypot(self.half_width) + SKIN;
         let steps = (distance / STEP).ceil().max(1.0) as usize;
-        let poses: Vec<(f64, f64, f64, f64)> = (0..=steps)
+        // (travel, x, y, sin h, cos h): the trigonometry once per pose, not
+        // once per pose and point.
+        let poses: Vec<(f64, f64, f64, f64, f64)> = (0..=steps)
             .map(|i| {
                 let d = distance * i as f64 / steps as f64;
                 let (x, y, h) = along(pose, sign * d, c);
-                (d, x, y, h)
+                let (s, co) = h.sin_cos();
+                (d, x, y, s, co)
             })
             .collect();
         let mut first = f64::INFINITY;
@@ -59,11 +62,10 @@ impl Footprint {
                 continue;
             }
             let mut inside_now = true;
-            for &(d, x, y, h) in &poses {
+            for &(d, x, y, s, co) in &poses {
                 if d >= first {
                     break;
                 }
-                let (s, co) = h.sin_cos();
                 let (dx, dy) = (p.x - x, p.y - y);
                 let local = (co * dx + s * dy, -s * dx + co * dy);
                 let hit = self.holds(local);
