@@ -19,5 +19,5 @@ pub use recorded::Recorded;
 pub use scripted::{Call, Limits, OpMatch, OpOutcome, ScriptedRobot, Stream};
 pub use types::{
     AsyncOp, BodyPose, Detection, DeviceReading, HalError, KnownMap, ManipTask, OpId, OpStatus,
-    Pose, Scan, Side, Snapshot, Solid,
+    Pose, Scan, Side, Snapshot, Solid, segment_distance,
 };

@@ -158,16 +158,20 @@ pub struct Solid {
 impl Solid {
     /// Distance from `p` to the solid's surface; negative inside it.
     pub fn distance(&self, p: (f64, f64)) -> f64 {
-        let (dx, dy) = (self.b.0 - self.a.0, self.b.1 - self.a.1);
-        let len2 = dx * dx + dy * dy;
-        let t = if len2 > 0.0 {
-            (((p.0 - self.a.0) * dx + (p.1 - self.a.1) * dy) / len2).clamp(0.0, 1.0)
-        } else {
-            0.0
-        };
-        let (cx, cy) = (self.a.0 + t * dx, self.a.1 + t * dy);
-        (p.0 - cx).hypot(p.1 - cy) - self.radius
+        segment_distance(p, self.a, self.b) - self.radius
     }
+}
+
+/// Distance from `p` to the segment `a`-`b` (to `a` when the two coincide).
+pub fn segment_distance(p: (f64, f64), a: (f64, f64), b: (f64, f64)) -> f64 {
+    let (dx, dy) = (b.0 - a.0, b.1 - a.1);
+    let len2 = dx * dx + dy * dy;
+    let t = if len2 > 0.0 {
+        (((p.0 - a.0) * dx + (p.1 - a.1) * dy) / len2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    (p.0 - a.0 - t * dx).hypot(p.1 - a.1 - t * dy)
 }
 
 /// What the robot knows of its surroundings before it sees them: the area it may

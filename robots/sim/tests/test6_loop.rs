@@ -12,7 +12,9 @@
 
 mod experiment;
 
-use experiment::{compile, compile_example, ended, run, vm, workpartner, world};
+use experiment::{
+    compile, compile_example, distance_to_polyline, ended, length, run, vm, workpartner, world,
+};
 
 pub const SEED: u64 = 6;
 
@@ -36,29 +38,6 @@ fn teach() -> Vec<(f64, f64)> {
     let out = run(&mut vm, 200.0);
     assert!(out.finished, "teaching run ends");
     vm.paths().get("path").cloned().expect("PATH recorded")
-}
-
-fn length(trace: &[ilmr_hal::Pose]) -> f64 {
-    trace
-        .windows(2)
-        .map(|w| (w[1].x - w[0].x).hypot(w[1].y - w[0].y))
-        .sum()
-}
-
-fn distance_to_polyline(pts: &[(f64, f64)], p: (f64, f64)) -> f64 {
-    pts.windows(2)
-        .map(|w| {
-            let (a, b) = (w[0], w[1]);
-            let (dx, dy) = (b.0 - a.0, b.1 - a.1);
-            let len2 = dx * dx + dy * dy;
-            let t = if len2 > 0.0 {
-                (((p.0 - a.0) * dx + (p.1 - a.1) * dy) / len2).clamp(0.0, 1.0)
-            } else {
-                0.0
-            };
-            (p.0 - a.0 - t * dx).hypot(p.1 - a.1 - t * dy)
-        })
-        .fold(f64::INFINITY, f64::min)
 }
 
 #[test]

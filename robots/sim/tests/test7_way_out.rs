@@ -13,7 +13,9 @@
 
 mod experiment;
 
-use experiment::{A, Task, compile_example, ended, moro, run, vm, world};
+use experiment::{
+    A, Task, compile_example, distance_to_polyline, ended, length, moro, run, vm, world,
+};
 use ilmr_stdlib::Command;
 
 pub const SEED: u64 = 7;
@@ -107,27 +109,4 @@ fn figure_58_finds_the_door_completes_and_its_path_drives_again() {
     assert_eq!(vm2.hal().sim().contact_count(), 0);
     assert!(off < 0.3, "stays on the recorded path: {off}");
     assert!(miss < 0.1, "ends where it was taught: {miss}");
-}
-
-fn length(trace: &[ilmr_hal::Pose]) -> f64 {
-    trace
-        .windows(2)
-        .map(|w| (w[1].x - w[0].x).hypot(w[1].y - w[0].y))
-        .sum()
-}
-
-fn distance_to_polyline(pts: &[(f64, f64)], p: (f64, f64)) -> f64 {
-    pts.windows(2)
-        .map(|w| {
-            let (a, b) = (w[0], w[1]);
-            let (dx, dy) = (b.0 - a.0, b.1 - a.1);
-            let len2 = dx * dx + dy * dy;
-            let t = if len2 > 0.0 {
-                (((p.0 - a.0) * dx + (p.1 - a.1) * dy) / len2).clamp(0.0, 1.0)
-            } else {
-                0.0
-            };
-            (p.0 - a.0 - t * dx).hypot(p.1 - a.1 - t * dy)
-        })
-        .fold(f64::INFINITY, f64::min)
 }

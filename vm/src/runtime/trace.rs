@@ -3,6 +3,7 @@
 
 use std::fmt::Write;
 
+use ilmr_hal::segment_distance;
 use ilmr_motion::obstacle::AvoidState;
 
 use crate::bytecode::{Module, StmtId, VarId};
@@ -124,7 +125,7 @@ pub fn outline(points: &[(f64, f64)], tolerance: f64) -> Vec<(f64, f64)> {
     let mut spans = vec![(0, points.len() - 1)];
     while let Some((a, b)) = spans.pop() {
         let (far, dist) = (a + 1..b)
-            .map(|i| (i, off_chord(points[i], points[a], points[b])))
+            .map(|i| (i, segment_distance(points[i], points[a], points[b])))
             .fold(
                 (a, 0.0),
                 |best, cur| if cur.1 > best.1 { cur } else { best },
@@ -140,18 +141,6 @@ pub fn outline(points: &[(f64, f64)], tolerance: f64) -> Vec<(f64, f64)> {
         .zip(keep)
         .filter_map(|(p, k)| k.then_some(*p))
         .collect()
-}
-
-/// Distance from `p` to the segment `a`-`b`.
-fn off_chord(p: (f64, f64), a: (f64, f64), b: (f64, f64)) -> f64 {
-    let (dx, dy) = (b.0 - a.0, b.1 - a.1);
-    let len2 = dx * dx + dy * dy;
-    let u = if len2 > 0.0 {
-        (((p.0 - a.0) * dx + (p.1 - a.1) * dy) / len2).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    (p.0 - a.0 - u * dx).hypot(p.1 - a.1 - u * dy)
 }
 
 fn json_str(out: &mut String, s: &str) {
@@ -348,7 +337,7 @@ mod tests {
         for p in &arc {
             let near = kept
                 .windows(2)
-                .map(|w| off_chord(*p, w[0], w[1]))
+                .map(|w| segment_distance(*p, w[0], w[1]))
                 .fold(f64::INFINITY, f64::min);
             assert!(near <= 0.01 + 1e-12, "{p:?} is {near} m off the outline");
         }

@@ -239,3 +239,18 @@ pub fn mean_std(xs: &[f64]) -> (f64, f64) {
 pub fn mpose(p: ilmr_hal::Pose) -> ilmr_motion::Pose {
     ilmr_motion::Pose::new(p.x, p.y, p.h)
 }
+
+/// Length of a driven trace, metres.
+pub fn length(trace: &[ilmr_hal::Pose]) -> f64 {
+    trace
+        .windows(2)
+        .map(|w| (w[1].x - w[0].x).hypot(w[1].y - w[0].y))
+        .sum()
+}
+
+/// Distance from `p` to the nearest leg of the polyline `pts`.
+pub fn distance_to_polyline(pts: &[(f64, f64)], p: (f64, f64)) -> f64 {
+    pts.windows(2)
+        .map(|w| ilmr_hal::segment_distance(p, w[0], w[1]))
+        .fold(f64::INFINITY, f64::min)
+}

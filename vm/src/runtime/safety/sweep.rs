@@ -85,16 +85,8 @@ impl Footprint {
 
 /// The pose after `u` metres of signed travel along curvature `c` from `pose`.
 fn along(pose: (f64, f64, f64), u: f64, c: f64) -> (f64, f64, f64) {
-    let (x, y, h) = pose;
-    if (c * u).abs() < 1e-9 {
-        return (x + u * h.cos(), y + u * h.sin(), h);
-    }
-    let h1 = h + c * u;
-    (
-        x + (h1.sin() - h.sin()) / c,
-        y - (h1.cos() - h.cos()) / c,
-        h1,
-    )
+    let p = ilmr_motion::Pose::new(pose.0, pose.1, pose.2).advance(u, c);
+    (p.x, p.y, p.h)
 }
 
 #[cfg(test)]
