@@ -4,7 +4,7 @@ use std::io::{IsTerminal, Write};
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use ilmr_compiler::check::{Source, analyze};
+use ilmr_compiler::check::{Detail, Source, analyze_with};
 use ilmr_compiler::render::{self, RenderFile, Style};
 use ilmr_compiler::{Code, Diagnostic, FileId, LineIndex, Span};
 
@@ -61,7 +61,7 @@ pub fn check(args: &CheckArgs) -> Result<Report, String> {
     if let Some(dir) = &args.skills {
         sources.extend(inputs::read_skill_dir(dir)?);
     }
-    let analysis = analyze(&sources, &robot.model);
+    let analysis = analyze_with(&sources, &robot.model, Detail::Diagnostics);
 
     let mut files: Vec<RenderFile<'_>> = analysis
         .files

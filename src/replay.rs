@@ -5,7 +5,7 @@
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use crate::run::plot::{self, RunRecord};
+use ilmr_plot::{self as plot, RunRecord};
 
 #[derive(clap::Args)]
 pub struct ReplayArgs {

@@ -1,34 +1,48 @@
 //! `check` of a generated 100,000-line program with skills, ifs and whiles; figures in
-//! docs/performance.md. Run with `cargo bench -p ilmr-compiler`.
+//! docs/performance.md. Run with `cargo bench -p ilmr-compiler --bench check`.
 
 mod corpus;
 
 use divan::{Bencher, black_box, counter::ItemsCount};
-use ilmr_compiler::check::{Source, analyze};
+use ilmr_compiler::check::{Detail, Source, analyze_with};
 use ilmr_model::RobotModel;
 
 fn main() {
     divan::main();
 }
 
+/// What `ilmrc check` does: the diagnostics, without the resolutions the language
+/// server and the lowering read.
 #[divan::bench(sample_count = 10)]
 fn check_100k_lines(bencher: Bencher) {
+    analyze_corpus(bencher, Detail::Diagnostics);
+}
+
+/// The full analysis the language server keeps.
+#[divan::bench(sample_count = 10)]
+fn analyze_100k_lines(bencher: Bencher) {
+    analyze_corpus(bencher, Detail::Full);
+}
+
+fn analyze_corpus(bencher: Bencher, detail: Detail) {
     let corpus = corpus::generate(100_000);
     let sources = [
         Source::new("task.ilmr", corpus.task.clone()),
         Source::new("skills.ilms", corpus.skills.clone()),
     ];
     let model = RobotModel::builtin("moro").unwrap();
-    let analysis = analyze(&sources, &model);
+    let analysis = analyze_with(&sources, &model, detail);
     assert!(
         !analysis.has_errors(),
         "{:?}",
         &analysis.diagnostics[..3.min(analysis.diagnostics.len())]
     );
     drop(analysis);
-    bencher
-        .counter(ItemsCount::new(corpus.lines))
-        .bench(|| analyze(black_box(&sources), &model).diagnostics.len());
+    bencher.counter(ItemsCount::new(corpus.lines)).bench(|| {
+        analyze_with(black_box(&sources), &model, detail)
+            .diagnostics
+            .len()
+    });
 }
 
 #[divan::bench(sample_count = 10)]

@@ -3,7 +3,7 @@
 //! without building the whole toolchain:
 //! `valgrind --tool=callgrind target/release/examples/check_cost /tmp/bc/task.ilmr /tmp/bc/skills.ilms`.
 
-use ilmr_compiler::check::{Source, analyze};
+use ilmr_compiler::check::{Detail, Source, analyze_with};
 
 #[global_allocator]
 static ALLOCATOR: mimalloc::MiMalloc = mimalloc::MiMalloc;
@@ -20,7 +20,7 @@ fn main() -> std::process::ExitCode {
             }
         }
     }
-    let analysis = analyze(&sources, &model);
+    let analysis = analyze_with(&sources, &model, Detail::Diagnostics);
     let errors = analysis.diagnostics.iter().filter(|d| d.is_error()).count();
     println!(
         "{} file(s): {errors} error(s), {} diagnostic(s)",

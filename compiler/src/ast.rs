@@ -17,7 +17,7 @@ pub struct SourceFile<'s> {
     pub kind: FileKind,
     /// The task's top-level blocks (for a skill file: statements before the first header,
     /// which the checker reports).
-    pub blocks: Vec<Block<'s>>,
+    pub blocks: Box<[Block<'s>]>,
     pub skills: Vec<Skill<'s>>,
     pub comments: Vec<Span>,
     pub span: Span,
@@ -28,14 +28,14 @@ pub struct Skill<'s> {
     pub name: Name<'s>,
     /// The header line `NAME:`.
     pub header: Span,
-    pub blocks: Vec<Block<'s>>,
+    pub blocks: Box<[Block<'s>]>,
     pub span: Span,
 }
 
 /// Statements on one level not separated by an empty line (section 4.3).
 #[derive(Debug, Clone)]
 pub struct Block<'s> {
-    pub stmts: Vec<Stmt<'s>>,
+    pub stmts: Box<[Stmt<'s>]>,
     pub span: Span,
 }
 
@@ -60,14 +60,14 @@ pub enum StmtKind<'s> {
         target: Name<'s>,
         value: Expr<'s>,
     },
-    If(Conditional<'s>),
+    If(Box<Conditional<'s>>),
     While {
         bind: Option<Name<'s>>,
-        body: Conditional<'s>,
+        body: Box<Conditional<'s>>,
     },
     /// `check` ... `checkend`: validated, never run.
     Check {
-        body: Vec<Block<'s>>,
+        body: Box<[Block<'s>]>,
         end: Option<Span>,
     },
     /// `break`, or `break(pattern)` with the raw pattern text.
@@ -84,7 +84,7 @@ pub enum StmtKind<'s> {
 pub struct Conditional<'s> {
     pub keyword: Span,
     pub cond: Expr<'s>,
-    pub body: Vec<Block<'s>>,
+    pub body: Box<[Block<'s>]>,
     /// The `endif`/`endwhile` line, `None` when missing.
     pub end: Option<Span>,
 }
@@ -118,7 +118,7 @@ pub struct Call<'s> {
 
 #[derive(Debug, Clone)]
 pub struct Args<'s> {
-    pub items: Vec<Arg<'s>>,
+    pub items: Box<[Arg<'s>]>,
     /// From `(` to `)` (or to the end of the line when unclosed).
     pub span: Span,
     pub closed: bool,

@@ -200,18 +200,46 @@ pub struct Lexed {
 }
 
 pub fn lex(source: &str) -> Lexed {
+    let mut stream = Tokens::new(source);
     let mut tokens = Vec::with_capacity(source.len() / 3);
-    let mut comments = Vec::new();
-    let mut lexer = Token::lexer(source);
-    while let Some(result) = lexer.next() {
-        let span = Span::from(lexer.span());
-        match result {
-            Ok(Token::Comment) => comments.push(span),
-            Ok(token) => tokens.push((token, span)),
-            Err(()) => tokens.push((Token::Error, span)),
+    tokens.extend(stream.by_ref());
+    Lexed {
+        tokens,
+        comments: stream.comments,
+    }
+}
+
+/// The tokens of a file one at a time, comments set aside in `comments`: the parser
+/// reads a line's tokens as they come instead of holding the whole file's (12 bytes a
+/// token, about five a line).
+pub struct Tokens<'s> {
+    lexer: logos::Lexer<'s, Token>,
+    pub comments: Vec<Span>,
+}
+
+impl<'s> Tokens<'s> {
+    pub fn new(source: &'s str) -> Self {
+        Tokens {
+            lexer: Token::lexer(source),
+            comments: Vec::new(),
         }
     }
-    Lexed { tokens, comments }
+}
+
+impl Iterator for Tokens<'_> {
+    type Item = (Token, Span);
+
+    fn next(&mut self) -> Option<(Token, Span)> {
+        loop {
+            let result = self.lexer.next()?;
+            let span = Span::from(self.lexer.span());
+            match result {
+                Ok(Token::Comment) => self.comments.push(span),
+                Ok(token) => return Some((token, span)),
+                Err(()) => return Some((Token::Error, span)),
+            }
+        }
+    }
 }
 
 #[cfg(test)]

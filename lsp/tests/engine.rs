@@ -113,7 +113,7 @@ fn sensor_offers_sensors_then_objects_and_keywords() {
     insta::assert_snapshot!(completions("s = sensor($0"));
     assert_eq!(
         labels("s = sensor(scanner,$0"),
-        ["forever", "left", "right", "charger", "door"]
+        ["forever", "left", "right", "box", "charger", "door"]
     );
 }
 

@@ -6,7 +6,6 @@
 
 mod backend;
 mod mcap;
-pub mod plot;
 mod progress;
 mod record;
 mod scenario;
@@ -222,11 +221,15 @@ fn drive<C: Clock>(
         let pose = vm.hal().true_pose();
         session.travel(pose);
         let scan = vm.hal_mut().new_scan();
-        for e in &events {
-            parts.sink.line(&ilmr_vm::render_event(vm.module(), e))?;
-        }
-        for line in extra.lines(vm.module(), &events, pose, scan.as_ref()) {
-            parts.sink.line(&line)?;
+        // Lines no trace or plot takes are not rendered: among walls, formatting
+        // every scan's hits cost a tenth of a run.
+        if parts.sink.wants_poses() {
+            for e in &events {
+                parts.sink.line(&ilmr_vm::render_event(vm.module(), e))?;
+            }
+            for line in extra.lines(vm.module(), &events, pose, scan.as_ref()) {
+                parts.sink.line(&line)?;
+            }
         }
         if let Some(m) = parts.mcap.as_mut() {
             m.tick(vm.module(), &events, scan.as_ref())?;
@@ -249,7 +252,7 @@ fn drive<C: Clock>(
         m.finish()?;
     }
     if let (Some(path), Some(record)) = (&args.plot, plot) {
-        plot::write_svg(&record, path)?;
+        ilmr_plot::write_svg(&record, path)?;
     }
     print!(
         "{}",

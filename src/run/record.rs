@@ -22,8 +22,8 @@ use ilmr_vm::{Event, EventKind, Module};
 
 use super::RunArgs;
 use super::backend::WorldScan;
-use super::plot::RunRecord;
 use super::setup::{Backend, Setup};
+use ilmr_plot::RunRecord;
 
 /// Where the trace lines go: the `--trace` file, and the record the plot is drawn
 /// from (built from the very lines `ilmrc replay` reads, so both draw the same).

@@ -39,7 +39,8 @@ pub struct Setup {
 
 /// Starts used instead of a shipped world's own `start`: the office's is beside the lab
 /// bench, where the Figure 52 task's left turn (radius 2 m) runs into the bench; south
-/// of the bench there is room for it. `--start` overrides both.
+/// of the bench there is room for it. `--start` overrides both; Figure 20 starts in the
+/// office's north wing, in the robot's room facing its door (`--start 8,21,90`).
 const RUN_STARTS: [(&str, f64, f64, f64); 1] = [("office", 8.0, 5.0, 0.0)];
 
 /// The names `--robot` takes besides a ROBO.INI path.

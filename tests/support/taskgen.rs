@@ -677,7 +677,11 @@ impl<'g> Program<'g> {
             (Command::GotoXY, "y", _) => self.rng.real(o.1 - reach, o.1 + reach),
             (Command::CreatePath, _, _) => {
                 // Pairs alternate x and y; both stay near the origin.
-                let centre = if self.next % 2 == 0 { o.0 } else { o.1 };
+                let centre = if self.next.is_multiple_of(2) {
+                    o.0
+                } else {
+                    o.1
+                };
                 self.next += 1;
                 self.rng.real(centre - reach, centre + reach)
             }

@@ -29,7 +29,7 @@ pub fn matches(statement: &str, needle: &str) -> bool {
 
 pub fn check_patterns(files: &[FileEntry<'_>], skills: &Skills, diags: &mut Vec<Diagnostic>) {
     let mut any = false;
-    for entry in files {
+    for entry in files.iter().filter(|f| f.break_patterns) {
         entry.tree.for_each_stmt(&mut |stmt: &Stmt<'_>| {
             any |= matches!(stmt.kind, StmtKind::Break { pattern: Some(_) });
         });

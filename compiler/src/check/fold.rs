@@ -11,24 +11,41 @@
 use hashbrown::HashTable;
 use hashbrown::hash_table::Entry;
 
+/// The keys live end to end in one string and the table holds where each lies: a
+/// table of a large program's variables would otherwise allocate once per name.
 #[derive(Clone)]
 pub struct FoldMap<V> {
-    table: HashTable<(Box<str>, V)>,
+    table: HashTable<(Key, V)>,
+    keys: String,
+}
+
+/// A key: its first folded word, which is all of a key under eight bytes (most names),
+/// so that those compare without reading `keys`; and where it lies in `keys`.
+#[derive(Clone, Copy)]
+struct Key {
+    first: u64,
+    start: u32,
+    len: u32,
+}
+
+impl Key {
+    fn of(self, keys: &str) -> &[u8] {
+        &keys.as_bytes()[self.start as usize..][..self.len as usize]
+    }
 }
 
 impl<V> Default for FoldMap<V> {
     fn default() -> Self {
         FoldMap {
             table: HashTable::new(),
+            keys: String::new(),
         }
     }
 }
 
 impl<V: std::fmt::Debug> std::fmt::Debug for FoldMap<V> {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.debug_map()
-            .entries(self.table.iter().map(|(k, v)| (k, v)))
-            .finish()
+        f.debug_map().entries(self.iter()).finish()
     }
 }
 
@@ -73,68 +90,103 @@ fn long(b: &[u8], at: usize) -> u64 {
     fold(load8(b, at.min(b.len().saturating_sub(8))))
 }
 
+/// A name's first folded word and its hash, computed once per lookup.
+struct Folded {
+    first: u64,
+    hash: u64,
+}
+
 /// FxHash's step over the folded words. Keys are stored lower-cased and names that are
 /// not ASCII are looked up lower-cased, so a name and its key hash alike.
-fn hash(name: &str) -> u64 {
+fn folded(b: &[u8]) -> Folded {
     const K: u64 = 0xf135_7aea_2e62_a9c5;
     let step = |h: u64, w: u64| (h.rotate_left(5) ^ w).wrapping_mul(K);
-    let b = name.as_bytes();
-    let mut h = (b.len() as u64).wrapping_mul(K);
-    if b.len() < 8 {
-        h = step(h, short(b));
-    } else {
-        for at in (0..b.len()).step_by(8) {
-            h = step(h, long(b, at));
-        }
+    let first = if b.len() < 8 { short(b) } else { long(b, 0) };
+    let mut h = step((b.len() as u64).wrapping_mul(K), first);
+    for at in (8..b.len()).step_by(8) {
+        h = step(h, long(b, at));
     }
     // hashbrown takes the bucket from the low bits and a tag from the top seven.
-    h ^ (h >> 29)
+    Folded {
+        first,
+        hash: h ^ (h >> 29),
+    }
+}
+
+#[cfg(test)]
+fn hash(name: &str) -> u64 {
+    folded(name.as_bytes()).hash
+}
+
+/// Whether the key at `key` is the name `n` (folded as `f`) with its ASCII letters
+/// lower-cased. The first words settle names under eight bytes.
+#[inline]
+fn matches(key: &Key, keys: &str, n: &[u8], f: &Folded) -> bool {
+    key.len as usize == n.len()
+        && key.first == f.first
+        && (n.len() < 8 || same_tail(key.of(keys), n))
+}
+
+/// The words after the first of two names of the same length, eight bytes or more.
+fn same_tail(k: &[u8], n: &[u8]) -> bool {
+    (8..k.len()).step_by(8).all(|at| long(k, at) == long(n, at))
 }
 
 /// Whether `key` (lower-cased) is `name` with its ASCII letters lower-cased.
+#[cfg(test)]
 fn same(key: &str, name: &str) -> bool {
     let (k, n) = (key.as_bytes(), name.as_bytes());
-    if k.len() != n.len() {
-        return false;
-    }
-    if k.len() < 8 {
-        return short(k) == short(n);
-    }
-    (0..k.len()).step_by(8).all(|at| long(k, at) == long(n, at))
+    k.len() == n.len() && folded(k).first == folded(n).first && same_tail(k, n)
 }
 
 impl<V> FoldMap<V> {
     pub fn with_capacity(capacity: usize) -> Self {
         FoldMap {
             table: HashTable::with_capacity(capacity),
+            keys: String::new(),
         }
     }
 
+    #[inline]
     pub fn get(&self, name: &str) -> Option<&V> {
+        let n = name.as_bytes();
+        let f = folded(n);
         self.table
-            .find(hash(name), |(key, _)| same(key, name))
+            .find(f.hash, |(key, _)| matches(key, &self.keys, n, &f))
             .map(|(_, v)| v)
     }
 
     /// The value under `key` (lower-cased by the caller), inserted by `make` if absent.
     pub fn get_or_insert_with(&mut self, key: &str, make: impl FnOnce() -> V) -> &mut V {
-        let entry = self
-            .table
-            .entry(hash(key), |(k, _)| same(k, key), |(k, _)| hash(k));
-        &mut entry.or_insert_with(|| (key.into(), make())).into_mut().1
+        let entry = match self.entry(key) {
+            (Entry::Occupied(o), _, _) => o,
+            (Entry::Vacant(v), keys, first) => v.insert((push_key(keys, key, first), make())),
+        };
+        &mut entry.into_mut().1
     }
 
     /// Sets the value under `key` (lower-cased by the caller), replacing any before.
     pub fn insert(&mut self, key: &str, value: V) {
-        match self
-            .table
-            .entry(hash(key), |(k, _)| same(k, key), |(k, _)| hash(k))
-        {
-            Entry::Occupied(mut o) => o.get_mut().1 = value,
-            Entry::Vacant(v) => {
-                v.insert((key.into(), value));
+        match self.entry(key) {
+            (Entry::Occupied(mut o), _, _) => o.get_mut().1 = value,
+            (Entry::Vacant(v), keys, first) => {
+                v.insert((push_key(keys, key, first), value));
             }
         }
+    }
+
+    /// The table's entry for `key`, the key string to append a new key to, and the
+    /// key's first word.
+    fn entry(&mut self, key: &str) -> (Entry<'_, (Key, V)>, &mut String, u64) {
+        let FoldMap { table, keys } = self;
+        let k = key.as_bytes();
+        let f = folded(k);
+        let entry = table.entry(
+            f.hash,
+            |(at, _)| matches(at, keys, k, &f),
+            |(at, _)| folded(at.of(keys)).hash,
+        );
+        (entry, keys, f.first)
     }
 
     pub fn len(&self) -> usize {
@@ -143,8 +195,31 @@ impl<V> FoldMap<V> {
 
     /// Every key and value, in no particular order.
     pub fn iter(&self) -> impl Iterator<Item = (&str, &V)> {
-        self.table.iter().map(|(k, v)| (&**k, v))
+        self.table.iter().map(|(k, v)| {
+            let start = k.start as usize;
+            (&self.keys[start..start + k.len as usize], v)
+        })
     }
+}
+
+/// `name` as a table is asked for it: an ASCII name as it is, any other lower-cased into
+/// `buf`.
+pub fn lookup<'a>(name: &'a str, buf: &'a mut String) -> &'a str {
+    if name.is_ascii() {
+        name
+    } else {
+        super::constants::key(name, buf)
+    }
+}
+
+fn push_key(keys: &mut String, key: &str, first: u64) -> Key {
+    let at = Key {
+        first,
+        start: keys.len() as u32,
+        len: key.len() as u32,
+    };
+    keys.push_str(key);
+    at
 }
 
 #[cfg(test)]

@@ -26,7 +26,7 @@ use crate::span::Span;
 pub use args::fits;
 pub use breaks::needle;
 pub use constants::Constants;
-pub use scope::{Var, VarId, Vars};
+pub use scope::{Places, Var, VarId, Vars};
 pub use skills::SkillId;
 
 /// One file of a program.
@@ -89,6 +89,21 @@ pub struct FileEntry<'s> {
     pub builtin: bool,
     /// Checked only where called: built-in skills and `--skills` libraries.
     pub library: bool,
+    /// `Parsed::break_patterns`: whether a `break(pattern)` may be in the tree.
+    pub break_patterns: bool,
+}
+
+/// How much of what the checker resolves an analysis keeps. The diagnostics are the
+/// same either way.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Detail {
+    /// Everything, for the lowering and the language server: every name's resolution,
+    /// every statement's target, every definition and use of each variable.
+    Full,
+    /// What the diagnostics need (`ilmrc check`): `Unit::refs` stays empty,
+    /// `Unit::targets` holds only skill calls, and a variable keeps only its first
+    /// definition and its first use.
+    Diagnostics,
 }
 
 /// A task file or a skill, checked with its own view of the variables.
@@ -152,6 +167,10 @@ impl Cx<'_, '_> {
 }
 
 pub fn analyze<'s>(sources: &'s [Source], model: &RobotModel) -> Analysis<'s> {
+    analyze_with(sources, model, Detail::Full)
+}
+
+pub fn analyze_with<'s>(sources: &'s [Source], model: &RobotModel, detail: Detail) -> Analysis<'s> {
     let mut diagnostics = Vec::new();
     let mut files: Vec<FileEntry<'s>> = Vec::with_capacity(sources.len() + 1);
     let builtins = ilmr_stdlib::skills::BUILTIN_SKILL_FILES
@@ -171,6 +190,7 @@ pub fn analyze<'s>(sources: &'s [Source], model: &RobotModel) -> Analysis<'s> {
             tree: parsed.file,
             builtin,
             library,
+            break_patterns: parsed.break_patterns,
         });
     }
 
@@ -178,13 +198,6 @@ pub fn analyze<'s>(sources: &'s [Source], model: &RobotModel) -> Analysis<'s> {
     let constants = constants::Constants::new(model);
     let names = names::Names::new(&constants, &skills);
     let mut units = Vec::new();
-    // Keyed as a skill's table looks them up; a later binding of a name replaces an
-    // earlier one.
-    let mut globals: FxHashMap<String, VarKind> = FxHashMap::default();
-    for (name, kind) in skills.all_binds() {
-        globals.insert(name.to_lowercase(), kind);
-    }
-
     for (i, entry) in files.iter().enumerate() {
         if entry.tree.kind != FileKind::Task || entry.library {
             continue;
@@ -192,7 +205,7 @@ pub fn analyze<'s>(sources: &'s [Source], model: &RobotModel) -> Analysis<'s> {
         let mut unit = Unit {
             file: FileId(i as u32),
             skill: None,
-            vars: Vars::default(),
+            vars: Vars::default().with_detail(detail),
             refs: Vec::new(),
             targets: FxHashMap::default(),
         };
@@ -203,13 +216,25 @@ pub fn analyze<'s>(sources: &'s [Source], model: &RobotModel) -> Analysis<'s> {
             &skills,
             &mut unit,
             &mut diagnostics,
+            detail,
         )
         .blocks(&entry.tree.blocks);
-        globals.reserve(unit.vars.len());
-        for (_, v) in unit.vars.iter() {
-            globals.insert(v.spelling.to_lowercase(), v.kind);
-        }
         units.push(unit);
+    }
+    // Keyed as a skill's table looks them up; a later binding of a name replaces an
+    // earlier one.
+    let skill_binds = skills.all_binds();
+    let mut globals = fold::FoldMap::with_capacity(
+        skill_binds.len() + units.iter().map(|u| u.vars.len()).sum::<usize>(),
+    );
+    let mut buf = String::new();
+    for (name, kind) in skill_binds {
+        globals.insert(constants::key(&name, &mut buf), kind);
+    }
+    for unit in &units {
+        for (key, id) in unit.vars.keys() {
+            globals.insert(key, unit.vars.get(id).kind);
+        }
     }
     let globals = std::rc::Rc::new(globals);
     // Skills of the files given to check first; then the library skills that anything
@@ -242,7 +267,7 @@ pub fn analyze<'s>(sources: &'s [Source], model: &RobotModel) -> Analysis<'s> {
             let mut unit = Unit {
                 file: skill.file,
                 skill: Some(id),
-                vars: Vars::with_globals(globals.clone()),
+                vars: Vars::with_globals(globals.clone()).with_detail(detail),
                 refs: Vec::new(),
                 targets: FxHashMap::default(),
             };
@@ -254,6 +279,7 @@ pub fn analyze<'s>(sources: &'s [Source], model: &RobotModel) -> Analysis<'s> {
                 &skills,
                 &mut unit,
                 &mut diagnostics,
+                detail,
             )
             .blocks(blocks);
             units.push(unit);
@@ -286,12 +312,12 @@ pub fn check_fragment<'n>(
     let skills = skills::Skills::from_names(skill_names);
     let constants = constants::Constants::new(model);
     let names = names::Names::unindexed();
-    let globals = std::rc::Rc::new(
-        globals
-            .into_iter()
-            .map(|(name, kind)| (name.to_lowercase(), kind))
-            .collect::<FxHashMap<_, _>>(),
-    );
+    let mut table = fold::FoldMap::default();
+    let mut buf = String::new();
+    for (name, kind) in globals {
+        table.insert(constants::key(name, &mut buf), kind);
+    }
+    let globals = std::rc::Rc::new(table);
     let mut unit = Unit {
         file,
         skill: None,
@@ -307,6 +333,7 @@ pub fn check_fragment<'n>(
         &skills,
         &mut unit,
         &mut diagnostics,
+        Detail::Full,
     )
     .blocks(&tree.blocks);
     diagnostics.sort_by_key(|d| (d.span.start, d.code));
@@ -315,15 +342,22 @@ pub fn check_fragment<'n>(
 
 /// W0502: a task variable that nothing reads, in the task or in any skill.
 fn unused_variables(files: &[FileEntry<'_>], units: &[Unit], diagnostics: &mut Vec<Diagnostic>) {
-    let skill_reads: std::collections::HashSet<String> = units
-        .iter()
-        .filter(|u| u.skill.is_some())
-        .flat_map(|u| u.vars.iter().filter(|(_, v)| !v.uses.is_empty()))
-        .map(|(_, v)| v.spelling.to_lowercase())
-        .collect();
+    let mut skill_reads = fold::FoldMap::default();
+    for unit in units.iter().filter(|u| u.skill.is_some()) {
+        for (key, id) in unit.vars.keys() {
+            if !unit.vars.get(id).uses.is_empty() {
+                skill_reads.insert(key, ());
+            }
+        }
+    }
+    let mut buf = String::new();
     for unit in units.iter().filter(|u| u.skill.is_none()) {
         for (_, var) in unit.vars.iter() {
-            if var.uses.is_empty() && !skill_reads.contains(&var.spelling.to_lowercase()) {
+            if var.uses.is_empty()
+                && skill_reads
+                    .get(fold::lookup(&var.spelling, &mut buf))
+                    .is_none()
+            {
                 let (file, span) = var.defs[0];
                 if files[file.0 as usize].builtin {
                     continue;
@@ -350,6 +384,8 @@ struct Walker<'a, 'm> {
     skills: &'a skills::Skills,
     unit: &'a mut Unit,
     diagnostics: &'a mut Vec<Diagnostic>,
+    /// Whether to record resolutions and targets beyond what the diagnostics need.
+    full: bool,
     buf: String,
     spare: Vec<Findings>,
 }
@@ -362,6 +398,7 @@ impl<'a, 'm> Walker<'a, 'm> {
         skills: &'a skills::Skills,
         unit: &'a mut Unit,
         diagnostics: &'a mut Vec<Diagnostic>,
+        detail: Detail,
     ) -> Self {
         Walker {
             model,
@@ -370,6 +407,7 @@ impl<'a, 'm> Walker<'a, 'm> {
             skills,
             unit,
             diagnostics,
+            full: detail == Detail::Full,
             buf: String::new(),
             spare: Vec::new(),
         }
@@ -395,9 +433,27 @@ impl<'a, 'm> Walker<'a, 'm> {
         for (id, span) in f.uses.drain(..) {
             self.unit.vars.use_at(id, file, span);
         }
-        self.unit.refs.append(&mut f.refs);
+        if self.full {
+            self.unit.refs.append(&mut f.refs);
+        } else {
+            f.refs.clear();
+        }
         self.diagnostics.append(&mut f.diags);
         self.spare.push(f);
+    }
+
+    fn resolved(&mut self, span: Span, resolved: Resolved) {
+        if self.full {
+            self.unit.refs.push((span, resolved));
+        }
+    }
+
+    /// Skill calls are kept in any detail: which library skills get checked depends on
+    /// them.
+    fn target(&mut self, stmt: Span, target: Target) {
+        if self.full || matches!(target, Target::Skill(_)) {
+            self.unit.targets.insert(stmt, target);
+        }
     }
 
     fn meaning(&mut self, name: &str) -> names::Meaning {
@@ -504,7 +560,7 @@ impl<'a, 'm> Walker<'a, 'm> {
         f.diags.retain(|d| d.code != Code::WrongVariableKind);
         self.absorb(f);
         if let Some(id) = copied {
-            self.unit.targets.insert(stmt, Target::Copy(id));
+            self.target(stmt, Target::Copy(id));
         }
         Some(kind.unwrap_or(VarKind::Number))
     }
@@ -527,9 +583,7 @@ impl<'a, 'm> Walker<'a, 'm> {
                 );
                 return None;
             }
-            self.unit
-                .refs
-                .push((call.name.span, Resolved::Command(command)));
+            self.resolved(call.name.span, Resolved::Command(command));
             let at = call.args.as_ref().map_or(call.name.span, |a| a.span);
             let m = self.cx().match_forms(spec, call.args.as_ref(), at);
             let kind = args::produced(spec, m.form);
@@ -537,7 +591,7 @@ impl<'a, 'm> Walker<'a, 'm> {
             if let Some(name) = m.binds_position {
                 self.bind(&name, VarKind::Position);
             }
-            self.unit.targets.insert(
+            self.target(
                 stmt,
                 Target::Command {
                     command,
@@ -547,7 +601,7 @@ impl<'a, 'm> Walker<'a, 'm> {
             return Some(kind);
         }
         if let Some(id) = meaning.skill {
-            self.unit.refs.push((call.name.span, Resolved::Skill(id)));
+            self.resolved(call.name.span, Resolved::Skill(id));
             if let Some(args) = &call.args {
                 self.diagnostics.push(
                     Diagnostic::new(
@@ -562,7 +616,7 @@ impl<'a, 'm> Walker<'a, 'm> {
             for (name, kind) in self.skills.transitive_binds(id) {
                 self.unit.vars.bind(name, *kind, file, call.name.span);
             }
-            self.unit.targets.insert(stmt, Target::Skill(id));
+            self.target(stmt, Target::Skill(id));
             return Some(VarKind::Status);
         }
         let candidates = Command::all()
@@ -632,6 +686,6 @@ impl<'a, 'm> Walker<'a, 'm> {
             return;
         }
         let id = self.unit.vars.bind(name.text, kind, file, name.span);
-        self.unit.refs.push((name.span, Resolved::Variable(id)));
+        self.resolved(name.span, Resolved::Variable(id));
     }
 }

@@ -4,9 +4,9 @@
 
 use std::rc::Rc;
 
-use rustc_hash::FxHashMap;
+use smallvec::{SmallVec, smallvec};
 
-use crate::check::fold::FoldMap;
+use crate::check::fold::{self, FoldMap};
 
 use ilmr_stdlib::VarKind;
 
@@ -16,13 +16,17 @@ use crate::span::Span;
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub struct VarId(pub u32);
 
+/// Where a variable is bound or read. Most variables are bound once and many are read
+/// once, so one place is kept without an allocation.
+pub type Places = SmallVec<[(FileId, Span); 1]>;
+
 #[derive(Debug, Clone)]
 pub struct Var {
     /// The first spelling, which the formatter writes everywhere.
     pub spelling: String,
     pub kind: VarKind,
-    pub defs: Vec<(FileId, Span)>,
-    pub uses: Vec<(FileId, Span)>,
+    pub defs: Places,
+    pub uses: Places,
 }
 
 #[derive(Debug, Default, Clone)]
@@ -33,32 +37,43 @@ pub struct Vars {
     bound: Vec<bool>,
     /// Variables bound anywhere in the program, which a skill may use: consulted on a
     /// miss rather than copied into every skill's table.
-    globals: Option<Rc<FxHashMap<String, VarKind>>>,
+    globals: Option<Rc<FoldMap<VarKind>>>,
     /// The globals are a running program's: compiled code reads them by kind, so a new
     /// binding cannot change one's kind.
     fixed: bool,
+    /// Keep only a variable's first definition and first use (`Detail::Diagnostics`).
+    first_only: bool,
     key: String,
 }
 
 impl Vars {
     pub fn find(&mut self, name: &str) -> Option<VarId> {
-        if name.is_ascii() {
-            return self.index.get(name).copied();
-        }
-        super::constants::key(name, &mut self.key);
-        self.index.get(&self.key).copied()
+        self.index.get(fold::lookup(name, &mut self.key)).copied()
+    }
+
+    /// Every variable under its lower-cased key, in no particular order.
+    pub(crate) fn keys(&self) -> impl Iterator<Item = (&str, VarId)> {
+        self.index.iter().map(|(key, id)| (key, *id))
     }
 
     /// A table for a skill body, which sees the program's variables as bound.
-    pub fn with_globals(globals: Rc<FxHashMap<String, VarKind>>) -> Vars {
+    pub(crate) fn with_globals(globals: Rc<FoldMap<VarKind>>) -> Vars {
         Vars {
             globals: Some(globals),
             ..Vars::default()
         }
     }
 
+    /// The table keeping what `detail` asks for.
+    pub fn with_detail(self, detail: super::Detail) -> Vars {
+        Vars {
+            first_only: detail == super::Detail::Diagnostics,
+            ..self
+        }
+    }
+
     /// A table for a line joining a running program, whose variables keep their kinds.
-    pub fn with_fixed_globals(globals: Rc<FxHashMap<String, VarKind>>) -> Vars {
+    pub(crate) fn with_fixed_globals(globals: Rc<FoldMap<VarKind>>) -> Vars {
         Vars {
             fixed: true,
             ..Vars::with_globals(globals)
@@ -70,8 +85,8 @@ impl Vars {
         if !self.fixed {
             return None;
         }
-        super::constants::key(name, &mut self.key);
-        self.globals.as_ref()?.get(self.key.as_str()).copied()
+        let globals = self.globals.as_ref()?;
+        globals.get(fold::lookup(name, &mut self.key)).copied()
     }
 
     /// A variable bound before this point of the text (or, in a skill, anywhere).
@@ -80,14 +95,15 @@ impl Vars {
             return Some(id);
         }
         let globals = self.globals.as_ref()?;
-        let kind = *globals.get(super::constants::key(name, &mut self.key))?;
+        let kind = *globals.get(fold::lookup(name, &mut self.key))?;
         let id = VarId(self.vars.len() as u32);
-        self.index.insert(&self.key, id);
+        self.index
+            .insert(super::constants::key(name, &mut self.key), id);
         self.vars.push(Var {
             spelling: name.to_string(),
             kind,
-            defs: Vec::new(),
-            uses: Vec::new(),
+            defs: Places::new(),
+            uses: Places::new(),
         });
         self.bound.push(true);
         Some(id)
@@ -103,8 +119,8 @@ impl Vars {
                 self.vars.push(Var {
                     spelling: name.to_string(),
                     kind,
-                    defs: vec![(file, span)],
-                    uses: Vec::new(),
+                    defs: smallvec![(file, span)],
+                    uses: Places::new(),
                 });
                 self.bound.push(true);
                 return id;
@@ -112,13 +128,18 @@ impl Vars {
         };
         let var = &mut self.vars[id.0 as usize];
         var.kind = kind;
-        var.defs.push((file, span));
+        if !self.first_only || var.defs.is_empty() {
+            var.defs.push((file, span));
+        }
         self.bound[id.0 as usize] = true;
         id
     }
 
     pub fn use_at(&mut self, id: VarId, file: FileId, span: Span) {
-        self.vars[id.0 as usize].uses.push((file, span));
+        let uses = &mut self.vars[id.0 as usize].uses;
+        if !self.first_only || uses.is_empty() {
+            uses.push((file, span));
+        }
     }
 
     pub fn len(&self) -> usize {

@@ -32,7 +32,22 @@ fn reference(source: &str, file: FileId) -> Parsed<'_> {
         builder.line(parsed);
     }
     let (tree, structure) = builder.finish(lexed.comments);
-    finish(tree, [patterns, syntax, structure, unclosed])
+    let break_patterns = tokens
+        .iter()
+        .any(|&(t, span)| t == Token::Break && lexer::break_pattern(source, span).inner.is_some());
+    finish(
+        tree,
+        [patterns, syntax, structure, unclosed],
+        break_patterns,
+    )
+}
+
+/// The line grammar ends every line with a line break; the last line gets one.
+fn with_final_newline(mut tokens: Vec<(Token, Span)>, source: &str) -> Vec<(Token, Span)> {
+    if tokens.last().is_none_or(|(t, _)| *t != Token::Newline) {
+        tokens.push((Token::Newline, Span::empty(source.len())));
+    }
+    tokens
 }
 
 fn assert_agree(source: &str) {
@@ -46,6 +61,15 @@ fn assert_agree(source: &str) {
     assert_eq!(
         fast.diagnostics, slow.diagnostics,
         "diagnostics differ for {source:?}"
+    );
+    assert_eq!(fast.break_patterns, slow.break_patterns);
+    let mut any = false;
+    fast.file.for_each_stmt(&mut |stmt| {
+        any |= matches!(stmt.kind, StmtKind::Break { pattern: Some(_) });
+    });
+    assert!(
+        fast.break_patterns || !any,
+        "a pattern the flag missed in {source:?}"
     );
 }
 

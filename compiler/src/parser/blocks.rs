@@ -30,27 +30,20 @@ struct Frame<'s> {
     opener: Opener<'s>,
     /// The opening line.
     head: Span,
-    blocks: Vec<Block<'s>>,
-    current: Vec<Stmt<'s>>,
+    /// Where this frame's finished blocks and its current block's statements begin in
+    /// the builder's parts: only the top frame grows, so the open frames' parts lie on
+    /// the two stacks in frame order.
+    blocks: usize,
+    stmts: usize,
 }
 
 impl<'s> Frame<'s> {
-    fn new(opener: Opener<'s>, head: Span) -> Self {
+    fn new(opener: Opener<'s>, head: Span, parts: &Parts<'s>) -> Self {
         Frame {
             opener,
             head,
-            blocks: Vec::new(),
-            current: Vec::new(),
-        }
-    }
-
-    fn flush(&mut self) {
-        if let (Some(first), Some(last)) = (self.current.first(), self.current.last()) {
-            let span = first.span.to(last.span);
-            self.blocks.push(Block {
-                stmts: std::mem::take(&mut self.current),
-                span,
-            });
+            blocks: parts.blocks.len(),
+            stmts: parts.stmts.len(),
         }
     }
 
@@ -82,56 +75,108 @@ impl Closer {
     }
 }
 
+/// The statements and blocks of the open frames, which become exact-size slices of the
+/// tree as their frames close: no list in the tree keeps spare room.
+struct Parts<'s> {
+    blocks: Vec<Block<'s>>,
+    stmts: Vec<Stmt<'s>>,
+}
+
+impl<'s> Parts<'s> {
+    /// Ends the current block of the frame whose statements begin at `from`.
+    fn flush(&mut self, from: usize) {
+        if let (Some(first), Some(last)) = (self.stmts.get(from), self.stmts.last()) {
+            let span = first.span.to(last.span);
+            let stmts = self.stmts.drain(from..).collect();
+            self.blocks.push(Block { stmts, span });
+        }
+    }
+
+    /// The finished blocks of the frame whose blocks begin at `from`.
+    fn take_blocks(&mut self, from: usize) -> Box<[Block<'s>]> {
+        self.blocks.drain(from..).collect()
+    }
+}
+
 /// Takes the lines of a file in order, as they are parsed.
 pub struct Builder<'s> {
     file: FileId,
     source: &'s str,
     stack: Vec<Frame<'s>>,
+    parts: Parts<'s>,
     skills: Vec<Skill<'s>>,
     /// Statements before the first skill header, kept as the task's blocks.
-    task_blocks: Option<Vec<Block<'s>>>,
+    task_blocks: Option<Box<[Block<'s>]>>,
     diagnostics: Vec<Diagnostic>,
 }
 
 impl<'s> Builder<'s> {
     pub fn new(source: &'s str, file: FileId) -> Self {
+        let parts = Parts {
+            blocks: Vec::new(),
+            stmts: Vec::new(),
+        };
         Builder {
             file,
             source,
-            stack: vec![Frame::new(Opener::Root, Span::empty(0))],
+            stack: vec![Frame::new(Opener::Root, Span::empty(0), &parts)],
+            parts,
             skills: Vec::new(),
             task_blocks: None,
             diagnostics: Vec::new(),
         }
     }
 
-    fn top(&mut self) -> &mut Frame<'s> {
-        self.stack
-            .last_mut()
-            .expect("the root frame is never popped")
+    fn top(&self) -> &Frame<'s> {
+        self.stack.last().expect("the root frame is never popped")
+    }
+
+    /// Opens a frame above the top one.
+    fn open(&mut self, opener: Opener<'s>, head: Span) {
+        let frame = Frame::new(opener, head, &self.parts);
+        self.stack.push(frame);
+    }
+
+    /// Ends the top frame's current block.
+    fn flush(&mut self) {
+        let from = self.top().stmts;
+        self.parts.flush(from);
+    }
+
+    /// Whether the line that ends at `span` (an empty line's span starts at its line
+    /// break) holds a comment.
+    fn holds_comment(&self, span: Span) -> bool {
+        let end = (span.start as usize).min(self.source.len());
+        let Some(text) = self.source.get(..end) else {
+            return false;
+        };
+        let start = text.rfind('\n').map_or(0, |i| i + 1);
+        text[start..].contains("//")
     }
 
     pub fn line(&mut self, parsed: ParsedLine<'s>) {
         let span = parsed.span;
         match parsed.line {
-            Line::Blank => self.top().flush(),
-            Line::Stmt(kind) => self.top().current.push(Stmt { kind, span }),
-            Line::IfHead { keyword, cond } => self
-                .stack
-                .push(Frame::new(Opener::If { keyword, cond }, span)),
+            // A line with only a comment has no tokens, yet it is not empty: commenting
+            // out a line must not split a block and change what runs concurrently
+            // (docs/language.md).
+            Line::Blank if self.holds_comment(span) => {}
+            Line::Blank => self.flush(),
+            Line::Stmt(kind) => self.parts.stmts.push(Stmt { kind, span }),
+            Line::IfHead { keyword, cond } => self.open(Opener::If { keyword, cond }, span),
             Line::WhileHead {
                 bind,
                 keyword,
                 cond,
-            } => self.stack.push(Frame::new(
+            } => self.open(
                 Opener::While {
                     bind,
                     keyword,
                     cond,
                 },
                 span,
-            )),
-            Line::Check => self.stack.push(Frame::new(Opener::Check, span)),
+            ),
+            Line::Check => self.open(Opener::Check, span),
             Line::EndIf => self.close(Closer::EndIf, span),
             Line::EndWhile => self.close(Closer::EndWhile, span),
             Line::Checkend => self.close(Closer::Checkend, span),
@@ -195,12 +240,10 @@ impl<'s> Builder<'s> {
             }
         }
         if self.task_blocks.is_none() {
-            let root = self.top();
-            root.flush();
-            self.task_blocks = Some(std::mem::take(&mut root.blocks));
+            self.flush();
+            self.task_blocks = Some(self.parts.take_blocks(self.top().blocks));
         }
-        self.stack
-            .push(Frame::new(Opener::Skill { name, header: span }, span));
+        self.open(Opener::Skill { name, header: span }, span);
     }
 
     /// Closes the top frame for lack of its closer, which is taken to stand at `at`.
@@ -236,30 +279,30 @@ impl<'s> Builder<'s> {
     }
 
     fn pop(&mut self, end: Option<Span>) {
-        let mut frame = self.stack.pop().expect("pop above the root");
-        frame.flush();
-        let body = frame.blocks;
+        self.flush();
+        let frame = self.stack.pop().expect("pop above the root");
+        let body = self.parts.take_blocks(frame.blocks);
         let last = body.last().map_or(frame.head, |b| b.span);
         let span = frame.head;
         let kind = match frame.opener {
-            Opener::If { keyword, cond } => StmtKind::If(Conditional {
+            Opener::If { keyword, cond } => StmtKind::If(Box::new(Conditional {
                 keyword,
                 cond,
                 body,
                 end,
-            }),
+            })),
             Opener::While {
                 bind,
                 keyword,
                 cond,
             } => StmtKind::While {
                 bind,
-                body: Conditional {
+                body: Box::new(Conditional {
                     keyword,
                     cond,
                     body,
                     end,
-                },
+                }),
             },
             Opener::Check => StmtKind::Check { body, end },
             Opener::Skill { name, header } => {
@@ -273,7 +316,7 @@ impl<'s> Builder<'s> {
             }
             Opener::Root => unreachable!("the root frame is never popped"),
         };
-        self.top().current.push(Stmt { kind, span });
+        self.parts.stmts.push(Stmt { kind, span });
     }
 
     /// The tree, and the diagnostics of its structure.
@@ -286,11 +329,11 @@ impl<'s> Builder<'s> {
                 self.pop_unclosed(end);
             }
         }
-        let mut root = self.stack.pop().expect("root frame");
-        root.flush();
+        self.flush();
+        let root = self.stack.pop().expect("root frame");
         let (kind, blocks) = match self.task_blocks {
             Some(before_first_skill) => (FileKind::Skills, before_first_skill),
-            None => (FileKind::Task, root.blocks),
+            None => (FileKind::Task, self.parts.take_blocks(root.blocks)),
         };
         if kind == FileKind::Skills
             && let Some(first) = blocks.first().and_then(|b| b.stmts.first())
@@ -314,5 +357,45 @@ impl<'s> Builder<'s> {
             span: Span::new(0, end),
         };
         (tree, self.diagnostics)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::ast::StmtKind;
+    use crate::diagnostic::FileId;
+    use crate::parser::parse;
+
+    /// Statements per top-level block, and per block of the first `if` body found.
+    fn shape(source: &str) -> (Vec<usize>, Vec<usize>) {
+        let parsed = parse(source, FileId(0));
+        assert!(parsed.diagnostics.is_empty(), "{:?}", parsed.diagnostics);
+        let top = parsed.file.blocks.iter().map(|b| b.stmts.len()).collect();
+        let inner = parsed
+            .file
+            .blocks
+            .iter()
+            .flat_map(|b| b.stmts.iter())
+            .find_map(|s| match &s.kind {
+                StmtKind::If(c) => Some(c.body.iter().map(|b| b.stmts.len()).collect()),
+                _ => None,
+            })
+            .unwrap_or_default();
+        (top, inner)
+    }
+
+    #[test]
+    fn a_comment_line_does_not_separate_blocks() {
+        assert_eq!(shape("a=1\n// note\nb=2\n").0, vec![2]);
+        assert_eq!(shape("a=1\n   // note\nb=2").0, vec![2]);
+        assert_eq!(shape("// head\na=1\n\nb=2 // tail\n").0, vec![1, 1]);
+        assert_eq!(shape("a=1 // x\n\nb=2\n// end").0, vec![1, 1]);
+        assert_eq!(shape("a=1\r\n// note\r\nb=2\r\n").0, vec![2]);
+    }
+
+    #[test]
+    fn an_empty_line_separates_blocks_inside_an_if_but_a_comment_line_does_not() {
+        let (_, inner) = shape("if(1)\na=1\n// note\nb=2\n\nc=3\nendif\n");
+        assert_eq!(inner, vec![2, 1]);
     }
 }

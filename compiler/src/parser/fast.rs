@@ -204,7 +204,7 @@ impl<'s> Reader<'_, 's> {
         }
         let close = self.eat(Token::RParen)?;
         Some(Args {
-            items,
+            items: items.into_boxed_slice(),
             span: open.to(close),
             closed: true,
         })

@@ -278,7 +278,7 @@ where
         .ignore_then(arg.separated_by(just(Token::Comma)).collect::<Vec<_>>())
         .then(just(Token::RParen).or_not())
         .map_with(|(items, close), e| Args {
-            items,
+            items: items.into_boxed_slice(),
             span: e.span(),
             closed: close.is_some(),
         })

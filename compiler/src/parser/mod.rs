@@ -19,14 +19,18 @@ use crate::span::Span;
 pub struct Parsed<'s> {
     pub file: SourceFile<'s>,
     pub diagnostics: Vec<Diagnostic>,
+    /// Whether the file has a `break(` with a pattern. When false, no statement of the
+    /// tree is a `Break` with a pattern, and the checker need not look for one.
+    pub break_patterns: bool,
 }
 
 /// Line by line: the hand-written reader takes the lines it recognises, and the chumsky
 /// grammar each line it declines (every broken line among them), so a file costs the
-/// grammar's price only where it is unusual.
+/// grammar's price only where it is unusual. Tokens are read a line at a time into one
+/// reused buffer; the file's tokens are never held at once.
 pub fn parse<'s>(source: &'s str, file: FileId) -> Parsed<'s> {
-    let lexed = lexer::lex(source);
-    let tokens = with_final_newline(lexed.tokens, source);
+    let mut tokens = lexer::Tokens::new(source);
+    let mut line: Vec<(Token, Span)> = Vec::new();
     let mut patterns = Vec::new();
     let mut syntax = Vec::new();
     let mut unclosed = Vec::new();
@@ -40,64 +44,75 @@ pub fn parse<'s>(source: &'s str, file: FileId) -> Parsed<'s> {
     // The grammar spans an empty line from its line break back to the end of the token
     // before (the end of the file when there is none); the reader does the same.
     let mut previous_end = source.len() as u32;
-    let mut start = 0;
-    for (i, &(token, span)) in tokens.iter().enumerate() {
-        match token {
-            Token::Break => patterns.extend(unclosed_pattern(source, span, file)),
-            Token::Newline => {
-                let line = &tokens[start..i];
-                match (line.first(), line.last()) {
-                    (Some(&(_, first)), Some(&(_, last))) => match fast::line(line, source) {
-                        Some(parsed) => emit(ParsedLine {
-                            line: parsed,
-                            span: Span {
-                                start: first.start,
-                                end: last.end,
-                            },
-                        }),
-                        None => {
-                            let (lines, errors) = lines::parse_lines(&tokens[start..=i], source);
-                            syntax.extend(
-                                errors
-                                    .into_iter()
-                                    .map(|e| syntax_diagnostic(e, file, source)),
-                            );
-                            lines.into_iter().for_each(&mut emit);
-                        }
-                    },
-                    _ => emit(ParsedLine {
-                        line: Line::Blank,
-                        span: Span {
-                            start: span.start,
-                            end: previous_end,
-                        },
-                    }),
-                }
-                previous_end = span.end;
-                start = i + 1;
+    let mut ended = false;
+    let mut break_patterns = false;
+    loop {
+        let (token, span) = match tokens.next() {
+            Some(next) => next,
+            None if ended => break,
+            // The line grammar ends every line with a line break; the last line gets one.
+            None => (Token::Newline, Span::empty(source.len())),
+        };
+        ended = token == Token::Newline;
+        if token != Token::Newline {
+            if token == Token::Break {
+                break_patterns |= lexer::break_pattern(source, span).inner.is_some();
+                patterns.extend(unclosed_pattern(source, span, file));
             }
-            _ => {}
+            line.push((token, span));
+            continue;
         }
+        match (line.first(), line.last()) {
+            (Some(&(_, first)), Some(&(_, last))) => match fast::line(&line, source) {
+                Some(parsed) => emit(ParsedLine {
+                    line: parsed,
+                    span: Span {
+                        start: first.start,
+                        end: last.end,
+                    },
+                }),
+                None => {
+                    line.push((token, span));
+                    let (lines, errors) = lines::parse_lines(&line, source);
+                    syntax.extend(
+                        errors
+                            .into_iter()
+                            .map(|e| syntax_diagnostic(e, file, source)),
+                    );
+                    lines.into_iter().for_each(&mut emit);
+                }
+            },
+            _ => emit(ParsedLine {
+                line: Line::Blank,
+                span: Span {
+                    start: span.start,
+                    end: previous_end,
+                },
+            }),
+        }
+        previous_end = span.end;
+        line.clear();
     }
-    let (tree, structure) = builder.finish(lexed.comments);
-    finish(tree, [patterns, syntax, structure, unclosed])
-}
-
-/// The line grammar ends every line with a line break; the last line gets one.
-fn with_final_newline(mut tokens: Vec<(Token, Span)>, source: &str) -> Vec<(Token, Span)> {
-    if tokens.last().is_none_or(|(t, _)| *t != Token::Newline) {
-        tokens.push((Token::Newline, Span::empty(source.len())));
-    }
-    tokens
+    let (tree, structure) = builder.finish(tokens.comments);
+    finish(
+        tree,
+        [patterns, syntax, structure, unclosed],
+        break_patterns,
+    )
 }
 
 /// Diagnostics in source order; those at one place keep the order of their kinds.
-fn finish<'s>(tree: SourceFile<'s>, kinds: [Vec<Diagnostic>; 4]) -> Parsed<'s> {
+fn finish<'s>(
+    tree: SourceFile<'s>,
+    kinds: [Vec<Diagnostic>; 4],
+    break_patterns: bool,
+) -> Parsed<'s> {
     let mut diagnostics: Vec<Diagnostic> = kinds.into_iter().flatten().collect();
     diagnostics.sort_by_key(|d| (d.span.start, d.code));
     Parsed {
         file: tree,
         diagnostics,
+        break_patterns,
     }
 }
 

@@ -96,7 +96,7 @@ pub struct Vm<H: Hal, C: Clock> {
     /// From the frame of the robot's estimate to the known map's, moved by `locate`.
     map_from_estimate: ilmr_hal::Pose,
     /// The known map's surfaces as points (map frame), for the reversing check.
-    known_points: Vec<(f64, f64)>,
+    known: safety::known::KnownSurface,
     /// The movement mode the last completed `movemode` set.
     move_mode: Option<crate::bytecode::NameId>,
     /// `movemode` operations in progress and the mode each asks for.
@@ -148,10 +148,7 @@ impl<H: Hal, C: Clock> Vm<H, C> {
     pub fn new(module: Module, mut hal: H, clock: C, config: Config) -> Result<Vm<H, C>, VmError> {
         module.validate().map_err(VmError::Module)?;
         let known_map = hal.known_map();
-        let known_points = known_map
-            .as_ref()
-            .map(safety::frame::surface_points)
-            .unwrap_or_default();
+        let known = safety::known::KnownSurface::new(known_map.as_ref());
         let mut nodes = Nodes::default();
         let root = nodes.alloc(NONE, NONE, NONE, Kind::Root).idx;
         let lower = module.stmts.iter().map(|s| s.text.to_lowercase()).collect();
@@ -186,7 +183,7 @@ impl<H: Hal, C: Clock> Vm<H, C> {
             supervisor: Default::default(),
             known_map,
             map_from_estimate: ilmr_hal::Pose::default(),
-            known_points,
+            known,
             move_mode: None,
             mode_ops: Vec::new(),
             end_code: None,

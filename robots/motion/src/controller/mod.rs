@@ -36,15 +36,29 @@ pub struct ControllerParams {
     /// Seconds of travel always looked ahead, on top of the time the
     /// steering needs to reach the reference curvature.
     pub lookahead_time: f64,
+    /// Shortest look-ahead in turning radii (1 / `max_curvature`), m per m.
+    /// Over a look-ahead L the best of eq. (5)'s constant-curvature arcs
+    /// for a lateral offset e lies about 2e/L² from the reference
+    /// curvature, so a look-ahead short beside the turning radius turns
+    /// every few centimetres of pose noise into a swing of the steering.
+    /// On an arc at the robot's maximum curvature the heading such a swing
+    /// loses is never made up: Workpartner (4 m radius) at 0.6 m answered
+    /// a navigation fix 2.7 cm inside the arc by straightening from 0.25 to
+    /// -0.03 1/m, and ended `turn(d=90,c=0.25)` 0.23 m outside it (test 1).
+    pub min_lookahead_radii: f64,
 }
 
 impl ControllerParams {
     /// Defaults: one second of travel plus the steering time, at least
-    /// 0.6 m; 1-2 m at the test speeds, as in Figure 32. Longer look-aheads
-    /// average the constant-curvature predictions over more of a bend and
-    /// cut the entry and exit of turns more (measured in the closed-loop
-    /// tests: 2.5 s instead of 1 s raised MoRo's worst deviation on
-    /// `turn(d=90,c=0.6)` from 0.04 to 0.09 m).
+    /// 0.6 m and at least half the turning radius; 1-2 m at the test
+    /// speeds, as in Figure 32. Longer look-aheads average the
+    /// constant-curvature predictions over more of a bend and cut the entry
+    /// and exit of turns more (measured in the closed-loop tests: 2.5 s
+    /// instead of 1 s raised MoRo's worst deviation on `turn(d=90,c=0.6)`
+    /// from 0.04 to 0.09 m). Half a radius is 0.375 m on MoRo, so its 0.6 m
+    /// stands; on Workpartner it is 2 m, which took `turn(d=90,c=0.25)`
+    /// over 20 seeds at each of 0.2-0.4 m/s from 0.516 m to 0.108 m at worst
+    /// (a whole radius, 3 m: 0.106 m, but it is the longest look-ahead).
     pub fn new(max_curvature: f64, curvature_rate: f64, dt: f64) -> Self {
         ControllerParams {
             max_curvature,
@@ -53,6 +67,7 @@ impl ControllerParams {
             min_lookahead: 0.6,
             max_lookahead: 3.0,
             lookahead_time: 1.0,
+            min_lookahead_radii: 0.5,
         }
     }
 
@@ -66,6 +81,8 @@ impl ControllerParams {
             && self.max_lookahead >= self.min_lookahead
             && self.lookahead_time.is_finite()
             && self.lookahead_time >= 0.0
+            && self.min_lookahead_radii.is_finite()
+            && self.min_lookahead_radii >= 0.0
         {
             Ok(())
         } else {
@@ -79,7 +96,15 @@ impl ControllerParams {
     /// path asks for, the earlier the controller has to see it.
     pub fn lookahead(&self, speed: f64, curvature_gap: f64) -> f64 {
         let t = self.lookahead_time + curvature_gap.abs() / self.curvature_rate;
-        (speed.abs() * t).clamp(self.min_lookahead, self.max_lookahead)
+        (speed.abs() * t).clamp(self.shortest_lookahead(), self.max_lookahead)
+    }
+
+    /// The larger of `min_lookahead` and `min_lookahead_radii` turning
+    /// radii, never beyond `max_lookahead`.
+    pub fn shortest_lookahead(&self) -> f64 {
+        (self.min_lookahead_radii / self.max_curvature)
+            .max(self.min_lookahead)
+            .min(self.max_lookahead)
     }
 }
 
@@ -389,6 +414,24 @@ mod tests {
         assert_eq!(p.lookahead(0.0, 0.0), p.min_lookahead);
         assert!(p.lookahead(0.8, 0.6) > p.lookahead(0.8, 0.0));
         assert_eq!(p.lookahead(5.0, 1.0), p.max_lookahead);
+    }
+
+    #[test]
+    fn a_wide_turning_robot_looks_half_its_radius_ahead() {
+        // Workpartner: 4 m radius, so 2 m even when crawling.
+        let wide = ControllerParams::new(0.25, 0.8, 0.01);
+        assert!((wide.lookahead(0.0, 0.0) - 2.0).abs() < 1e-12);
+        assert!((wide.lookahead(0.4, 0.25) - 2.0).abs() < 1e-12);
+        assert_eq!(wide.lookahead(3.0, 0.0), wide.max_lookahead);
+        // Never beyond the longest look-ahead, however wide the radius.
+        let wider = ControllerParams::new(0.1, 0.8, 0.01);
+        assert_eq!(wider.shortest_lookahead(), wider.max_lookahead);
+        // MoRo's radius (0.75 m) leaves its 0.6 m as it was.
+        let moro = ControllerParams::new(1.333333, 2.0, 0.01);
+        assert_eq!(moro.shortest_lookahead(), moro.min_lookahead);
+        let mut bad = moro;
+        bad.min_lookahead_radii = -1.0;
+        assert!(bad.validate().is_err());
     }
 
     #[test]

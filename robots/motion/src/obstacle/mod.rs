@@ -4,10 +4,14 @@
 //! map); keeping that map is the caller's job.
 
 mod area;
+mod bounds;
+mod grid;
 mod side;
 mod state;
 
-pub use area::{AreaParams, CheckArea, Hit, check_length, check_width, route_turn};
+pub use area::{AreaParams, AreaTester, CheckArea, Hit, check_length, check_width, route_turn};
+pub use bounds::Bounds;
+pub use grid::{PointGrid, grid_of};
 pub use side::{Detour, SideParams, corridor_is_free, detour_path, find_free_side};
 pub use state::{AvoidMode, AvoidParams, AvoidState, Avoider, Decision, Observation};
 
@@ -20,9 +24,15 @@ pub const MAP_KEEP_BEHIND: f64 = 3.0;
 /// Drops the map points that lie more than `MAP_KEEP_BEHIND` metres behind
 /// the robot, keeping the order of the rest.
 pub fn prune_map(points: &[Point2<f64>], pose: &Pose) -> Vec<Point2<f64>> {
+    // `pose.to_local(p).x`, with the heading's sine and cosine once.
+    let (s, c) = pose.h.sin_cos();
+    let o = pose.position();
     points
         .iter()
-        .filter(|p| pose.to_local(p).x >= -MAP_KEEP_BEHIND)
+        .filter(|p| {
+            let d = *p - o;
+            c * d.x + s * d.y >= -MAP_KEEP_BEHIND
+        })
         .copied()
         .collect()
 }

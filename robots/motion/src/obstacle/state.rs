@@ -4,6 +4,7 @@
 //! NORMAL after a security wait; plus BLOCKED, where the robot stands.
 
 use super::area::{AreaParams, CheckArea, check_length, route_turn};
+use super::grid::PointGrid;
 use super::side::{Detour, SideParams, corridor_is_free, detour_path, find_free_side};
 use crate::path::{Direction, Path};
 use crate::pose::Pose;
@@ -171,6 +172,26 @@ impl Avoider {
 
     /// One cycle of the state machine.
     pub fn step(&mut self, obs: &Observation<'_>) -> Decision<'_> {
+        self.step_among(obs, None)
+    }
+
+    /// As `step`, with `grid` an index of `obs.points`: the checked area
+    /// visits only the points near it. The same decisions as `step`.
+    pub fn step_indexed(&mut self, obs: &Observation<'_>, grid: &PointGrid) -> Decision<'_> {
+        self.step_among(obs, Some(grid))
+    }
+
+    fn step_among(&mut self, obs: &Observation<'_>, grid: Option<&PointGrid>) -> Decision<'_> {
+        if self.mode == AvoidMode::Off {
+            // Avoidance off looks at nothing: the area is not worked out.
+            self.reset();
+            return Decision {
+                state: AvoidState::Normal,
+                obs_control: false,
+                halt: false,
+                detour: None,
+            };
+        }
         let travel = match obs.direction {
             Direction::Forward => obs.pose,
             Direction::Backward => obs.pose.flipped(),
@@ -192,7 +213,10 @@ impl Avoider {
             &self.params.area,
             max_turn,
         );
-        let hits = area.hits(obs.points);
+        let hits = match grid {
+            Some(g) => area.hits_near(obs.points, g),
+            None => area.hits(obs.points),
+        };
         let next = match (self.mode, self.state) {
             (AvoidMode::Off, _) => {
                 self.reset();

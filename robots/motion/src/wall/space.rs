@@ -2,11 +2,11 @@
 //! checked" (section 4.5.3).
 
 use crate::arc::Arc;
-use crate::obstacle::check_width;
+use crate::obstacle::{Bounds, check_width};
 use crate::path::{Path, segment_distance};
 use crate::pose::{Pose, Side};
 use nalgebra::Point2;
-use std::f64::consts::FRAC_PI_2;
+use std::f64::consts::{FRAC_PI_2, FRAC_PI_4};
 
 /// True when no map point lies within `half_width` of the path.
 pub fn path_is_free(path: &Path, points: &[Point2<f64>], half_width: f64) -> bool {
@@ -42,14 +42,77 @@ pub fn turn_space_free(
     let end = arc.end();
     let beyond = end.advance(lead_out.max(0.0), 0.0).position();
     let clearance = 0.5 * check_width(robot_width) + margin;
+    // Every point of a quarter circle lies within its sagitta of the chord:
+    // a point outside this box is further than the clearance from both, and
+    // is passed over without the arc's trigonometry.
+    let sagitta = (1.0 - FRAC_PI_4.cos()) / curvature;
+    let near = Bounds::around(
+        &[(pose.x, pose.y), (end.x, end.y), (beyond.x, beyond.y)],
+        clearance + sagitta,
+    );
     points.iter().all(|p| {
-        arc.distance_to(p) > clearance && segment_distance(p, &end.position(), &beyond) > clearance
+        near.excludes((p.x, p.y))
+            || (arc.distance_to(p) > clearance
+                && segment_distance(p, &end.position(), &beyond) > clearance)
     })
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn passing_over_far_points_changes_no_answer() {
+        // The check over every point with the arc's own distances, as it was
+        // before far points were passed over.
+        let every_point = |pose: &Pose, side: Side, c: f64, lead_out: f64, pts: &[Point2<f64>]| {
+            let arc = Arc {
+                start: *pose,
+                curvature: side.sign() * c,
+                length: FRAC_PI_2 / c,
+            };
+            let end = arc.end();
+            let beyond = end.advance(lead_out, 0.0).position();
+            let clearance = 0.5 * check_width(0.6) + 0.1;
+            pts.iter().all(|p| {
+                arc.distance_to(p) > clearance
+                    && segment_distance(p, &end.position(), &beyond) > clearance
+            })
+        };
+        let mut state = 5u64;
+        let mut next = move || {
+            state = state
+                .wrapping_mul(6_364_136_223_846_793_005)
+                .wrapping_add(1);
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let (mut free, mut blocked) = (0, 0);
+        for round in 0..3000 {
+            let pose = Pose::new(4.0 * next() - 2.0, 4.0 * next() - 2.0, 7.0 * next() - 3.5);
+            let side = if round % 2 == 0 {
+                Side::Left
+            } else {
+                Side::Right
+            };
+            let c = [1.0, 0.25, 1.0 / 0.75][round % 3];
+            let lead_out = [0.0, 1.5][round % 2];
+            // A few points, most a little way off the arc's band.
+            let pts: Vec<Point2<f64>> = (0..6)
+                .map(|_| Point2::new(pose.x + 10.0 * next() - 5.0, pose.y + 10.0 * next() - 5.0))
+                .collect();
+            let want = every_point(&pose, side, c, lead_out, &pts);
+            assert_eq!(
+                turn_space_free(&pose, side, c, 0.6, 0.1, lead_out, &pts),
+                want,
+                "round {round}"
+            );
+            if want { free += 1 } else { blocked += 1 }
+        }
+        assert!(
+            free > 300 && blocked > 300,
+            "{free} free, {blocked} blocked"
+        );
+    }
 
     /// A corridor 2 m wide along x with its left wall ending at x = 4 (a
     /// corner to the left).

@@ -2,9 +2,11 @@
 //! boxes), exact ray casting and overlap tests, and the scene that holds every
 //! solid of a world.
 
+mod fan;
 mod scene;
 mod shapes;
 
+pub use fan::Fan;
 pub use scene::{Hit, Scene, Solid, SolidRef};
 pub use shapes::{Circle, Obb, Shape};
 

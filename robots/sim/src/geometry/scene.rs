@@ -1,6 +1,7 @@
 //! Every solid of a world in one flat list, for ray casting and collision.
 //! The list is small (tens of solids), so a bounding-circle reject in front of
-//! the exact test is faster than a spatial index; see the crate's benchmark.
+//! the exact test serves a single ray; a scan's fan of beams first sorts the
+//! solids by direction (`fan.rs`).
 
 use super::{Obb, Shape, Vec2};
 use serde::{Deserialize, Serialize};
@@ -66,9 +67,21 @@ impl Scene {
     /// Ties go to the solid listed first, so results never depend on anything
     /// but the scene's order.
     pub fn ray(&self, origin: Vec2, dir: Vec2, max_range: f64) -> Option<Hit> {
+        self.ray_among(origin, dir, max_range, 0..self.solids.len())
+    }
+
+    /// As `ray`, over the solids `among` (indices into `solids()`, ascending)
+    /// only.
+    pub fn ray_among(
+        &self,
+        origin: Vec2,
+        dir: Vec2,
+        max_range: f64,
+        among: impl Iterator<Item = usize>,
+    ) -> Option<Hit> {
         let mut best: Option<Hit> = None;
         let mut limit = max_range;
-        for s in &self.solids {
+        for s in among.filter_map(|j| self.solids.get(j)) {
             if !s.active {
                 continue;
             }

@@ -32,14 +32,17 @@ fn side_of(bearing: f64) -> Side {
 /// Camera detections whose colour names a model object (`user yellow 30`),
 /// placed where the scanner measures something on the camera's bearing.
 /// A detection the scanner does not confirm is left out, as Figure 33 does.
+/// The scan's points are worked out only for a frame that has such a
+/// detection: most frames have none, and this runs every tick.
 pub fn camera_objects(
     model: &RobotModel,
     frame: &CameraFrame,
     eye: Vec2,
     pose: Pose,
-    points: &[(usize, Vec2)],
+    scan: &Scan,
     out: &mut Vec<Detection>,
 ) {
+    let mut points: Option<Vec<(usize, Vec2)>> = None;
     for d in &frame.detections {
         let colour = format!("{:?}", d.colour);
         let Some(object) = model.objects.iter().find(|o| {
@@ -52,6 +55,7 @@ pub fn camera_objects(
         let bearing = pose.h + d.bearing;
         let half = (d.angular_size / 2.0).max(1f64.to_radians());
         let nearest = points
+            .get_or_insert_with(|| scan_points(scan, pose))
             .iter()
             .filter(|(_, p)| {
                 let to = *p - eye;

@@ -9,6 +9,7 @@ mod detect;
 mod doors;
 mod known_map;
 mod model;
+mod objects;
 mod ops;
 
 pub use model::config_from_model;
@@ -39,7 +40,7 @@ pub struct SimRobot {
     actuators: Vec<(String, f64)>,
     /// Speed and curvature last asked for; a brake holds the speed at 0.
     setpoint: (f64, f64),
-    /// Sequence number of the last scan searched for doors.
+    /// Sequence number of the last scan searched for doors and objects.
     seen_scan: u64,
     /// Operations whose answer a silent manipulator lost: they never complete.
     lost_ops: Vec<OpId>,
@@ -259,22 +260,16 @@ impl Hal for SimRobot {
         out.detections.clear();
         if let Some(scan) = &seen.scan {
             let stamp = SimPose::new(p.x, p.y, p.h);
-            // A door is reported once, when the scan that shows it arrives.
+            // Doors and objects are reported once, when the scan that shows them arrives.
             if scan.seq != self.seen_scan {
                 self.seen_scan = scan.seq;
                 doors::doors(&self.model, scan, stamp, &mut out.detections);
+                objects::objects(&self.model, scan, stamp, &mut out.detections);
             }
             if let (Some(frame), Some(cam)) = (&seen.camera, &self.sim.config().camera) {
-                let points = detect::scan_points(scan, stamp);
                 let eye = stamp.transform(cam.head);
-                detect::camera_objects(
-                    &self.model,
-                    frame,
-                    eye,
-                    stamp,
-                    &points,
-                    &mut out.detections,
-                );
+                let found = &mut out.detections;
+                detect::camera_objects(&self.model, frame, eye, stamp, scan, found);
             }
         }
         if let (Some(frame), Some(cam)) = (&seen.camera, &self.sim.config().camera) {

@@ -36,11 +36,12 @@ pub fn cast_scan(scene: &Scene, cfg: &ScannerConfig, robot: Pose) -> Vec<f64> {
     let origin = robot.transform(cfg.mount);
     let fov = cfg.fov_deg.to_radians();
     let inc = fov / (cfg.readings - 1) as f64;
+    let first = robot.h - fov / 2.0;
+    let fan = scene.fan(origin, first, inc, cfg.readings, cfg.max_range);
     (0..cfg.readings)
         .map(|i| {
-            let dir = crate::geometry::Vec2::from_angle(robot.h - fov / 2.0 + i as f64 * inc);
-            scene
-                .ray(origin, dir, cfg.max_range)
+            let dir = crate::geometry::Vec2::from_angle(first + i as f64 * inc);
+            fan.ray(scene, i, origin, dir, cfg.max_range)
                 .map_or(cfg.max_range, |h| h.distance)
         })
         .collect()

@@ -104,16 +104,19 @@ impl<H: Hal, C: Clock> Vm<H, C> {
         }
         let direction = run.path.points()[run.path.clamp_index(run.k)].direction;
 
-        let decision = avoider.step(&Observation {
-            pose,
-            direction,
-            curvature: c_now,
-            speed: v_now,
-            reference: &run.path,
-            k: run.k,
-            points: map.points(),
-            dt,
-        });
+        let decision = avoider.step_indexed(
+            &Observation {
+                pose,
+                direction,
+                curvature: c_now,
+                speed: v_now,
+                reference: &run.path,
+                k: run.k,
+                points: map.points(),
+                dt,
+            },
+            map.grid(),
+        );
         let (halt, obs_control) = (decision.halt, decision.obs_control);
         let avoid_state = decision.state;
         match decision.detour {

@@ -4,34 +4,33 @@
 //! robot standing in front of a wall does not pile up a point per beam per
 //! scan.
 
-use std::collections::BTreeMap;
-use std::f64::consts::TAU;
-
 use ilmr_hal::Scan;
 use ilmr_motion::Pose;
-use ilmr_motion::obstacle::prune_map;
+use ilmr_motion::obstacle::{Bounds, PointGrid, prune_map};
 use nalgebra::Point2;
+
+use super::cells::Cells;
+use super::forget::SeenThrough;
 
 /// Returns further away than this are not mapped: the checked area, the wall
 /// fit and the turn check all look within a few metres.
 pub(crate) const MAP_RANGE: f64 = 8.0;
 /// Closer than this is the scanner's own housing.
-const MIN_RANGE: f64 = 0.05;
-const CELL: f64 = 0.05;
-/// A beam must reach this far past a mapped point to clear it: well above the
-/// scanner's noise.
-const SEEN_THROUGH: f64 = 0.15;
+pub(crate) const MIN_RANGE: f64 = 0.05;
+
+/// Side of the index's cells, m: a checked area a few metres long covers a
+/// few hundred of them, and a cell holds a handful of points.
+pub(crate) const GRID_CELL: f64 = 0.25;
 
 #[derive(Debug, Clone, Default, PartialEq)]
 pub(crate) struct EnvMap {
     points: Vec<Point2<f64>>,
-    cells: BTreeMap<(i64, i64), usize>,
+    cells: Cells,
+    /// `points` by place, rebuilt whenever a scan is taken in.
+    grid: PointGrid,
+
     /// Time stamp of the last scan taken in.
     last_scan: Option<f64>,
-}
-
-fn cell(p: &Point2<f64>) -> (i64, i64) {
-    ((p.x / CELL).floor() as i64, (p.y / CELL).floor() as i64)
 }
 
 impl EnvMap {
@@ -39,9 +38,26 @@ impl EnvMap {
         &self.points
     }
 
+    /// An index of `points()`.
+    pub fn grid(&self) -> &PointGrid {
+        &self.grid
+    }
+
+    /// Into `out` (cleared first), each once and in no set order: the index of
+    /// every point inside `b`, and some near it.
+    pub fn near(&self, b: &Bounds, out: &mut Vec<usize>) {
+        if self.grid.len() == self.points.len() {
+            self.grid.within(b, out);
+        } else {
+            out.clear();
+            out.extend(0..self.points.len());
+        }
+    }
+
     pub fn clear(&mut self) {
         self.points.clear();
         self.cells.clear();
+        self.grid = PointGrid::default();
     }
 
     /// Takes in `scan` if it is new: `pose` is where the robot was when it
@@ -66,10 +82,10 @@ impl EnvMap {
             if !(p.x.is_finite() && p.y.is_finite()) {
                 continue;
             }
-            match self.cells.get(&cell(&p)) {
-                Some(&j) => self.points[j] = p,
+            match self.cells.get(&p) {
+                Some(j) => self.points[j] = p,
                 None => {
-                    self.cells.insert(cell(&p), self.points.len());
+                    self.cells.insert(&p, self.points.len());
                     self.points.push(p);
                 }
             }
@@ -77,55 +93,23 @@ impl EnvMap {
         let kept = prune_map(&self.points, pose);
         if kept.len() != self.points.len() {
             self.points = kept;
-            self.reindex();
+            self.cells.rebuild(&self.points);
         }
+        self.grid.rebuild(GRID_CELL, &self.points, |p| (p.x, p.y));
         true
-    }
-
-    fn reindex(&mut self) {
-        self.cells.clear();
-        for (i, p) in self.points.iter().enumerate() {
-            self.cells.insert(cell(p), i);
-        }
     }
 
     /// Drops the points that the beams of `scan` pass through: an obstacle that
     /// has gone (a person who walked on, a box taken away) must stop holding the
-    /// robot. A point goes only when the beam nearest its bearing and both
-    /// neighbours reach past it by `SEEN_THROUGH`, so that the edge of a thing
-    /// and a wall seen at a grazing angle stay.
+    /// robot (the rule is in `forget.rs`).
     fn forget_seen_through(&mut self, scan: &Scan, origin: &Point2<f64>, heading: f64) {
-        let n = scan.ranges.len();
-        if n < 3 || !(scan.angle_step.is_finite() && scan.angle_step > 0.0) {
+        let Some(rule) = SeenThrough::new(scan, *origin, heading) else {
             return;
-        }
-        // No return within range means free space as far as the map looks.
-        let reach = |i: usize| {
-            let r = scan.ranges[i];
-            if r.is_nan() || r < MIN_RANGE {
-                0.0
-            } else {
-                r.min(MAP_RANGE)
-            }
         };
         let before = self.points.len();
-        self.points.retain(|p| {
-            let (dx, dy) = (p.x - origin.x, p.y - origin.y);
-            let d = dx.hypot(dy);
-            if d >= MAP_RANGE {
-                return true;
-            }
-            let bearing = (dy.atan2(dx) - heading - scan.angle_min).rem_euclid(TAU);
-            let beam = (bearing / scan.angle_step).round();
-            if !(1.0..(n - 1) as f64).contains(&beam) {
-                return true;
-            }
-            let i = beam as usize;
-            let nearest = reach(i - 1).min(reach(i)).min(reach(i + 1));
-            nearest < d + SEEN_THROUGH
-        });
+        self.points.retain(|p| rule.keeps(p));
         if self.points.len() != before {
-            self.reindex();
+            self.cells.rebuild(&self.points);
         }
     }
 }

@@ -7,7 +7,9 @@
 //! robot's snapshot and the environmental map.
 
 mod behave;
+mod cells;
 mod drive;
+mod forget;
 mod halt;
 mod map;
 mod plan;
@@ -224,6 +226,11 @@ impl Motion {
     /// The environmental map's points, world coordinates.
     pub fn map_points(&self) -> &[Point2<f64>] {
         self.map.points()
+    }
+
+    /// The environmental map, for queries near a place.
+    pub fn map(&self) -> &map::EnvMap {
+        &self.map
     }
 
     /// The speed magnitude commanded last tick, m/s.

@@ -5,10 +5,55 @@
 
 use ilmr_hal::Pose;
 
+/// A rigid transform with its sine and cosine worked out once, for carrying
+/// many points: `apply` gives bit for bit the position `compose` gives.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Rigid {
+    x: f64,
+    y: f64,
+    s: f64,
+    c: f64,
+}
+
+impl Rigid {
+    pub fn new(p: Pose) -> Rigid {
+        let (s, c) = p.h.sin_cos();
+        Rigid {
+            x: p.x,
+            y: p.y,
+            s,
+            c,
+        }
+    }
+
+    /// The sine and cosine of the turn.
+    pub fn sin_cos(&self) -> (f64, f64) {
+        (self.s, self.c)
+    }
+
+    /// The point `p`, given in the transform's frame, in its parent.
+    pub fn apply(&self, p: (f64, f64)) -> (f64, f64) {
+        (
+            self.x + self.c * p.0 - self.s * p.1,
+            self.y + self.s * p.0 + self.c * p.1,
+        )
+    }
+
+    /// From the known map's frame to the estimate's.
+    pub fn from_map(map_from_estimate: Pose) -> Rigid {
+        Rigid::new(inverse(map_from_estimate))
+    }
+
+    /// From the estimate's frame to the known map's.
+    pub fn to_map(map_from_estimate: Pose) -> Rigid {
+        Rigid::new(map_from_estimate)
+    }
+}
+
 /// `a` then `b`: the pose `b`, given in the frame `a`, expressed in `a`'s parent.
 fn compose(a: Pose, b: Pose) -> Pose {
-    let (s, c) = a.h.sin_cos();
-    Pose::new(a.x + c * b.x - s * b.y, a.y + s * b.x + c * b.y, a.h + b.h)
+    let (x, y) = Rigid::new(a).apply((b.x, b.y));
+    Pose::new(x, y, a.h + b.h)
 }
 
 fn inverse(p: Pose) -> Pose {
@@ -21,12 +66,6 @@ fn inverse(p: Pose) -> Pose {
 /// place of the map.
 pub(crate) fn relocated(map_from_estimate: Pose, before: Pose, after: Pose) -> Pose {
     compose(compose(map_from_estimate, before), inverse(after))
-}
-
-/// A point of the map's frame in the estimate's frame.
-pub(crate) fn from_map(map_from_estimate: Pose, p: (f64, f64)) -> (f64, f64) {
-    let q = compose(inverse(map_from_estimate), Pose::new(p.0, p.1, 0.0));
-    (q.x, q.y)
 }
 
 /// Points on the surfaces of the known map's solids, `SPACING` apart, in the
@@ -69,8 +108,7 @@ pub(crate) fn surface_points(map: &ilmr_hal::KnownMap) -> Vec<(f64, f64)> {
 }
 
 pub(crate) fn to_map(map_from_estimate: Pose, p: (f64, f64)) -> (f64, f64) {
-    let q = compose(map_from_estimate, Pose::new(p.0, p.1, 0.0));
-    (q.x, q.y)
+    Rigid::to_map(map_from_estimate).apply(p)
 }
 
 #[cfg(test)]
@@ -100,7 +138,7 @@ mod tests {
         // A second locate composes with the first.
         let t2 = relocated(t, Pose::new(1.0, 0.0, 0.0), Pose::new(10.0, 10.0, 0.0));
         assert!(close(to_map(t2, (10.0, 10.0)), (8.0, 6.0)));
-        assert!(close(from_map(t2, (8.0, 6.0)), (10.0, 10.0)));
+        assert!(close(Rigid::from_map(t2).apply((8.0, 6.0)), (10.0, 10.0)));
     }
 
     #[test]

@@ -5,6 +5,7 @@
 
 pub mod codes;
 pub(crate) mod frame;
+pub(crate) mod known;
 mod refuse;
 pub(crate) mod supervisor;
 mod sweep;

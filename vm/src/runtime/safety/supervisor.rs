@@ -8,6 +8,7 @@
 use ilmr_hal::{Hal, Pose};
 use ilmr_motion::obstacle::{AreaParams, AvoidMode, CheckArea, route_turn};
 use ilmr_motion::{Direction, controller::braking_distance};
+use nalgebra::Point2;
 
 use super::codes::{FAULTS, Fault, Reaction};
 use super::{frame, sweep};
@@ -67,6 +68,27 @@ pub(crate) struct Supervisor {
     pub relocated: bool,
     /// An update or snapshot call failed this tick.
     pub link_failed: bool,
+    scratch: Scratch,
+}
+
+/// Buffers of the obstacle checks, kept between ticks so that a steady tick
+/// does not allocate for them.
+#[derive(Debug, Clone, Default, PartialEq)]
+struct Scratch {
+    /// Indices of candidate points.
+    near: Vec<usize>,
+    /// Known-map points near the robot, in the estimate's frame, with their
+    /// indices.
+    known: Vec<(usize, Point2<f64>)>,
+    /// Hits of the checked area: (index, distance along it).
+    hits: Vec<(usize, f64)>,
+}
+
+/// The nearest of `hits`, folded in index order as a scan of every point
+/// would: a minimum over 0.0 and -0.0 depends on the order.
+fn nearest(hits: &mut [(usize, f64)]) -> f64 {
+    hits.sort_unstable_by_key(|h| h.0);
+    hits.iter().map(|h| h.1).fold(f64::INFINITY, f64::min)
 }
 
 fn slot(f: Fault) -> usize {
@@ -210,6 +232,12 @@ impl<H: Hal, C: Clock> Vm<H, C> {
     /// the braking distance plus `stop_margin`. Obstacles are the mapped scan
     /// points and, where the robot has a site plan, the known map's walls.
     fn check_obstacle(&mut self) {
+        let mut scratch = std::mem::take(&mut self.supervisor.scratch);
+        self.check_obstacle_with(&mut scratch);
+        self.supervisor.scratch = scratch;
+    }
+
+    fn check_obstacle_with(&mut self, scratch: &mut Scratch) {
         let Some(margin) = self.cfg.safety.stop_margin else {
             return;
         };
@@ -231,7 +259,11 @@ impl<H: Hal, C: Clock> Vm<H, C> {
         } else {
             braking_distance(v, decel) + margin
         };
-        let swept = self.swept_contact(direction, needed.max(braking_distance(v, decel) + margin));
+        let swept = self.swept_contact(
+            direction,
+            needed.max(braking_distance(v, decel) + margin),
+            scratch,
+        );
         if self.motion.avoid_mode() != AvoidMode::Off && !blind {
             // The avoider steers round what it sees; the sweep catches it failing.
             self.set_fault(Fault::ObstacleNear, swept < needed, || {
@@ -261,28 +293,8 @@ impl<H: Hal, C: Clock> Vm<H, C> {
             .map_or(f64::INFINITY, |(path, k)| {
                 route_turn(path, k, &travel, direction.sign() * c, 3.0)
             });
-        let area = CheckArea::turning_at_most(&pose, direction, c, v, &params, turn);
-        let scanned = self
-            .motion
-            .map_points()
-            .iter()
-            .enumerate()
-            .filter_map(|(i, p)| area.hit(i, p))
-            .map(|h| h.s)
-            .fold(f64::INFINITY, f64::min);
-        let reach = KNOWN_MAP_REACH + v * v / (2.0 * self.cfg.deceleration.max(1e-6));
-        // Near the robot first, in the map's frame (a distance is the same in
-        // both), so that only the few points left are carried over.
-        let here = frame::to_map(self.map_from_estimate, (self.snap.pose.x, self.snap.pose.y));
-        let planned = self
-            .known_points
-            .iter()
-            .filter(|q| (q.0 - here.0).powi(2) + (q.1 - here.1).powi(2) < reach * reach)
-            .map(|&q| frame::from_map(self.map_from_estimate, q))
-            .enumerate()
-            .filter_map(|(i, p)| area.hit(i, &nalgebra::Point2::new(p.0, p.1)))
-            .map(|h| h.s)
-            .fold(f64::INFINITY, f64::min);
+        let (scanned, planned) =
+            self.area_obstacles(&pose, direction, c, v, turn, &params, scratch);
         let nearest = scanned.min(planned).min(swept);
         self.set_fault(Fault::ObstacleNear, nearest < needed, || {
             format!(
@@ -291,10 +303,62 @@ impl<H: Hal, C: Clock> Vm<H, C> {
         });
     }
 
+    /// The nearest scanned and known-map obstacles in the checked area of a
+    /// robot at `pose` moving in `direction` at curvature `c` and speed `v`,
+    /// bent no further than `turn`.
+    #[allow(clippy::too_many_arguments)]
+    fn area_obstacles(
+        &self,
+        pose: &ilmr_motion::Pose,
+        direction: Direction,
+        c: f64,
+        v: f64,
+        turn: f64,
+        params: &AreaParams,
+        scratch: &mut Scratch,
+    ) -> (f64, f64) {
+        let area = CheckArea::turning_at_most(pose, direction, c, v, params, turn);
+        // Only the points near the area: the same hits as over every point.
+        let tester = area.tester();
+        let region = tester.bounds();
+        let map = self.motion.map();
+        map.near(&region, &mut scratch.near);
+        let points = map.points();
+        scratch.hits.clear();
+        scratch.hits.extend(
+            scratch
+                .near
+                .iter()
+                .filter_map(|&i| tester.hit(i, &points[i]))
+                .map(|h| (h.index, h.s)),
+        );
+        let scanned = nearest(&mut scratch.hits);
+        let reach = KNOWN_MAP_REACH + v * v / (2.0 * self.cfg.deceleration.max(1e-6));
+        let here = frame::to_map(self.map_from_estimate, (self.snap.pose.x, self.snap.pose.y));
+        self.known.near(
+            self.map_from_estimate,
+            here,
+            reach,
+            &region,
+            &mut scratch.near,
+            &mut scratch.known,
+        );
+        scratch.hits.clear();
+        scratch.hits.extend(
+            scratch
+                .known
+                .iter()
+                .filter_map(|(i, p)| tester.hit(*i, p))
+                .map(|h| (h.index, h.s)),
+        );
+        let planned = nearest(&mut scratch.hits);
+        (scanned, planned)
+    }
+
     /// How far the robot can drive along its commanded arc, up to `distance`,
     /// before its outline meets a mapped point (or, reversing, a wall of the
     /// known map); infinity when it meets none.
-    fn swept_contact(&self, direction: Direction, distance: f64) -> f64 {
+    fn swept_contact(&self, direction: Direction, distance: f64, scratch: &mut Scratch) -> f64 {
         let footprint = sweep::Footprint {
             front: self.cfg.front_offset,
             rear: (self.cfg.robot_length - self.cfg.front_offset).max(0.0),
@@ -303,36 +367,40 @@ impl<H: Hal, C: Clock> Vm<H, C> {
         let p = self.snap.pose;
         let sign = direction.sign();
         let c = self.motion.commanded_curvature();
-        let scanned = footprint.first_contact(
-            (p.x, p.y, p.h),
-            sign,
-            c,
-            distance,
-            self.motion.map_points().iter().copied(),
-        );
-        if direction != Direction::Backward || self.known_points.is_empty() {
+        // Over a positive distance the first contact is a minimum over points
+        // of travels that are never 0, whatever order the points come in;
+        // otherwise they go in index order, as a scan of every point would.
+        let in_order = distance.is_nan() || distance <= 0.0;
+        let ahead = footprint.sweep((p.x, p.y, p.h), sign, c, distance);
+        let map = self.motion.map();
+        map.near(&ahead.bounds(), &mut scratch.near);
+        if in_order {
+            scratch.near.sort_unstable();
+        }
+        let points = map.points();
+        let scanned = ahead.first_contact(scratch.near.iter().map(|&i| points[i]));
+        if direction != Direction::Backward || self.known.is_empty() {
             return scanned;
         }
         let here = frame::to_map(self.map_from_estimate, (p.x, p.y));
         let reach = KNOWN_MAP_REACH + distance;
-        let known = self
-            .known_points
-            .iter()
-            .filter(|q| (q.0 - here.0).powi(2) + (q.1 - here.1).powi(2) < reach * reach)
-            .map(|&q| {
-                let e = frame::from_map(self.map_from_estimate, q);
-                nalgebra::Point2::new(e.0, e.1)
-            });
+        let clear = footprint.sweep((p.x, p.y, p.h), sign, c, distance + REVERSE_CLEARANCE);
+        self.known.near(
+            self.map_from_estimate,
+            here,
+            reach,
+            &clear.bounds(),
+            &mut scratch.near,
+            &mut scratch.known,
+        );
+        if in_order {
+            scratch.known.sort_unstable_by_key(|k| k.0);
+        }
         // The walls are placed by the pose estimate, which dead reckoning may
         // have carried off (a biased odometer); nothing behind the robot can
         // correct it, so it keeps this much further from them.
-        let planned = footprint.first_contact(
-            (p.x, p.y, p.h),
-            sign,
-            c,
-            distance + REVERSE_CLEARANCE,
-            known,
-        ) - REVERSE_CLEARANCE;
+        let planned =
+            clear.first_contact(scratch.known.iter().map(|(_, p)| *p)) - REVERSE_CLEARANCE;
         scanned.min(planned.max(0.0))
     }
 

@@ -6,6 +6,7 @@
 //! holds the robot when a point would enter the swept rectangle within its
 //! braking distance plus the margin, whatever obstacle avoidance is doing.
 
+use ilmr_motion::obstacle::Bounds;
 use nalgebra::Point2;
 
 /// The robot's outline around its reference point, metres.
@@ -22,6 +23,23 @@ pub(crate) struct Footprint {
 const STEP: f64 = 0.05;
 /// Points this close outside the outline already count as touching, metres.
 const SKIN: f64 = 0.05;
+/// Rounding allowance of the distance bounds that skip poses, metres.
+const SLACK: f64 = 1e-6;
+
+/// One sweep of a footprint along an arc, its poses worked out once: the box
+/// that holds every point it can meet, and the first contact.
+pub(crate) struct Sweep {
+    footprint: Footprint,
+    pose: (f64, f64, f64),
+    reach: f64,
+    /// (travel, x, y, sin h, cos h): the trigonometry once per pose, not
+    /// once per pose and point.
+    poses: Vec<(f64, f64, f64, f64, f64)>,
+    /// How far a point of the outline moves from one pose to the next, and
+    /// whether poses may be skipped by it.
+    drift: f64,
+    skips: bool,
+}
 
 impl Footprint {
     fn holds(&self, local: (f64, f64)) -> bool {
@@ -30,12 +48,51 @@ impl Footprint {
             && local.1.abs() <= self.half_width + SKIN
     }
 
-    /// The travel, metres, after which the first of `points` would be inside
-    /// the outline of a robot at `(x, y, h)` driving `distance` metres along
-    /// curvature `c` (1/m) in direction `sign` (+1 forwards, -1 backwards);
-    /// infinity when none is. Points inside the outline already are skipped:
-    /// holding the robot cannot keep it off them, and it must be free to drive
-    /// away.
+    /// The outline, skin included, in the robot's frame: (lo, hi).
+    fn outline(&self) -> ((f64, f64), (f64, f64)) {
+        let y = self.half_width + SKIN;
+        ((-self.rear - SKIN, -y), (self.front + SKIN, y))
+    }
+
+    /// How far from the start pose, along either axis, a sweep over
+    /// `distance` metres looks: points further off are skipped.
+    pub fn reach(&self, distance: f64) -> f64 {
+        distance + self.front.max(self.rear).hypot(self.half_width) + SKIN
+    }
+
+    /// The robot at `(x, y, h)` driving `distance` metres along curvature `c`
+    /// (1/m) in direction `sign` (+1 forwards, -1 backwards).
+    pub fn sweep(&self, pose: (f64, f64, f64), sign: f64, c: f64, distance: f64) -> Sweep {
+        let steps = (distance / STEP).ceil().max(1.0) as usize;
+        let poses = (0..=steps)
+            .map(|i| {
+                let d = distance * i as f64 / steps as f64;
+                let (x, y, h) = along(pose, sign * d, c);
+                let (s, co) = h.sin_cos();
+                (d, x, y, s, co)
+            })
+            .collect();
+        // From one pose to the next the outline moves no point of itself
+        // further than the step along the arc plus the turn at its farthest
+        // corner. Poses are skipped only along a positive distance, where
+        // travel grows with the pose and skipping cannot pass over the stop
+        // at the first contact found so far.
+        let (lo, hi) = self.outline();
+        let corner = lo.0.abs().max(hi.0.abs()).hypot(hi.1);
+        let step = distance / steps as f64;
+        let drift = step * (1.0 + c.abs() * corner);
+        Sweep {
+            footprint: *self,
+            pose,
+            reach: self.reach(distance),
+            poses,
+            drift,
+            skips: step > 0.0 && drift.is_finite(),
+        }
+    }
+
+    /// `sweep(..).first_contact(points)`.
+    #[cfg(test)]
     pub fn first_contact(
         &self,
         pose: (f64, f64, f64),
@@ -44,38 +101,68 @@ impl Footprint {
         distance: f64,
         points: impl Iterator<Item = Point2<f64>>,
     ) -> f64 {
-        let reach = distance + self.front.max(self.rear).hypot(self.half_width) + SKIN;
-        let steps = (distance / STEP).ceil().max(1.0) as usize;
-        // (travel, x, y, sin h, cos h): the trigonometry once per pose, not
-        // once per pose and point.
-        let poses: Vec<(f64, f64, f64, f64, f64)> = (0..=steps)
-            .map(|i| {
-                let d = distance * i as f64 / steps as f64;
-                let (x, y, h) = along(pose, sign * d, c);
-                let (s, co) = h.sin_cos();
-                (d, x, y, s, co)
-            })
-            .collect();
+        self.sweep(pose, sign, c, distance).first_contact(points)
+    }
+}
+
+impl Sweep {
+    /// A box that holds every point the sweep can meet: the outline at every
+    /// pose, within the reach.
+    pub fn bounds(&self) -> Bounds {
+        let (x, y, _) = self.pose;
+        let reach = Bounds::square((x, y), self.reach);
+        let outline = self.footprint.outline();
+        let swept = self
+            .poses
+            .iter()
+            .map(|&(_, x, y, s, c)| Bounds::turned((x, y), (s, c), outline.0, outline.1))
+            .reduce(|a, b| a.or(&b));
+        swept.map_or(reach, |b| b.and(&reach))
+    }
+
+    /// The travel, metres, after which the first of `points` would be inside
+    /// the outline; infinity when none is. Points inside the outline already
+    /// are skipped: holding the robot cannot keep it off them, and it must be
+    /// free to drive away.
+    pub fn first_contact(&self, points: impl Iterator<Item = Point2<f64>>) -> f64 {
+        let (x0, y0, _) = self.pose;
+        let (lo, hi) = self.footprint.outline();
         let mut first = f64::INFINITY;
         for p in points {
-            if (p.x - pose.0).abs() > reach || (p.y - pose.1).abs() > reach {
+            if (p.x - x0).abs() > self.reach || (p.y - y0).abs() > self.reach {
                 continue;
             }
             let mut inside_now = true;
-            for &(d, x, y, s, co) in &poses {
+            let mut i = 0;
+            while let Some(&(d, x, y, s, co)) = self.poses.get(i) {
                 if d >= first {
                     break;
                 }
                 let (dx, dy) = (p.x - x, p.y - y);
                 let local = (co * dx + s * dy, -s * dx + co * dy);
-                let hit = self.holds(local);
+                let hit = self.footprint.holds(local);
                 if d == 0.0 {
                     inside_now = hit;
-                    continue;
-                }
-                if hit && !inside_now {
+                    if hit {
+                        // Inside already, it never counts: only another pose
+                        // at travel 0 could say otherwise, and that one
+                        // records nothing either.
+                        break;
+                    }
+                } else if hit && !inside_now {
                     first = d;
                     break;
+                }
+                i += 1;
+                if self.skips && !hit {
+                    // `gap` outside the outline now: not inside it for
+                    // `gap / drift` poses. Truncation rounds the count down,
+                    // never past a pose the point could be inside.
+                    let ex = (lo.0 - local.0).max(local.0 - hi.0).max(0.0);
+                    let ey = (local.1.abs() - hi.1).max(0.0);
+                    let gap = (ex * ex + ey * ey).sqrt() - SLACK;
+                    let more = (gap / self.drift) as usize;
+                    i += more.saturating_sub(1);
                 }
             }
         }
@@ -148,6 +235,104 @@ mod tests {
         assert!(band_miss > 0.0);
         let d = MORO.first_contact((0.0, 0.0, 0.0), 1.0, c, 2.0, [corner].into_iter());
         assert!(d.is_finite(), "the sweep meets the corner");
+    }
+
+    /// The sweep as it was before poses were skipped: every pose of every
+    /// point within reach.
+    fn every_pose(
+        f: &Footprint,
+        pose: (f64, f64, f64),
+        sign: f64,
+        c: f64,
+        distance: f64,
+        points: &[Point2<f64>],
+    ) -> f64 {
+        let reach = f.reach(distance);
+        let steps = (distance / STEP).ceil().max(1.0) as usize;
+        let mut first = f64::INFINITY;
+        for p in points {
+            if (p.x - pose.0).abs() > reach || (p.y - pose.1).abs() > reach {
+                continue;
+            }
+            let mut inside_now = true;
+            for i in 0..=steps {
+                let d = distance * i as f64 / steps as f64;
+                if d >= first {
+                    break;
+                }
+                let (x, y, h) = along(pose, sign * d, c);
+                let (s, co) = h.sin_cos();
+                let (dx, dy) = (p.x - x, p.y - y);
+                let hit = f.holds((co * dx + s * dy, -s * dx + co * dy));
+                if d == 0.0 {
+                    inside_now = hit;
+                    continue;
+                }
+                if hit && !inside_now {
+                    first = d;
+                    break;
+                }
+            }
+        }
+        first
+    }
+
+    #[test]
+    fn skipping_poses_meets_the_same_first_contact() {
+        // splitmix64
+        let mut state = 17u64;
+        let mut next = move || {
+            state = state.wrapping_add(0x9E37_79B9_7F4A_7C15);
+            let mut z = state;
+            z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+            z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+            ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let mut met = 0;
+        for round in 0..2000 {
+            let f = Footprint {
+                front: 0.2 + 1.2 * next(),
+                rear: 0.6 * next(),
+                half_width: 0.15 + 0.5 * next(),
+            };
+            let pose = (4.0 * next() - 2.0, 4.0 * next() - 2.0, 7.0 * next() - 3.5);
+            let sign = if next() < 0.3 { -1.0 } else { 1.0 };
+            let c = if next() < 0.3 {
+                0.0
+            } else {
+                3.0 * next() - 1.5
+            };
+            let distance = match round % 5 {
+                0 => 0.0,
+                1 => -0.4 * next(),
+                _ => 2.5 * next(),
+            };
+            // Half of them close round the robot, where poses are skipped
+            // by a few at a time.
+            let points: Vec<Point2<f64>> = (0..40)
+                .map(|i| {
+                    let r = if i % 2 == 0 { 4.0 } else { 1.5 };
+                    Point2::new(
+                        pose.0 + r * (2.0 * next() - 1.0),
+                        pose.1 + r * (2.0 * next() - 1.0),
+                    )
+                })
+                .collect();
+            let want = every_pose(&f, pose, sign, c, distance, &points);
+            let sweep = f.sweep(pose, sign, c, distance);
+            let got = sweep.first_contact(points.iter().copied());
+            assert_eq!(got.to_bits(), want.to_bits(), "round {round}");
+            // Only the points in the box: the same contact.
+            let b = sweep.bounds();
+            let inside = points.iter().copied().filter(|p| b.contains((p.x, p.y)));
+            assert_eq!(
+                sweep.first_contact(inside).to_bits(),
+                want.to_bits(),
+                "round {round}"
+            );
+            met += usize::from(want.is_finite());
+        }
+        assert!(met > 300, "contacts met: {met}");
     }
 
     #[test]

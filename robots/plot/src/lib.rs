@@ -1,63 +1,41 @@
-//! `--plot OUT.svg`: a run drawn the way the dissertation's Figures 46-59 are. On top
-//! the map: the world's walls and obstacles, scanner hits as dots, reference paths
-//! dashed, the true trajectory solid, and where each movement command started (circle)
-//! and ended (cross), labelled with its source line. Below, speed and curvature over
+//! Runs drawn the way the dissertation's Figures 46-59 are. On top the map: the worlds'
+//! walls and obstacles, scanner hits as dots, reference paths dashed, the true
+//! trajectories solid, and where each movement command started (circle) and ended
+//! (cross), labelled with its source line. Below, when asked, speed and curvature over
 //! time (Figure 54).
+//!
+//! A [`Figure`] is what is drawn; `ilmrc run --plot` and `ilmrc replay` make one from a
+//! trace ([`RunRecord`], [`render_svg`]), the experiments (`ilmr-experiments`) from
+//! several runs at once.
 //!
 //! Drawn with plotters' SVG backend and no font library: text becomes SVG `<text>`
 //! elements the viewer renders, so nothing depends on the fonts of the machine that
 //! draws.
 
 mod data;
+mod figure;
 mod map;
+mod render;
 mod series;
 
-pub use data::RunRecord;
+pub use data::{At, Header, Mark, RefPath, RunRecord, Sample};
+pub use figure::{Colour, Corner, Figure, Reference, Scenery, Track};
+pub use render::WIDTH;
 
 use std::path::Path;
 
-use plotters::prelude::*;
+/// A run's figure as SVG text.
+pub fn render_svg(record: &RunRecord) -> Result<String, String> {
+    Figure::of_run(record)?.to_svg()
+}
 
-/// Width of the figure, pixels.
-pub const WIDTH: u32 = 1000;
-/// Height of each time-series panel, pixels.
-const SERIES_HEIGHT: u32 = 220;
+/// A run's figure written to `path`.
+pub fn write_svg(record: &RunRecord, path: &Path) -> Result<(), String> {
+    Figure::of_run(record)?.write_svg(path)
+}
 
 fn err(e: impl std::fmt::Debug) -> String {
     format!("cannot draw the plot: {e:?}")
-}
-
-/// The figure as SVG text.
-pub fn render_svg(record: &RunRecord) -> Result<String, String> {
-    let world = record.world()?;
-    let view = map::View::fit(record, world.as_ref());
-    let map_height = view.panel_height(WIDTH);
-    let height = map_height + 2 * SERIES_HEIGHT;
-    let mut svg = String::new();
-    {
-        let root = SVGBackend::with_string(&mut svg, (WIDTH, height)).into_drawing_area();
-        root.fill(&WHITE).map_err(err)?;
-        let (top, bottom) = root.split_vertically(map_height);
-        map::draw(&top, record, world.as_ref(), &view)?;
-        let (speed, curvature) = bottom.split_vertically(SERIES_HEIGHT);
-        series::draw(&speed, record, series::Quantity::Speed)?;
-        series::draw(&curvature, record, series::Quantity::Curvature)?;
-        root.present().map_err(err)?;
-    }
-    Ok(svg)
-}
-
-pub fn write_svg(record: &RunRecord, path: &Path) -> Result<(), String> {
-    let svg = render_svg(record)?;
-    std::fs::write(path, svg).map_err(|e| format!("cannot write plot `{}`: {e}", path.display()))
-}
-
-/// The figure's title: the task, and the robot, world and seed when the trace says.
-fn title(record: &RunRecord) -> String {
-    match &record.header {
-        Some(h) => format!("{}: {} in {}, seed {}", h.task, h.robot, h.world, h.seed),
-        None => "ILMR run".to_string(),
-    }
 }
 
 #[cfg(test)]

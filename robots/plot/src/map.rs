@@ -1,13 +1,14 @@
-//! The map panel: world, scanner hits, reference paths, trajectory and command marks,
-//! at one scale on both axes.
+//! The map panel: worlds, scanner hits, reference paths, trajectories and command
+//! marks, at one scale on both axes.
 
 use ilmr_sim::World;
 use ilmr_sim::geometry::Shape;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
-use super::data::{At, RunRecord};
-use super::err;
+use crate::data::At;
+use crate::err;
+use crate::figure::{Colour, Corner, Figure};
 
 /// Room left round what the robot did, metres.
 const MARGIN: f64 = 2.0;
@@ -24,10 +25,12 @@ const TITLE: u32 = 30;
 const WALL: RGBColor = RGBColor(90, 90, 90);
 const OBSTACLE: RGBColor = RGBColor(150, 150, 150);
 const HIT: RGBColor = RGBColor(200, 40, 40);
-const TRUE_PATH: RGBColor = RGBColor(20, 60, 170);
-const REFERENCE: RGBColor = RGBColor(40, 40, 40);
 const START: RGBColor = RGBColor(0, 130, 60);
 const END: RGBColor = RGBColor(190, 90, 0);
+
+fn rgb(c: Colour) -> RGBColor {
+    RGBColor(c.0, c.1, c.2)
+}
 
 /// The part of the world shown, metres.
 pub struct View {
@@ -48,26 +51,32 @@ fn widen(range: (f64, f64), span: f64) -> (f64, f64) {
 }
 
 impl View {
-    /// Round the trajectory, the marks and the reference paths; the whole world when
-    /// there is none of them.
-    pub fn fit(record: &RunRecord, world: Option<&World>) -> View {
-        let done = record
-            .poses
+    /// Round the trajectories, the marks and the reference paths, within the worlds'
+    /// bounds; the whole of the worlds when there is none of them.
+    pub fn fit(figure: &Figure) -> View {
+        let done = figure
+            .tracks
             .iter()
-            .map(|p| (p.x, p.y))
-            .chain(record.marks.iter().map(|m| (m.x, m.y)))
-            .chain(record.refs.iter().flat_map(|r| r.points.iter().copied()));
-        let (mut x, mut y) = match (bbox(done), world) {
+            .flat_map(|t| t.samples.iter().map(|p| (p.x, p.y)))
+            .chain(figure.marks.iter().map(|m| (m.x, m.y)))
+            .chain(
+                figure
+                    .references
+                    .iter()
+                    .flat_map(|r| r.points.iter().copied()),
+            );
+        let bounds = bbox(figure.scenery.iter().flat_map(|s| {
+            let b = &s.world.bounds;
+            [(b.min.x, b.min.y), (b.max.x, b.max.y)]
+        }));
+        let (mut x, mut y) = match (bbox(done), bounds) {
             (Some((x, y)), _) => ((x.0 - MARGIN, x.1 + MARGIN), (y.0 - MARGIN, y.1 + MARGIN)),
-            (None, Some(w)) => (
-                (w.bounds.min.x, w.bounds.max.x),
-                (w.bounds.min.y, w.bounds.max.y),
-            ),
+            (None, Some(b)) => b,
             (None, None) => ((-1.0, 1.0), (-1.0, 1.0)),
         };
-        if let Some(w) = world {
-            x = (x.0.max(w.bounds.min.x), x.1.min(w.bounds.max.x));
-            y = (y.0.max(w.bounds.min.y), y.1.min(w.bounds.max.y));
+        if let Some((bx, by)) = bounds {
+            x = (x.0.max(bx.0), x.1.min(bx.1));
+            y = (y.0.max(by.0), y.1.min(by.1));
         }
         x = widen(x, (x.1 - x.0).max(MIN_SPAN));
         y = widen(y, (y.1 - y.0).max(MIN_SPAN));
@@ -98,12 +107,11 @@ fn v(p: ilmr_sim::Vec2) -> (f64, f64) {
 
 pub fn draw<DB: DrawingBackend>(
     area: &DrawingArea<DB, Shift>,
-    record: &RunRecord,
-    world: Option<&World>,
+    figure: &Figure,
     view: &View,
 ) -> Result<(), String> {
     area.draw_text(
-        &super::title(record),
+        &figure.title,
         &("sans-serif", 18).into_font().color(&BLACK),
         (PAD as i32 + Y_LABELS as i32, PAD as i32),
     )
@@ -124,54 +132,87 @@ pub fn draw<DB: DrawingBackend>(
         .draw()
         .map_err(err)?;
 
-    if let Some(w) = world {
-        draw_world(&mut chart, w)?;
+    for s in &figure.scenery {
+        draw_world(&mut chart, &s.world, s.tint.map(rgb))?;
     }
-    chart
-        .draw_series(
-            record
-                .hits
-                .iter()
-                .filter(|(x, y)| {
-                    (view.x.0..=view.x.1).contains(x) && (view.y.0..=view.y.1).contains(y)
-                })
-                .map(|&p| Circle::new(p, 1, HIT.filled())),
-        )
-        .map_err(err)?
-        .label("scanner hits")
-        .legend(|(x, y)| Circle::new((x + 10, y), 2, HIT.filled()));
-    for (i, r) in record.refs.iter().enumerate() {
+    if !figure.hits.is_empty() {
+        chart
+            .draw_series(
+                figure
+                    .hits
+                    .iter()
+                    .filter(|(x, y)| {
+                        (view.x.0..=view.x.1).contains(x) && (view.y.0..=view.y.1).contains(y)
+                    })
+                    .map(|&p| Circle::new(p, 1, HIT.filled())),
+            )
+            .map_err(err)?
+            .label("scanner hits")
+            .legend(|(x, y)| Circle::new((x + 10, y), 2, HIT.filled()));
+    }
+    let mut legend = Legend::default();
+    for r in &figure.references {
+        let colour = rgb(r.colour);
         let series = chart
             .draw_series(DashedLineSeries::new(
                 r.points.iter().copied(),
                 8,
                 5,
-                REFERENCE.stroke_width(1),
+                colour.stroke_width(1),
             ))
             .map_err(err)?;
-        if i == 0 {
-            series
-                .label("reference path")
-                .legend(|(x, y)| PathElement::new([(x, y), (x + 8, y)], REFERENCE.stroke_width(1)));
+        if let Some(label) = legend.first(&r.label) {
+            series.label(label).legend(move |(x, y)| {
+                PathElement::new([(x, y), (x + 8, y)], colour.stroke_width(1))
+            });
         }
     }
-    chart
-        .draw_series(LineSeries::new(
-            record.poses.iter().map(|p| (p.x, p.y)),
-            TRUE_PATH.stroke_width(2),
-        ))
-        .map_err(err)?
-        .label("true trajectory")
-        .legend(|(x, y)| PathElement::new([(x, y), (x + 20, y)], TRUE_PATH.stroke_width(2)));
-    draw_marks(&mut chart, record)?;
+    for t in &figure.tracks {
+        let colour = rgb(t.colour);
+        let series = chart
+            .draw_series(LineSeries::new(
+                t.samples.iter().map(|p| (p.x, p.y)),
+                colour.stroke_width(2),
+            ))
+            .map_err(err)?;
+        if let Some(label) = legend.first(&t.label) {
+            series.label(label).legend(move |(x, y)| {
+                PathElement::new([(x, y), (x + 20, y)], colour.stroke_width(2))
+            });
+        }
+    }
+    if !figure.marks.is_empty() {
+        draw_marks(&mut chart, figure)?;
+    }
     chart
         .configure_series_labels()
         .background_style(WHITE.mix(0.85))
         .border_style(RGBColor(180, 180, 180))
-        .position(SeriesLabelPosition::UpperRight)
+        .position(match figure.legend {
+            Corner::UpperLeft => SeriesLabelPosition::UpperLeft,
+            Corner::UpperRight => SeriesLabelPosition::UpperRight,
+            Corner::LowerLeft => SeriesLabelPosition::LowerLeft,
+            Corner::LowerRight => SeriesLabelPosition::LowerRight,
+        })
         .draw()
         .map_err(err)?;
     Ok(())
+}
+
+/// The labels already in the legend: paths that share a label (the trials of one
+/// sweep) get one entry.
+#[derive(Default)]
+struct Legend(Vec<String>);
+
+impl Legend {
+    fn first(&mut self, label: &Option<String>) -> Option<String> {
+        let label = label.as_ref()?;
+        if self.0.contains(label) {
+            return None;
+        }
+        self.0.push(label.clone());
+        Some(label.clone())
+    }
 }
 
 type Chart<'a, DB> = ChartContext<
@@ -180,12 +221,19 @@ type Chart<'a, DB> = ChartContext<
     Cartesian2d<plotters::coord::types::RangedCoordf64, plotters::coord::types::RangedCoordf64>,
 >;
 
-fn draw_world<DB: DrawingBackend>(chart: &mut Chart<'_, DB>, w: &World) -> Result<(), String> {
+/// Walls, obstacles and boxes filled, targets and the charger outlined; all in `tint`
+/// when given.
+fn draw_world<DB: DrawingBackend>(
+    chart: &mut Chart<'_, DB>,
+    w: &World,
+    tint: Option<RGBColor>,
+) -> Result<(), String> {
+    let (wall_colour, obstacle) = tint.map_or((WALL, OBSTACLE), |t| (t, t));
     let mut solids: Vec<(Vec<(f64, f64)>, RGBColor)> = Vec::new();
     for wall in &w.walls {
         for &(a, b) in &wall.pieces {
             let obb = ilmr_sim::geometry::Obb::from_segment(a, b, wall.thickness);
-            solids.push((obb.corners().iter().map(|c| v(*c)).collect(), WALL));
+            solids.push((obb.corners().iter().map(|c| v(*c)).collect(), wall_colour));
         }
     }
     for o in &w.obstacles {
@@ -193,10 +241,10 @@ fn draw_world<DB: DrawingBackend>(chart: &mut Chart<'_, DB>, w: &World) -> Resul
             Shape::Box(b) => b.corners().iter().map(|c| v(*c)).collect(),
             Shape::Circle(c) => circle(v(c.center), c.radius),
         };
-        solids.push((outline, OBSTACLE));
+        solids.push((outline, obstacle));
     }
     for b in &w.pickup_boxes {
-        solids.push((b.shape.corners().iter().map(|c| v(*c)).collect(), OBSTACLE));
+        solids.push((b.shape.corners().iter().map(|c| v(*c)).collect(), obstacle));
     }
     chart
         .draw_series(solids.into_iter().map(|(p, c)| Polygon::new(p, c.filled())))
@@ -212,7 +260,7 @@ fn draw_world<DB: DrawingBackend>(chart: &mut Chart<'_, DB>, w: &World) -> Resul
         chart
             .draw_series(std::iter::once(PathElement::new(
                 closed,
-                OBSTACLE.stroke_width(1),
+                obstacle.stroke_width(1),
             )))
             .map_err(err)?;
     }
@@ -233,11 +281,11 @@ fn circle(c: (f64, f64), r: f64) -> Vec<(f64, f64)> {
 /// the next one's start) stays readable.
 fn draw_marks<DB: DrawingBackend>(
     chart: &mut Chart<'_, DB>,
-    record: &RunRecord,
+    figure: &Figure,
 ) -> Result<(), String> {
     let font = ("sans-serif", 13).into_font();
-    let starts = record.marks.iter().filter(|m| m.at == At::Start);
-    let ends = record
+    let starts = figure.marks.iter().filter(|m| m.at == At::Start);
+    let ends = figure
         .marks
         .iter()
         .filter(|m| m.at == At::End && m.how.as_deref() != Some("refused"));

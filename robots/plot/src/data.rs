@@ -1,4 +1,4 @@
-//! What a plot is drawn from, read back from trace lines: the `run` header, `pose`
+//! What a run's plot is drawn from, read back from trace lines: the `run` header, `pose`
 //! samples, `scan` hits, `mark`s and reference paths (the VM's `path` events). Other events are skipped,
 //! so any trace of `ilmrc run` reads; one of a robot without a world draws without one.
 

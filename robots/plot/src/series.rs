@@ -1,13 +1,13 @@
-//! Speed and curvature over time (Figure 54), from the trace's pose samples, with a
-//! tick on the time axis where each movement command started.
+//! Speed and curvature over time (Figure 54), from the tracks' samples, with a tick on
+//! the time axis where each movement command started.
 
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
-use super::data::{At, RunRecord};
-use super::err;
+use crate::data::{At, Sample};
+use crate::err;
+use crate::figure::Figure;
 
-const LINE: RGBColor = RGBColor(20, 60, 170);
 const START: RGBColor = RGBColor(0, 130, 60);
 
 #[derive(Debug, Clone, Copy)]
@@ -24,7 +24,7 @@ impl Quantity {
         }
     }
 
-    fn of(self, s: &super::data::Sample) -> f64 {
+    fn of(self, s: &Sample) -> f64 {
         match self {
             Quantity::Speed => s.v,
             Quantity::Curvature => s.c,
@@ -34,13 +34,12 @@ impl Quantity {
 
 pub fn draw<DB: DrawingBackend>(
     area: &DrawingArea<DB, Shift>,
-    record: &RunRecord,
+    figure: &Figure,
     q: Quantity,
 ) -> Result<(), String> {
-    let t_end = record.poses.last().map_or(1.0, |p| p.t).max(1.0);
-    let (lo, hi) = record
-        .poses
-        .iter()
+    let samples = || figure.tracks.iter().flat_map(|t| t.samples.iter());
+    let t_end = samples().map(|p| p.t).fold(1.0, f64::max);
+    let (lo, hi) = samples()
         .map(|s| q.of(s))
         .fold((0.0f64, 0.0f64), |(lo, hi), v| (lo.min(v), hi.max(v)));
     let pad = ((hi - lo) * 0.1).max(0.05);
@@ -59,18 +58,21 @@ pub fn draw<DB: DrawingBackend>(
         .draw()
         .map_err(err)?;
     chart
-        .draw_series(record.marks.iter().filter(|m| m.at == At::Start).map(|m| {
+        .draw_series(figure.marks.iter().filter(|m| m.at == At::Start).map(|m| {
             PathElement::new(
                 [(m.t, lo - pad), (m.t, hi + pad)],
                 START.mix(0.35).stroke_width(1),
             )
         }))
         .map_err(err)?;
-    chart
-        .draw_series(LineSeries::new(
-            record.poses.iter().map(|s| (s.t, q.of(s))),
-            LINE.stroke_width(2),
-        ))
-        .map_err(err)?;
+    for track in &figure.tracks {
+        let c = track.colour;
+        chart
+            .draw_series(LineSeries::new(
+                track.samples.iter().map(|s| (s.t, q.of(s))),
+                RGBColor(c.0, c.1, c.2).stroke_width(2),
+            ))
+            .map_err(err)?;
+    }
     Ok(())
 }

@@ -1,0 +1,179 @@
+//! `Detail::Diagnostics` (what `ilmrc check` asks for) keeps less than `Detail::Full`
+//! but reports exactly the same diagnostics: on every program of the repository, with
+//! the examples' skills as a library, on both robots; on the benchmark corpus with
+//! damaged lines; and on mutated programs.
+
+use ilmr_compiler::check::{Detail, Source, Target, analyze_with};
+use ilmr_model::RobotModel;
+use proptest::prelude::*;
+
+#[path = "../benches/corpus.rs"]
+mod corpus;
+
+/// Both details of one program, compared; returns how many diagnostics there were.
+fn assert_same(sources: &[Source], robot: &str) -> usize {
+    let model = RobotModel::builtin(robot).unwrap();
+    let full = analyze_with(sources, &model, Detail::Full);
+    let lean = analyze_with(sources, &model, Detail::Diagnostics);
+    assert_eq!(
+        full.diagnostics,
+        lean.diagnostics,
+        "diagnostics differ on {robot} for {:?}",
+        sources.iter().map(|s| &s.path).collect::<Vec<_>>()
+    );
+    for unit in &lean.units {
+        assert!(unit.refs.is_empty());
+        assert!(unit.targets.values().all(|t| matches!(t, Target::Skill(_))));
+        assert!(
+            unit.vars
+                .iter()
+                .all(|(_, v)| v.defs.len() <= 1 && v.uses.len() <= 1)
+        );
+    }
+    full.diagnostics.len()
+}
+
+fn programs() -> Vec<(String, String)> {
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
+    let mut out = Vec::new();
+    let mut dirs = vec![
+        root.join("examples"),
+        root.join("tests"),
+        root.join("stdlib"),
+    ];
+    while let Some(dir) = dirs.pop() {
+        let Ok(entries) = std::fs::read_dir(&dir) else {
+            continue;
+        };
+        let mut paths: Vec<_> = entries.filter_map(|e| e.ok().map(|e| e.path())).collect();
+        paths.sort();
+        for path in paths {
+            if path.is_dir() {
+                dirs.push(path);
+            } else if path.extension().is_some_and(|x| x == "ilmr" || x == "ilms")
+                && let Ok(text) = std::fs::read_to_string(&path)
+            {
+                out.push((path.display().to_string(), text));
+            }
+        }
+    }
+    out
+}
+
+fn example_skills() -> Vec<Source> {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../examples/skills");
+    let mut paths: Vec<_> = std::fs::read_dir(dir)
+        .unwrap()
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .collect();
+    paths.sort();
+    paths
+        .iter()
+        .map(|p| Source::library(p.display().to_string(), std::fs::read_to_string(p).unwrap()))
+        .collect()
+}
+
+#[test]
+fn every_program_of_the_repository() {
+    let programs = programs();
+    assert!(programs.len() > 20, "only {} programs", programs.len());
+    let mut diagnostics = 0;
+    for (path, text) in &programs {
+        let mut sources = vec![Source::new(path.clone(), text.clone())];
+        sources.extend(example_skills());
+        for robot in ["moro", "workpartner"] {
+            diagnostics += assert_same(&sources, robot);
+        }
+    }
+    // The broken programs among them make sure the comparison covers diagnostics.
+    assert!(diagnostics > 100, "{diagnostics} diagnostics");
+}
+
+#[test]
+fn the_corpus_with_damaged_lines() {
+    let corpus = corpus::generate(3_000);
+    let damage = [
+        "speeed(0.3)",
+        "x = = 3",
+        "break(turn(d=))",
+        "break(while(c",
+        "endif",
+        "gotoxy(v99999)",
+        "turn(lft)",
+        "skill3",
+        "q = nothing + 1",
+        "käännös = 3",
+        "KÄÄNNÖS = käännös + 1",
+        "check",
+        "priority = highest",
+    ];
+    let task: String = corpus
+        .task
+        .lines()
+        .enumerate()
+        .map(|(i, line)| match i % 37 {
+            0 => damage[(i / 37) % damage.len()],
+            _ => line,
+        })
+        .collect::<Vec<_>>()
+        .join("\n");
+    let sources = [
+        Source::new("task.ilmr", task),
+        Source::library("skills.ilms", corpus.skills),
+    ];
+    assert!(assert_same(&sources, "moro") > 50);
+}
+
+const PIECES: &[&str] = &[
+    "turn",
+    "sensor",
+    "wait",
+    "if",
+    "endif",
+    "while(",
+    "endwhile",
+    "break(",
+    "check",
+    "checkend",
+    "(",
+    ")",
+    ",",
+    "=",
+    "<",
+    "+",
+    "x",
+    "1",
+    "left",
+    "door",
+    "\n",
+    "\n\n",
+    " ",
+    "käännös",
+    "TURN1",
+    "gestures",
+];
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 200, ..ProptestConfig::default() })]
+
+    #[test]
+    fn mutated_programs(
+        which in 0usize..1_000,
+        cuts in proptest::collection::vec((0usize..10_000, 0usize..8, 0usize..64), 1..10),
+    ) {
+        let programs = programs();
+        let (path, base) = &programs[which % programs.len()];
+        let mut text: Vec<char> = base.chars().collect();
+        for &(at, len, piece) in &cuts {
+            if text.is_empty() {
+                break;
+            }
+            let at = at % text.len();
+            let end = (at + len).min(text.len());
+            text.splice(at..end, PIECES[piece % PIECES.len()].chars());
+        }
+        let mut sources = vec![Source::new(path.clone(), text.into_iter().collect::<String>())];
+        sources.extend(example_skills());
+        assert_same(&sources, "moro");
+    }
+}

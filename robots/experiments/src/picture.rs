@@ -1,0 +1,155 @@
+//! The pieces a picture is drawn from, collected beside a run without changing it: the
+//! true path thinned to a pose every [`EVERY`] ticks, where movement commands started
+//! and ended, and the scanner's hits on a 10 cm grid.
+
+use std::collections::BTreeSet;
+
+use ilmr_plot::{At, Mark, Sample};
+
+use crate::harness::{Run, SimVm};
+
+/// Ticks between the poses drawn: 0.1 s, a few millimetres of travel, which keeps a
+/// 600 s run's picture under 100 KB.
+pub const EVERY: usize = 10;
+
+/// Every `EVERY`th pose of a trace recorded after each tick of `period` seconds, and
+/// the last one.
+pub fn thin(
+    trace: &[ilmr_hal::Pose],
+    speeds: &[f64],
+    curvatures: &[f64],
+    period: f64,
+) -> Vec<Sample> {
+    let sample = |i: usize| Sample {
+        t: (i + 1) as f64 * period,
+        x: trace[i].x,
+        y: trace[i].y,
+        v: speeds.get(i).copied().unwrap_or(0.0),
+        c: curvatures.get(i).copied().unwrap_or(0.0),
+    };
+    let mut out: Vec<Sample> = (0..trace.len()).step_by(EVERY).map(sample).collect();
+    if !trace.is_empty() && !(trace.len() - 1).is_multiple_of(EVERY) {
+        out.push(sample(trace.len() - 1));
+    }
+    out
+}
+
+/// A run's path as [`thin`] samples it.
+pub fn track(run: &Run, period: f64) -> Vec<Sample> {
+    thin(&run.trace, &run.speeds, &run.curvatures, period)
+}
+
+/// Marks where movement commands started and ended, at the true pose of the tick
+/// (as `ilmrc run` writes them to its trace).
+pub struct Marks {
+    /// Per statement: whether it issues a movement command.
+    movement: Vec<bool>,
+    seen: usize,
+    pub marks: Vec<Mark>,
+}
+
+impl Marks {
+    pub fn new(vm: &SimVm) -> Marks {
+        let module = vm.module();
+        let mut movement = vec![false; module.stmts.len()];
+        for instr in &module.code {
+            if let ilmr_vm::bytecode::Op::Issue { command, .. } = instr.op
+                && command.spec().movement
+                && let Some(m) = movement.get_mut(instr.stmt.index())
+            {
+                *m = true;
+            }
+        }
+        Marks {
+            movement,
+            seen: 0,
+            marks: Vec::new(),
+        }
+    }
+
+    /// Takes the events of the tick just run.
+    pub fn watch(&mut self, vm: &SimVm) {
+        let events = vm.events();
+        let p = vm.hal().true_pose();
+        for e in &events[self.seen.min(events.len())..] {
+            let Some(stmt) = e.stmt else { continue };
+            if !self.movement.get(stmt.index()).copied().unwrap_or(false) {
+                continue;
+            }
+            let (at, how) = match &e.kind {
+                ilmr_vm::EventKind::Start { .. } => (At::Start, None),
+                ilmr_vm::EventKind::End { how, .. } => (At::End, Some(how.name().to_string())),
+                _ => continue,
+            };
+            let Some(s) = vm.module().stmt(stmt) else {
+                continue;
+            };
+            self.marks.push(Mark {
+                t: e.t,
+                line: s.line,
+                text: s.text.clone(),
+                at,
+                x: p.x,
+                y: p.y,
+                how,
+            });
+        }
+        self.seen = events.len();
+    }
+}
+
+/// Scanner hits in the world frame, one per 10 cm cell: a wall seen in a hundred scans
+/// is drawn once, and the lab's picture stays near 150 KB.
+pub struct Hits {
+    /// Seconds between the scans taken.
+    every: f64,
+    next: f64,
+    last_seq: Option<u64>,
+    cells: BTreeSet<(i64, i64)>,
+}
+
+const CELL: f64 = 0.1;
+
+impl Hits {
+    pub fn new(every: f64) -> Hits {
+        Hits {
+            every,
+            next: 0.0,
+            last_seq: None,
+            cells: BTreeSet::new(),
+        }
+    }
+
+    /// Takes the scan of the tick just run, if it is new and due.
+    pub fn watch(&mut self, vm: &SimVm) {
+        let sim = vm.hal().sim();
+        let Some(scan) = sim.snapshot().scan else {
+            return;
+        };
+        if self.last_seq == Some(scan.seq) || scan.time < self.next - 1e-9 {
+            return;
+        }
+        self.last_seq = Some(scan.seq);
+        self.next = scan.time + self.every;
+        // The beams were cast from this tick's true pose: the robot steps in lockstep
+        // with the VM.
+        let p = sim.true_pose();
+        let o = p.transform(scan.mount);
+        for (i, &r) in scan.ranges.iter().enumerate() {
+            if r <= 0.0 || r >= scan.max_range {
+                continue;
+            }
+            let a = p.h + scan.bearing(i);
+            let (x, y) = (o.x + r * a.cos(), o.y + r * a.sin());
+            self.cells
+                .insert(((x / CELL).round() as i64, (y / CELL).round() as i64));
+        }
+    }
+
+    pub fn points(&self) -> Vec<(f64, f64)> {
+        self.cells
+            .iter()
+            .map(|&(i, j)| (i as f64 * CELL, j as f64 * CELL))
+            .collect()
+    }
+}

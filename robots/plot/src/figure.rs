@@ -1,0 +1,237 @@
+//! What a figure shows, whatever it was made from: one run's trace (`Figure::of_run`,
+//! for `ilmrc run --plot` and `ilmrc replay`) or several runs of an experiment drawn
+//! together (the dissertation's Figures 46-59). Both are drawn by the same code.
+
+use std::path::Path;
+
+use ilmr_sim::World;
+
+use crate::data::{Mark, RunRecord, Sample};
+
+/// An RGB colour.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Colour(pub u8, pub u8, pub u8);
+
+impl Colour {
+    /// A run's true trajectory when it is the only one.
+    pub const TRUE_PATH: Colour = Colour(20, 60, 170);
+    /// Reference and ideal paths.
+    pub const REFERENCE: Colour = Colour(40, 40, 40);
+
+    /// The `i`th colour of Okabe and Ito's palette, which stays distinguishable for
+    /// colour-blind readers; it repeats after seven.
+    pub fn palette(i: usize) -> Colour {
+        const OKABE_ITO: [Colour; 7] = [
+            Colour(0, 114, 178),
+            Colour(213, 94, 0),
+            Colour(0, 158, 115),
+            Colour(204, 121, 167),
+            Colour(230, 159, 0),
+            Colour(86, 180, 233),
+            Colour(0, 0, 0),
+        ];
+        OKABE_ITO[i % OKABE_ITO.len()]
+    }
+}
+
+/// A world drawn under the paths; `tint` colours its walls and obstacles (to tell the
+/// worlds of one figure apart) instead of grey.
+#[derive(Debug, Clone)]
+pub struct Scenery {
+    pub world: World,
+    pub tint: Option<Colour>,
+}
+
+/// A driven path. Tracks with the same label share one legend entry.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Track {
+    pub label: Option<String>,
+    pub colour: Colour,
+    pub samples: Vec<Sample>,
+}
+
+/// A path drawn dashed: a reference, an ideal route or a recording.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Reference {
+    pub label: Option<String>,
+    pub colour: Colour,
+    pub points: Vec<(f64, f64)>,
+}
+
+/// Where the map's legend sits.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Corner {
+    UpperLeft,
+    UpperRight,
+    LowerLeft,
+    LowerRight,
+}
+
+#[derive(Debug, Clone)]
+pub struct Figure {
+    pub title: String,
+    pub scenery: Vec<Scenery>,
+    /// Scanner hits in the world frame.
+    pub hits: Vec<(f64, f64)>,
+    pub references: Vec<Reference>,
+    pub tracks: Vec<Track>,
+    /// Where movement commands started and ended.
+    pub marks: Vec<Mark>,
+    /// Speed and curvature of every track over time, below the map (Figure 54).
+    pub time_series: bool,
+    pub legend: Corner,
+}
+
+impl Figure {
+    /// A map with nothing on it yet and no time series.
+    pub fn new(title: impl Into<String>) -> Figure {
+        Figure {
+            title: title.into(),
+            scenery: Vec::new(),
+            hits: Vec::new(),
+            references: Vec::new(),
+            tracks: Vec::new(),
+            marks: Vec::new(),
+            time_series: false,
+            legend: Corner::UpperRight,
+        }
+    }
+
+    /// One run as `ilmrc run --plot` draws it: its world, hits, the VM's reference
+    /// paths, the true trajectory, the marks, and speed and curvature below.
+    pub fn of_run(record: &RunRecord) -> Result<Figure, String> {
+        let mut figure = Figure::new(title(record));
+        figure
+            .scenery
+            .extend(record.world()?.map(|world| Scenery { world, tint: None }));
+        figure.hits = record.hits.clone();
+        figure.references = record
+            .refs
+            .iter()
+            .map(|r| Reference {
+                label: Some("reference path".into()),
+                colour: Colour::REFERENCE,
+                points: r.points.clone(),
+            })
+            .collect();
+        figure.tracks.push(Track {
+            label: Some("true trajectory".into()),
+            colour: Colour::TRUE_PATH,
+            samples: record.poses.clone(),
+        });
+        figure.marks = record.marks.clone();
+        figure.time_series = true;
+        Ok(figure)
+    }
+
+    /// The figure as SVG text.
+    pub fn to_svg(&self) -> Result<String, String> {
+        crate::render::svg(self)
+    }
+
+    pub fn write_svg(&self, path: &Path) -> Result<(), String> {
+        let svg = self.to_svg()?;
+        std::fs::write(path, svg)
+            .map_err(|e| format!("cannot write plot `{}`: {e}", path.display()))
+    }
+}
+
+/// A run's title: the task, and the robot, world and seed when the trace says.
+fn title(record: &RunRecord) -> String {
+    match &record.header {
+        Some(h) => format!("{}: {} in {}, seed {}", h.task, h.robot, h.world, h.seed),
+        None => "ILMR run".to_string(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn samples(points: &[(f64, f64)]) -> Vec<Sample> {
+        points
+            .iter()
+            .enumerate()
+            .map(|(i, &(x, y))| Sample {
+                t: i as f64,
+                x,
+                y,
+                v: 0.3,
+                c: 0.0,
+            })
+            .collect()
+    }
+
+    fn track(label: &str, colour: Colour, points: &[(f64, f64)]) -> Track {
+        Track {
+            label: Some(label.into()),
+            colour,
+            samples: samples(points),
+        }
+    }
+
+    fn height(svg: &str) -> u32 {
+        let at = svg.find("height=\"").expect("an SVG height") + 8;
+        svg[at..]
+            .split('"')
+            .next()
+            .and_then(|h| h.parse().ok())
+            .expect("a number")
+    }
+
+    #[test]
+    fn tracks_that_share_a_label_share_one_legend_entry() {
+        let mut f = Figure::new("trials");
+        for i in 0..3 {
+            let y = f64::from(i);
+            f.tracks
+                .push(track("sweep A", Colour::palette(0), &[(0.0, y), (2.0, y)]));
+        }
+        f.tracks.push(track(
+            "sweep B",
+            Colour::palette(1),
+            &[(0.0, 5.0), (2.0, 5.0)],
+        ));
+        let svg = f.to_svg().expect("drawn");
+        assert_eq!(svg.matches("sweep A").count(), 1, "one entry for A");
+        assert_eq!(svg.matches("sweep B").count(), 1);
+        // Each track drawn in its colour.
+        assert!(svg.contains("stroke=\"#0072B2\""), "A's colour");
+        assert!(svg.contains("stroke=\"#D55E00\""), "B's colour");
+    }
+
+    #[test]
+    fn the_time_series_panels_are_drawn_only_when_asked() {
+        let mut f = Figure::new("one run");
+        f.tracks
+            .push(track("run", Colour::TRUE_PATH, &[(0.0, 0.0), (3.0, 1.0)]));
+        let map_only = f.to_svg().expect("drawn");
+        f.time_series = true;
+        let with_series = f.to_svg().expect("drawn");
+        assert!(!map_only.contains("time (s)"));
+        assert!(with_series.contains("time (s)") && with_series.contains("curvature (1/m)"));
+        assert_eq!(height(&with_series), height(&map_only) + 2 * 220);
+    }
+
+    #[test]
+    fn a_tinted_world_is_drawn_in_its_tint() {
+        let world = World::from_toml(
+            "name = \"w\"\nbounds = { min = [-5.0, -5.0], max = [5.0, 5.0] }\n\
+             start = { x = 0.0, y = 0.0, heading = 0.0 }\n[[wall]]\nfrom = [-4.0, 2.0]\nto = [4.0, 2.0]\n",
+            "<test>",
+        )
+        .expect("a world");
+        let mut f = Figure::new("walls");
+        f.tracks
+            .push(track("run", Colour::TRUE_PATH, &[(0.0, 0.0), (3.0, 0.0)]));
+        f.scenery.push(Scenery {
+            world: world.clone(),
+            tint: None,
+        });
+        let grey = f.to_svg().expect("drawn");
+        f.scenery[0].tint = Some(Colour(1, 2, 3));
+        let tinted = f.to_svg().expect("drawn");
+        let tint = |svg: &str| svg.contains("\"#010203\"");
+        assert!(tint(&tinted) && !tint(&grey));
+    }
+}
