@@ -9,6 +9,10 @@ use proptest::prelude::*;
 
 #[path = "../benches/corpus.rs"]
 mod corpus;
+mod support {
+    pub mod programs;
+}
+use support::programs::repository_programs as programs;
 
 /// Both details of one program, compared; returns how many diagnostics there were.
 fn assert_same(sources: &[Source], robot: &str) -> usize {
@@ -31,33 +35,6 @@ fn assert_same(sources: &[Source], robot: &str) -> usize {
         );
     }
     full.diagnostics.len()
-}
-
-fn programs() -> Vec<(String, String)> {
-    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
-    let mut out = Vec::new();
-    let mut dirs = vec![
-        root.join("examples"),
-        root.join("tests"),
-        root.join("stdlib"),
-    ];
-    while let Some(dir) = dirs.pop() {
-        let Ok(entries) = std::fs::read_dir(&dir) else {
-            continue;
-        };
-        let mut paths: Vec<_> = entries.filter_map(|e| e.ok().map(|e| e.path())).collect();
-        paths.sort();
-        for path in paths {
-            if path.is_dir() {
-                dirs.push(path);
-            } else if path.extension().is_some_and(|x| x == "ilmr" || x == "ilms")
-                && let Ok(text) = std::fs::read_to_string(&path)
-            {
-                out.push((path.display().to_string(), text));
-            }
-        }
-    }
-    out
 }
 
 fn example_skills() -> Vec<Source> {

@@ -10,6 +10,8 @@ use super::*;
 
 #[path = "../../benches/corpus.rs"]
 mod corpus;
+#[path = "../../tests/support/programs.rs"]
+mod programs;
 
 /// The grammar alone over the whole file: how `parse` worked before the reader.
 fn reference(source: &str, file: FileId) -> Parsed<'_> {
@@ -85,34 +87,7 @@ fn both(text: &str) -> (Option<String>, String) {
 
 fn repository_programs() -> &'static [(String, String)] {
     static PROGRAMS: std::sync::OnceLock<Vec<(String, String)>> = std::sync::OnceLock::new();
-    PROGRAMS.get_or_init(read_repository_programs)
-}
-
-fn read_repository_programs() -> Vec<(String, String)> {
-    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
-    let mut out = Vec::new();
-    let mut dirs = vec![
-        root.join("examples"),
-        root.join("tests"),
-        root.join("stdlib"),
-    ];
-    while let Some(dir) = dirs.pop() {
-        let Ok(entries) = std::fs::read_dir(&dir) else {
-            continue;
-        };
-        let mut paths: Vec<_> = entries.filter_map(|e| e.ok().map(|e| e.path())).collect();
-        paths.sort();
-        for path in paths {
-            if path.is_dir() {
-                dirs.push(path);
-            } else if path.extension().is_some_and(|e| e == "ilmr" || e == "ilms")
-                && let Ok(text) = std::fs::read_to_string(&path)
-            {
-                out.push((path.display().to_string(), text));
-            }
-        }
-    }
-    out
+    PROGRAMS.get_or_init(programs::repository_programs)
 }
 
 #[test]

@@ -181,10 +181,9 @@ fn wall_line(scan: &Scan, a: Vec2, b: Vec2, i: usize, j: usize) -> Option<Vec2> 
 
 #[cfg(test)]
 mod tests {
+    use super::super::scan_at;
     use super::*;
-    use crate::config::RobotConfig;
     use crate::geometry::{Obb, Scene, Shape, Solid, SolidRef};
-    use crate::sensors::cast_scan;
 
     fn wall(x0: f64, y0: f64, x1: f64, y1: f64, id: usize) -> Solid {
         Solid::new(
@@ -195,21 +194,6 @@ mod tests {
             )),
             SolidRef::Wall(id),
         )
-    }
-
-    fn scan_at(scene: &Scene, pose: Pose) -> Scan {
-        let cfg = RobotConfig::moro().scanner;
-        let fov = cfg.fov_deg.to_radians();
-        Scan {
-            seq: 0,
-            time: 0.0,
-            pose,
-            angle_min: -fov / 2.0,
-            angle_increment: fov / (cfg.readings - 1) as f64,
-            max_range: cfg.max_range,
-            mount: cfg.mount,
-            ranges: cast_scan(scene, &cfg, pose),
-        }
     }
 
     fn moro() -> RobotModel {

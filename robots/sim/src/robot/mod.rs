@@ -411,3 +411,21 @@ impl Hal for SimRobot {
         self.model.device(id).map(|d| (d.min, d.max))
     }
 }
+
+/// What the simulated MoRo's scanner reads, noise-free, standing at `pose` in `scene`:
+/// the detectors' tests build their scans with it.
+#[cfg(test)]
+fn scan_at(scene: &crate::geometry::Scene, pose: crate::geometry::Pose) -> crate::sensors::Scan {
+    let cfg = crate::config::RobotConfig::moro().scanner;
+    let fov = cfg.fov_deg.to_radians();
+    crate::sensors::Scan {
+        seq: 0,
+        time: 0.0,
+        pose,
+        angle_min: -fov / 2.0,
+        angle_increment: fov / (cfg.readings - 1) as f64,
+        max_range: cfg.max_range,
+        mount: cfg.mount,
+        ranges: crate::sensors::cast_scan(scene, &cfg, pose),
+    }
+}

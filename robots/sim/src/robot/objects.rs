@@ -258,25 +258,10 @@ fn centroid(pts: &[Vec2]) -> Vec2 {
 
 #[cfg(test)]
 mod tests {
+    use super::super::scan_at;
     use super::*;
     use crate::config::RobotConfig;
     use crate::geometry::{Circle, Obb, Scene, Shape, Solid, SolidRef};
-    use crate::sensors::cast_scan;
-
-    fn scan_at(scene: &Scene, pose: Pose) -> Scan {
-        let cfg = RobotConfig::moro().scanner;
-        let fov = cfg.fov_deg.to_radians();
-        Scan {
-            seq: 0,
-            time: 0.0,
-            pose,
-            angle_min: -fov / 2.0,
-            angle_increment: fov / (cfg.readings - 1) as f64,
-            max_range: cfg.max_range,
-            mount: cfg.mount,
-            ranges: cast_scan(scene, &cfg, pose),
-        }
-    }
 
     /// `scan_at` with the scanner's noise, seeded.
     fn noisy_scan_at(scene: &Scene, pose: Pose, seed: u64) -> Scan {
