@@ -74,8 +74,8 @@ pub const MAX_TIME_TO_SEARCH: ParamSpec = ParamSpec {
     unit: "s",
     default: ParamDefault::Value(10.0),
     valid: Valid::Positive,
-    meaning: "How long a search (`sensor(scanner,door)`, `findtarget`) looks before it ends without a find; searches with `forever` never time out.",
-    readers: "vm",
+    meaning: "How long a search (`sensor(scanner,door)`, `findtarget`) should look before it ends without a find (Figure 39). Loaded and range-checked; the VM does not yet end searches by it: a search runs until it finds.",
+    readers: "none yet",
 };
 pub const DEFAULT_SPEED: ParamSpec = ParamSpec {
     name: "default_speed",
