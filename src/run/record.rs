@@ -134,7 +134,7 @@ impl Extra {
 
     /// Learns the statements an interactive line added.
     pub fn learn(&mut self, module: &Module) {
-        self.movement = movement_statements(module);
+        self.movement = module.movement_statements();
     }
 
     /// The tick's lines, after the VM's events of the same tick. Nothing without a
@@ -205,18 +205,4 @@ fn scan_line(scan: &WorldScan) -> String {
         fmt_num(o.y),
         fmt_num(o.h)
     )
-}
-
-/// Which statements issue a movement command (the catalogue says which commands are).
-pub fn movement_statements(module: &Module) -> Vec<bool> {
-    let mut movement = vec![false; module.stmts.len()];
-    for instr in &module.code {
-        if let ilmr_vm::bytecode::Op::Issue { command, .. } = instr.op
-            && command.spec().movement
-            && let Some(m) = movement.get_mut(instr.stmt.index())
-        {
-            *m = true;
-        }
-    }
-    movement
 }

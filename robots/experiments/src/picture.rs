@@ -50,18 +50,8 @@ pub struct Marks {
 
 impl Marks {
     pub fn new(vm: &SimVm) -> Marks {
-        let module = vm.module();
-        let mut movement = vec![false; module.stmts.len()];
-        for instr in &module.code {
-            if let ilmr_vm::bytecode::Op::Issue { command, .. } = instr.op
-                && command.spec().movement
-                && let Some(m) = movement.get_mut(instr.stmt.index())
-            {
-                *m = true;
-            }
-        }
         Marks {
-            movement,
+            movement: vm.module().movement_statements(),
             seen: 0,
             marks: Vec::new(),
         }

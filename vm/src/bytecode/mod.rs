@@ -150,6 +150,21 @@ impl Module {
         self.stmts.get(id.index())
     }
 
+    /// Per statement: whether it issues a movement command (the catalogue says which
+    /// commands are). Traces and pictures mark where these start and end.
+    pub fn movement_statements(&self) -> Vec<bool> {
+        let mut movement = vec![false; self.stmts.len()];
+        for instr in &self.code {
+            if let Op::Issue { command, .. } = instr.op
+                && command.spec().movement
+                && let Some(m) = movement.get_mut(instr.stmt.index())
+            {
+                *m = true;
+            }
+        }
+        movement
+    }
+
     pub fn name(&self, id: NameId) -> &str {
         self.names.get(id.index()).map_or("?", String::as_str)
     }
