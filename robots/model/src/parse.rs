@@ -12,7 +12,8 @@
 
 use std::collections::BTreeMap;
 
-use crate::entry::{Entry, Problem, Section, parse_number, read_entry};
+use crate::entry::{Entry, Problem, Section, bounded, parse_number, read_entry};
+use crate::limits::{out_of_range, shown};
 use crate::model::{ModelWarning, NamedValue, RobotModel};
 use crate::names::{fold, is_valid_name, same_name};
 use crate::params::{
@@ -236,6 +237,17 @@ impl Parser {
             Ok(Entry::Value(value)) if section == Section::Parameters => {
                 self.parameter(value);
             }
+            Ok(Entry::Value(value)) if bounded(value.value, &value.name).is_err() => {
+                let message = bounded(value.value, &value.name).err().unwrap_or_default();
+                self.substitute(
+                    section,
+                    Problem {
+                        name: Some(value.name),
+                        message,
+                    },
+                    line,
+                );
+            }
             Ok(entry) => {
                 if let Err(message) = self.add(section, entry) {
                     self.warn(line, format!("{message}; the line is ignored"));
@@ -277,19 +289,22 @@ impl Parser {
     fn parameter(&mut self, value: NamedValue) {
         let line = value.line;
         let Some(spec) = parameter_spec(&value.name) else {
-            let _ = self.add(Section::Parameters, Entry::Value(value));
+            match bounded(value.value, &value.name) {
+                Ok(_) => {
+                    let _ = self.add(Section::Parameters, Entry::Value(value));
+                }
+                Err(message) => self.warn(line, format!("{message}; the line is ignored")),
+            }
             return;
         };
         if spec.valid.admits(value.value) {
             let _ = self.add(Section::Parameters, Entry::Value(value));
             return;
         }
-        let problem = format!(
-            "parameter `{}` = {} is outside its range ({} {})",
-            value.name,
-            value.value,
-            spec.valid.describe(),
-            spec.unit
+        let problem = out_of_range(
+            &value.name,
+            &shown(value.value),
+            &format!("{} {}", spec.valid.describe(), spec.unit),
         );
         self.substitute(
             Section::Parameters,
