@@ -13,9 +13,9 @@ fn a_hundred_million_beam_scanner_never_reaches_the_simulator() {
         .replace("scanner 1 0 30000 361", "scanner 1 0 30000 100000000");
     let (model, warnings) = RobotModel::parse(&ini, "moro");
     assert!(
-        warnings
-            .iter()
-            .any(|w| w.message.starts_with("scanner readings: 100000000 out of range")),
+        warnings.iter().any(|w| w
+            .message
+            .starts_with("scanner readings: 100000000 out of range")),
         "{warnings:?}"
     );
     let cfg = config_from_model(&model, RobotKind::Moro);
@@ -29,9 +29,12 @@ fn a_hundred_million_beam_scanner_never_reaches_the_simulator() {
 fn a_configuration_past_the_limit_does_not_start() {
     let mut cfg = RobotConfig::moro();
     cfg.scanner.readings = 100_000_000;
-    let err = Simulator::new(cfg, common::open_floor(), 1).err().map(|e| e.to_string());
+    let err = Simulator::new(cfg, common::open_floor(), 1)
+        .err()
+        .map(|e| e.to_string());
     assert!(
-        err.as_deref().is_some_and(|e| e.contains("scanner.readings must be 2 to 4096")),
+        err.as_deref()
+            .is_some_and(|e| e.contains("scanner.readings must be 2 to 4096")),
         "{err:?}"
     );
 }

@@ -3,24 +3,37 @@
 //! overlaps, point tests and scan fans, over random walls, obstacles and
 //! loose solids, with some switched off.
 
+use ilmr_sim::Vec2;
 use ilmr_sim::geometry::{Circle, Obb, Scene, Shape, Solid, SolidRef};
 use ilmr_sim::rng::Rng;
-use ilmr_sim::Vec2;
 
 fn scene(next: &mut impl FnMut() -> f64, n: usize, side: f64) -> Scene {
     let mut solids: Vec<Solid> = (0..n)
         .map(|i| {
             let c = Vec2::new(side * next(), side * next());
             let (shape, what) = match i % 5 {
-                0 => (Shape::Circle(Circle::new(c, 0.05 + next())), SolidRef::Obstacle(i)),
+                0 => (
+                    Shape::Circle(Circle::new(c, 0.05 + next())),
+                    SolidRef::Obstacle(i),
+                ),
                 1 => (Shape::Circle(Circle::new(c, 0.3)), SolidRef::Target(i)),
-                2 => (Shape::Box(Obb::new(c, 7.0 * next(), 0.4, 0.3)), SolidRef::PickupBox(i)),
+                2 => (
+                    Shape::Box(Obb::new(c, 7.0 * next(), 0.4, 0.3)),
+                    SolidRef::PickupBox(i),
+                ),
                 // Walls long and short, on cell borders now and then.
                 _ => {
-                    let c = if i % 7 == 0 { Vec2::new((c.x / 2.0).round() * 2.0, c.y) } else { c };
+                    let c = if i % 7 == 0 {
+                        Vec2::new((c.x / 2.0).round() * 2.0, c.y)
+                    } else {
+                        c
+                    };
                     let len = 0.2 + 15.0 * next();
                     let h = if i % 3 == 0 { 0.0 } else { 7.0 * next() };
-                    (Shape::Box(Obb::new(c, h, len, 0.05 + 0.3 * next())), SolidRef::Wall(i))
+                    (
+                        Shape::Box(Obb::new(c, h, len, 0.05 + 0.3 * next())),
+                        SolidRef::Wall(i),
+                    )
                 }
             };
             let mut s = Solid::new(shape, what);
