@@ -57,7 +57,7 @@ fn many_walls() -> ilmr_sim::World {
         if x < 40.0 && y < 30.0 {
             continue;
         }
-        let a = 6.28 * rng.uniform();
+        let a = std::f64::consts::TAU * rng.uniform();
         let (x2, y2) = (
             (x + 0.8 * a.cos()).clamp(0.0, 1000.0),
             (y + 0.8 * a.sin()).clamp(0.0, 1000.0),

@@ -210,7 +210,8 @@ fn too_many_entries_are_refused_at_the_first_one_past_the_limit() {
             MAX_WALLS + 1
         )
     );
-    let checks: [(&str, usize, fn(usize) -> String); 5] = [
+    type Entry = fn(usize) -> String;
+    let checks: [(&str, usize, Entry); 5] = [
         ("obstacle", MAX_OBSTACLES, |i| {
             format!(
                 "[[obstacle]]\nshape = \"circle\"\ncenter = [{}.0, 50.0]\nradius = 0.1\n",

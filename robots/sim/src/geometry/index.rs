@@ -209,7 +209,8 @@ impl SolidGrid {
                 t1 = t1.min(a.max(b));
             }
         }
-        if !(t0 <= t1) {
+        // Also false when either is NaN.
+        if t0.partial_cmp(&t1).is_none_or(|o| o.is_gt()) {
             return;
         }
         let p = origin + dir.scale(t0);

@@ -127,31 +127,28 @@ impl Scene {
         if !(origin.is_finite() && dir.is_finite() && max_range.is_finite()) {
             return self.ray_among(origin, dir, max_range, 0..self.solids.len());
         }
-        let mut best = self
-            .ray_among(origin, dir, max_range, self.loose.iter().copied())
-            .map(|h| (h, usize::MAX));
-        if let Some((h, _)) = &mut best {
-            // The index of the loose hit, for ties with fixed solids.
-            let i = self
-                .loose
-                .iter()
-                .copied()
-                .find(|&i| self.solids[i].what == h.what);
-            best = Some((*h, i.unwrap_or(usize::MAX)));
+        // The nearest so far and its index: ties go to the lower index, as
+        // in a test of every solid in order.
+        let mut best: Option<(Hit, usize)> = None;
+        let test = |i: usize, best: &mut Option<(Hit, usize)>| {
+            let limit = best.map_or(max_range, |(h, _)| h.distance);
+            if let Some(h) = self.ray_among(origin, dir, limit, std::iter::once(i))
+                && best.is_none_or(|(b, j)| (h.distance, i) < (b.distance, j))
+            {
+                *best = Some((h, i));
+            }
+        };
+        for &i in &self.loose {
+            test(i, &mut best);
         }
+        // A solid met before the ray enters a cell is listed in a cell
+        // already crossed, so no later cell can hold a nearer one.
         self.grid.along(origin, dir, max_range, |cell, enter| {
             if best.is_some_and(|(h, _)| h.distance < enter) {
                 return false;
             }
             for &i in cell {
-                let limit = best.map_or(max_range, |(h, _)| h.distance);
-                if let Some(h) = self.ray_among(origin, dir, limit, std::iter::once(i))
-                    && best.is_none_or(|(b, j)| {
-                        h.distance < b.distance || (h.distance == b.distance && i < j)
-                    })
-                {
-                    best = Some((h, i));
-                }
+                test(i, &mut best);
             }
             true
         });
