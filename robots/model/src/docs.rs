@@ -47,6 +47,7 @@ pub fn field_table_markdown() -> String {
             "[SENSORSANDACTUATORS] readings",
             format!("an integer, 1 to {MAX_READINGS}"),
         ),
+        ("[OBJECTS] numeric parameter", format!("-{m} to {m}")),
         ("[COLORS] value", format!("-{m} to {m}")),
         ("[IDENTIFIERS] value", format!("-{m} to {m}")),
         (

@@ -237,6 +237,23 @@ impl Parser {
             Ok(Entry::Value(value)) if section == Section::Parameters => {
                 self.parameter(value);
             }
+            Ok(Entry::Object(object))
+                if let Some(Err(message)) = object
+                    .params
+                    .iter()
+                    .filter_map(|p| parse_number(p))
+                    .map(|v| bounded(v, &format!("{} parameter", object.name)))
+                    .find(Result::is_err) =>
+            {
+                self.substitute(
+                    section,
+                    Problem {
+                        name: Some(object.name),
+                        message,
+                    },
+                    line,
+                );
+            }
             Ok(Entry::Value(value)) if bounded(value.value, &value.name).is_err() => {
                 let message = bounded(value.value, &value.name).err().unwrap_or_default();
                 self.substitute(

@@ -141,6 +141,8 @@ fn huge_values_elsewhere_are_out_of_range() {
     let text = "[SENSORSANDACTUATORS]
 sonar 9 -1e12 1 4
 laser 2 0 1e308 1
+[OBJECTS]
+door 0.8 1e300
 [COLORS]
 yellow 1e300
 [IDENTIFIERS]
@@ -156,13 +158,18 @@ my_other 1e9
         [
             "line 2: sonar minimum: -1e12 out of range (expected -1e9 to 1e9); the line is ignored",
             "line 3: laser maximum: 1e308 out of range (expected -1e9 to 1e9); the default `laser 2 0 30000 1` is used",
-            "line 5: yellow: 1e300 out of range (expected -1e9 to 1e9); the default `yellow 18` is used",
-            "line 7: off: -2e9 out of range (expected -1e9 to 1e9); the default `off 0` is used",
-            "line 9: my_gain: 1e10 out of range (expected -1e9 to 1e9); the line is ignored",
+            "line 5: door parameter: 1e300 out of range (expected -1e9 to 1e9); the default `door 0.8 1.2` is used",
+            "line 7: yellow: 1e300 out of range (expected -1e9 to 1e9); the default `yellow 18` is used",
+            "line 9: off: -2e9 out of range (expected -1e9 to 1e9); the default `off 0` is used",
+            "line 11: my_gain: 1e10 out of range (expected -1e9 to 1e9); the line is ignored",
         ]
     );
     assert_eq!(model.parameter("my_other"), Some(MAX_MAGNITUDE));
     assert_eq!(model.parameter("my_gain"), None);
+    assert_eq!(
+        model.object("door").map(|o| o.params.clone()),
+        Some(vec!["0.8".to_string(), "1.2".to_string()])
+    );
 }
 
 #[test]

@@ -1,7 +1,7 @@
 //! From TOML text to a [`World`]: parse with serde, then check every entry and
 //! report the first fault with its line and field.
 
-use std::collections::{HashMap, HashSet};
+use std::collections::{BTreeMap, BTreeSet};
 
 use super::error::{field_line, line_of};
 use super::format::{Point, WorldFile};
@@ -48,19 +48,10 @@ impl Checker<'_> {
     }
 
     fn point(&self, e: Entry<'_>, key: &str, p: Point) -> Result<Vec2, WorldError> {
-        if !p.iter().all(|v| v.is_finite()) {
-            return Err(self.err(e, key, "coordinates must be finite numbers"));
-        }
-        if let Some(v) = p.iter().find(|v| v.abs() > MAX_COORDINATE) {
-            return Err(self.err(
-                e,
-                key,
-                format!(
-                    "{} out of range (expected -{1:e} to {1:e} m)",
-                    shown(*v),
-                    MAX_COORDINATE
-                ),
-            ));
+        let max = MAX_COORDINATE;
+        let expected = format!("-{max:e} to {max:e} m");
+        for v in p {
+            self.range(e, key, v, v.abs() <= max, &expected)?;
         }
         Ok(Vec2::new(p[0], p[1]))
     }
@@ -124,7 +115,7 @@ impl Checker<'_> {
         e: Entry<'_>,
         key: &str,
         id: &str,
-        seen: &mut HashSet<String>,
+        seen: &mut BTreeSet<String>,
     ) -> Result<(), WorldError> {
         if id.is_empty() {
             return Err(self.err(e, key, "must not be empty"));
@@ -212,7 +203,7 @@ impl Checker<'_> {
         let start = Pose::new(p.x, p.y, self.degrees(se, "heading", s.heading)?);
 
         let mut walls = Vec::new();
-        let mut wall_ids = HashSet::new();
+        let mut wall_ids = BTreeSet::new();
         let mut outline = 0.0;
         for (i, w) in f.wall.iter().enumerate() {
             let label = format!("wall #{}", i + 1);
@@ -300,7 +291,7 @@ impl Checker<'_> {
         }
 
         let mut pickup_boxes: Vec<PickupBox> = Vec::new();
-        let mut box_ids = HashSet::new();
+        let mut box_ids = BTreeSet::new();
         for (i, b) in f.pickup_box.iter().enumerate() {
             let label = format!("pickup_box #{}", i + 1);
             let e = Entry {
@@ -321,7 +312,7 @@ impl Checker<'_> {
         }
 
         let mut targets: Vec<Target> = Vec::new();
-        let mut target_names = HashSet::new();
+        let mut target_names = BTreeSet::new();
         for (i, t) in f.target.iter().enumerate() {
             let label = format!("target #{}", i + 1);
             let e = Entry {
@@ -449,8 +440,8 @@ impl Checker<'_> {
     /// Checks the doors and cuts their openings out of the walls.
     fn doors(&self, f: &WorldFile, walls: &mut [Wall]) -> Result<Vec<Door>, WorldError> {
         let mut doors: Vec<Door> = Vec::new();
-        let mut door_ids = HashSet::new();
-        let wall_index: HashMap<&str, usize> = walls
+        let mut door_ids = BTreeSet::new();
+        let wall_index: BTreeMap<&str, usize> = walls
             .iter()
             .enumerate()
             .map(|(i, w)| (w.id.as_str(), i))
