@@ -1,7 +1,7 @@
 //! The parameter table of `docs/robot-model.md`, generated from the specs so
 //! that the documentation cannot drift from the code (a test compares them).
 
-use crate::limits::{MAX_DEVICE_ID, MAX_MAGNITUDE, MAX_READINGS, shown};
+use crate::limits::{MAX_DEVICE_ID, MAX_MAGNITUDE, MAX_READINGS, MAX_SECTION_ENTRIES, shown};
 use crate::params::{PARAMETER_SPECS, ParamDefault};
 
 /// A Markdown table with one row per known parameter: name, unit, default,

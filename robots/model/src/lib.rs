@@ -19,7 +19,7 @@ mod parse;
 mod write;
 
 pub use docs::{field_table_markdown, parameter_table_markdown};
-pub use limits::{MAX_DEVICE_ID, MAX_MAGNITUDE, MAX_READINGS};
+pub use limits::{MAX_DEVICE_ID, MAX_MAGNITUDE, MAX_READINGS, MAX_SECTION_ENTRIES};
 pub use model::{Device, ModelName, ModelWarning, NamedValue, Object, RobotModel};
 pub use names::{SUPERVISOR, SUPERVISOR_FAULTS};
 pub use params::{PARAMETER_SPECS, ParamDefault, ParamSpec, Valid, parameter_spec};

@@ -13,6 +13,12 @@ pub const MAX_DEVICE_ID: i64 = i32::MAX as i64;
 /// simulator casts a beam and the trace stores a number per reading.
 pub const MAX_READINGS: u32 = 4096;
 
+/// Most entries one section holds (devices, objects, colours, identifiers,
+/// parameters): the simulated robot reads every device each tick and the
+/// recognisers try every object on each scan. The shipped robots have 7 to
+/// 14 devices and at most 33 parameters.
+pub const MAX_SECTION_ENTRIES: usize = 1024;
+
 /// Largest magnitude of a device's minimum and maximum reading, of a colour
 /// or identifier value, and of a parameter the tools do not know: far past
 /// any reading in device units (the scanner reads 0..30000 mm), and small

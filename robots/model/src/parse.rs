@@ -13,7 +13,7 @@
 use std::collections::BTreeMap;
 
 use crate::entry::{Entry, Problem, Section, bounded, parse_number, read_entry};
-use crate::limits::{out_of_range, shown};
+use crate::limits::{MAX_SECTION_ENTRIES, out_of_range, shown};
 use crate::model::{ModelWarning, NamedValue, RobotModel};
 use crate::names::{fold, is_valid_name, same_name};
 use crate::params::{
@@ -100,6 +100,8 @@ struct Parser {
     before_first_tag: Option<Skipped>,
     after_end: Option<Skipped>,
     unknown: Option<UnknownSection>,
+    /// Entry lines of a section past `MAX_SECTION_ENTRIES`.
+    too_many: BTreeMap<Section, Skipped>,
 }
 
 impl Parser {
@@ -125,6 +127,7 @@ impl Parser {
             before_first_tag: None,
             after_end: None,
             unknown: None,
+            too_many: BTreeMap::new(),
         }
     }
 
@@ -220,6 +223,21 @@ impl Parser {
     // ---- entries ------------------------------------------------------
 
     fn entry(&mut self, section: Section, fields: &[&str], line: u32) {
+        if self.entries(section) >= MAX_SECTION_ENTRIES {
+            match self.too_many.get_mut(&section) {
+                Some(s) => s.count += 1,
+                None => {
+                    self.too_many.insert(
+                        section,
+                        Skipped {
+                            first: line,
+                            count: 1,
+                        },
+                    );
+                }
+            }
+            return;
+        }
         if let Some(&first) = fields.first()
             && is_valid_name(first)
             && let Some(&first_line) = self.seen.get(&(section, fold(first)))
@@ -271,6 +289,16 @@ impl Parser {
                 }
             }
             Err(problem) => self.substitute(section, problem, line),
+        }
+    }
+
+    fn entries(&self, section: Section) -> usize {
+        match section {
+            Section::Devices => self.model.devices.len(),
+            Section::Objects => self.model.objects.len(),
+            Section::Colors => self.model.colors.len(),
+            Section::Identifiers => self.model.identifiers.len(),
+            Section::Parameters => self.model.parameters.len(),
         }
     }
 
@@ -442,6 +470,18 @@ impl Parser {
                 s.first,
                 format!(
                     "{} before the first section tag {} ignored",
+                    lines(s.count),
+                    if s.count == 1 { "is" } else { "are" }
+                ),
+            );
+        }
+        for (section, s) in std::mem::take(&mut self.too_many) {
+            self.warn(
+                s.first,
+                format!(
+                    "[{}]: more than {MAX_SECTION_ENTRIES} entries, out of range (expected at most \
+                     {MAX_SECTION_ENTRIES}); {} from here on {} ignored",
+                    section.tag(),
                     lines(s.count),
                     if s.count == 1 { "is" } else { "are" }
                 ),

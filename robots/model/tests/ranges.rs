@@ -4,7 +4,9 @@
 //! `key: value out of range (expected ...)` (or "not a number") on its line,
 //! and the model that comes back holds only values in range.
 
-use ilmr_model::{MAX_MAGNITUDE, MAX_READINGS, PARAMETER_SPECS, RobotModel, Valid};
+use ilmr_model::{
+    MAX_MAGNITUDE, MAX_READINGS, MAX_SECTION_ENTRIES, PARAMETER_SPECS, RobotModel, Valid,
+};
 
 fn parse(text: &str) -> (RobotModel, Vec<String>) {
     let (model, warnings) = RobotModel::parse(text, "test");
@@ -182,4 +184,33 @@ fn the_shipped_robots_are_inside_every_range() {
             }
         }
     }
+}
+
+#[test]
+fn a_section_holds_at_most_its_limit_of_entries() {
+    let mut text = String::from("[SENSORSANDACTUATORS]\n");
+    for i in 0..MAX_SECTION_ENTRIES + 500 {
+        text.push_str(&format!("d{i} {} 0 1 1\n", i + 100));
+    }
+    text.push_str("[PARAMETERS]\n");
+    for i in 0..MAX_SECTION_ENTRIES + 1 {
+        text.push_str(&format!("p{i} 1\n"));
+    }
+    text.push_str("[END]\n");
+    let (model, warnings) = parse(&text);
+    assert_eq!(model.devices.len(), MAX_SECTION_ENTRIES);
+    assert_eq!(model.parameters.len(), MAX_SECTION_ENTRIES);
+    let first = MAX_SECTION_ENTRIES + 2;
+    assert_eq!(
+        warnings,
+        [
+            format!(
+                "line {first}: [SENSORSANDACTUATORS]: more than 1024 entries, out of range (expected at most 1024); 500 lines from here on are ignored"
+            ),
+            format!(
+                "line {}: [PARAMETERS]: more than 1024 entries, out of range (expected at most 1024); 1 line from here on is ignored",
+                first + 500 + 1 + MAX_SECTION_ENTRIES
+            ),
+        ]
+    );
 }
