@@ -54,6 +54,10 @@ pub fn field_table_markdown() -> String {
             "[PARAMETERS] value of an unknown name",
             format!("-{m} to {m}"),
         ),
+        (
+            "entries of one section",
+            format!("at most {MAX_SECTION_ENTRIES}"),
+        ),
     ];
     let mut out = String::from("| field | admits |\n| --- | --- |\n");
     for (field, admits) in rows {
