@@ -3,6 +3,7 @@
 
 mod error;
 mod format;
+pub mod limits;
 mod shipped;
 mod validate;
 
