@@ -14,8 +14,11 @@ use ilmr_hal::Pose;
 use ilmr_model::RobotModel;
 use ilmr_sim::SimRobot;
 use ilmr_stdlib::VarKind;
+use ilmr_vm::bytecode::BlockId;
 use ilmr_vm::runtime::trace::fmt_num;
 use ilmr_vm::{Activity, LineError, ModuleBuilder, SimClock, VarRecord, Vm};
+
+use super::guard;
 
 /// What a front end asks of the VM thread.
 pub enum Job {
@@ -152,11 +155,25 @@ impl Engine {
     fn handle(&mut self, job: Job) {
         match job {
             Job::Line { text, reply } => {
-                let answer = self.line(&text);
+                let t = self.vm.time();
+                // `line` catches a panic of the compiler itself, leaving the module as
+                // it was; this catches one of the VM's joining, after which the line's
+                // blocks may be in the module but are never run.
+                let answer = guard::guarded("joining the line", || self.line(&text))
+                    .unwrap_or_else(|why| LineAnswer {
+                        t,
+                        outcome: Outcome::Failed(why),
+                    });
                 let _ = reply.send(answer);
             }
             Job::Check { text, reply } => {
-                let _ = reply.send(self.check(&text));
+                let t = self.vm.time();
+                let answer = guard::guarded("checking the line", || self.check(&text))
+                    .unwrap_or_else(|why| LineAnswer {
+                        t,
+                        outcome: Outcome::Failed(why),
+                    });
+                let _ = reply.send(answer);
             }
             Job::Status { reply } => {
                 let _ = reply.send(self.status());
@@ -181,16 +198,39 @@ impl Engine {
     /// Joins `text` to the running task, or says why not; subscribers see a `line`
     /// event either way, as in `ilmrc run`'s trace.
     fn line(&mut self, text: &str) -> LineAnswer {
-        let model = &self.model;
         let options = LineOptions { robotless: false };
+        self.join(text, |b, model, warnings| {
+            lower_line_warned(text, b, model, options, warnings)
+        })
+    }
+
+    /// Joins what `lower` builds for `text`. A panic inside `lower` is caught there, so
+    /// the VM takes the line as rejected and truncates the module to what it was.
+    fn join(
+        &mut self,
+        text: &str,
+        lower: impl FnOnce(
+            &mut ModuleBuilder,
+            &RobotModel,
+            &mut Vec<Diagnostic>,
+        ) -> Result<Vec<BlockId>, Vec<Diagnostic>>,
+    ) -> LineAnswer {
         let t = self.vm.time();
         let mut warnings = Vec::new();
-        let result = self
-            .vm
-            .add_line(|b| lower_line_warned(text, b, model, options, &mut warnings));
+        let model = &self.model;
+        let result = self.vm.add_line(|b| {
+            match guard::guarded("compiling the line", || lower(b, model, &mut warnings)) {
+                Ok(Ok(start)) => Ok(start),
+                Ok(Err(diagnostics)) => Err(Refusal::Diagnostics(diagnostics)),
+                Err(why) => Err(Refusal::Panicked(why)),
+            }
+        });
         let outcome = match result {
             Ok(()) => Outcome::Accepted { warnings },
-            Err(LineError::Lower(diagnostics)) => Outcome::Rejected { diagnostics },
+            Err(LineError::Lower(Refusal::Diagnostics(diagnostics))) => {
+                Outcome::Rejected { diagnostics }
+            }
+            Err(LineError::Lower(Refusal::Panicked(why))) => Outcome::Failed(why),
             Err(LineError::Invalid(e)) => Outcome::Failed(format!("the line was not joined: {e}")),
             Err(LineError::Replaced) => Outcome::Failed(
                 "the line was not joined: the lowering did not return the program".into(),
@@ -276,6 +316,13 @@ impl Engine {
                 Err(TrySendError::Full(_) | TrySendError::Disconnected(_)) => false,
             });
     }
+}
+
+/// Why a line's lowering gave nothing to join.
+enum Refusal {
+    Diagnostics(Vec<Diagnostic>),
+    /// The compiler panicked; the message says so.
+    Panicked(String),
 }
 
 /// The `line` event of `ilmrc run`'s trace, written as it writes it, plus the codes

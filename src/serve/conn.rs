@@ -13,9 +13,7 @@ use super::protocol::{self, Parsed, Request};
 use super::reply;
 use crate::live::engine::Job;
 
-/// The longest request line, bytes; a longer one is refused and the connection closed
-/// (a client cannot make the server hold unbounded input).
-pub const MAX_LINE: usize = 1 << 20;
+use crate::live::MAX_LINE_BYTES as MAX_LINE;
 
 /// Lines queued for a connection before a subscriber that does not read is dropped.
 const OUT_QUEUE: usize = 4096;
@@ -82,7 +80,13 @@ fn read_requests(stream: TcpStream, conn: u64, jobs: &Sender<Job>, out: &SyncSen
                 continue;
             }
         };
+        // A planner that waits for one answer per line it sent must not wait forever
+        // for a blank one.
         if line.is_empty() {
+            let answer = protocol::error("empty line: send one JSON object per line");
+            if out.send(protocol::answer(answer, None)).is_err() {
+                return;
+            }
             continue;
         }
         let parsed = protocol::parse(line);

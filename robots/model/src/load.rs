@@ -41,16 +41,16 @@ impl RobotModel {
     /// default can stand in for a file that exists but cannot be read
     /// without hiding a real fault from the operator.
     pub fn load(path: &Path) -> io::Result<(RobotModel, Vec<ModelWarning>)> {
-        let bytes = match std::fs::read(path) {
+        let bytes = match ilmr_files::read(path, ilmr_files::Kind::RobotModel) {
             Ok(bytes) => bytes,
-            Err(e) if e.kind() == io::ErrorKind::NotFound => {
+            Err(e) if e.is_not_found() => {
                 let warning = ModelWarning::file(format!(
                     "robot model file `{}` not found; the built-in defaults are used",
                     path.display()
                 ));
                 return Ok((RobotModel::defaults(), vec![warning]));
             }
-            Err(e) => return Err(e),
+            Err(e) => return Err(e.into()),
         };
         let name = path
             .file_stem()
