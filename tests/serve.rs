@@ -398,3 +398,19 @@ fn an_accepted_line_brings_its_warnings() {
 // Garbage request lines over TCP, through this file's `Server` and `Client`.
 #[path = "fuzz/serve_garbage.rs"]
 mod serve_garbage;
+
+#[test]
+fn a_blank_line_is_answered_so_a_planner_never_waits_for_nothing() {
+    let server = Server::start(&[]);
+    let mut c = server.connect();
+    for blank in ["", "   ", "\r"] {
+        let answer = c.ask(blank);
+        assert_eq!(answer["ok"], json!(false), "{blank:?}: {answer}");
+        assert_eq!(
+            answer["error"],
+            json!("empty line: send one JSON object per line"),
+            "{blank:?}"
+        );
+    }
+    assert_eq!(c.ask(r#"{"status": true, "id": 4}"#)["id"], json!(4));
+}

@@ -347,3 +347,57 @@ fn line_event(t: f64, text: &str, outcome: &Outcome) -> String {
     line.push('}');
     line
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::build::Compiled;
+
+    /// MoRo in the empty world with no task, as `serve` starts without `--task`.
+    fn engine() -> Engine {
+        let opened =
+            super::super::robot::open("moro", Some("empty"), 0).unwrap_or_else(|e| panic!("{e}"));
+        let Ok(Compiled::Module(module)) = super::super::no_task(&opened.spec, None) else {
+            panic!("the empty task compiles");
+        };
+        let vm = Vm::new(*module, opened.robot, SimClock, opened.config)
+            .unwrap_or_else(|e| panic!("{e}"));
+        Engine::new(vm, opened.model)
+    }
+
+    fn counts(e: &Engine) -> ilmr_vm::bytecode::Counts {
+        e.vm.module().counts()
+    }
+
+    #[test]
+    fn a_panic_while_a_line_compiles_is_its_error_and_the_task_is_kept() {
+        let mut e = engine();
+        assert!(matches!(e.line("n = 1").outcome, Outcome::Accepted { .. }));
+        let before = counts(&e);
+        let options = LineOptions { robotless: false };
+        // Half a line is built into the module before the compiler falls over.
+        let answer = e.join("m = 2", |b, model, warnings| {
+            let built = lower_line_warned("m = 2", b, model, options, warnings);
+            assert!(built.is_ok());
+            panic!("the compiler fell over")
+        });
+        match answer.outcome {
+            Outcome::Failed(why) => assert!(
+                why.starts_with("ilmrc failed while compiling the line (the compiler fell over)"),
+                "{why}"
+            ),
+            other => panic!("{other:?}"),
+        }
+        assert_eq!(counts(&e), before, "the half-built line was not taken back");
+        assert!(e.vm.var("m").is_none());
+        // The engine goes on: the next line joins and the robot ticks.
+        assert!(matches!(
+            e.line("n = n + 1").outcome,
+            Outcome::Accepted { .. }
+        ));
+        for _ in 0..3 {
+            e.vm.tick();
+        }
+        assert_eq!(e.vm.var("n").map(|r| r.value), Some(2.0));
+    }
+}
