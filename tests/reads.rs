@@ -153,3 +153,17 @@ fn a_task_that_is_not_utf8_says_where() {
         "it is not UTF-8 text (invalid byte at offset 13)",
     );
 }
+
+/// docs/run.md's table of limits quotes the constants `ilmr-files` reads with.
+#[test]
+fn the_documented_limits_are_the_ones_read_with() {
+    let doc = std::fs::read_to_string(root().join("docs/run.md")).expect("docs/run.md");
+    for kind in ilmr_files::Kind::ALL {
+        let row = format!(
+            "| {} MiB | `{}` |",
+            kind.limit() >> 20,
+            kind.limit_name()
+        );
+        assert!(doc.contains(&row), "docs/run.md lacks `{row}` for {kind:?}");
+    }
+}

@@ -178,6 +178,15 @@ mod tests {
         );
     }
 
+    /// The world docs list the sensors `actuator_dead` may not name.
+    #[test]
+    fn the_worlds_readme_lists_the_sensors() {
+        let readme = include_str!("../../../worlds/README.md");
+        for s in SENSOR_DEVICES {
+            assert!(readme.contains(&format!("`{s}`")), "{s}");
+        }
+    }
+
     /// `random_plan` draws from the kinds a body can take; this is that list.
     #[test]
     fn the_kinds_a_body_takes_match_the_soak_plans() {
