@@ -409,3 +409,39 @@ fn a_piped_line_that_is_not_utf8_or_too_long_is_skipped_and_reading_goes_on() {
     sh.expect("left the shell at t=");
     assert_eq!(sh.exit_code(), Some(0));
 }
+
+#[test]
+fn a_line_nested_past_the_limits_is_an_error_and_the_shell_reads_on() {
+    let mut sh = Shell::piped(&[]);
+    sh.expect("ILMR shell");
+    let parens = |n: usize| format!("x = {}1{}\n", "(".repeat(n), ")".repeat(n));
+    let plus = |n: usize| format!("x = 1{}\n", "+1".repeat(n - 1));
+    // Under the 1 MiB line limit: the compiler's depth limit answers.
+    for line in [parens(3_000), parens(400_000), plus(400_000)] {
+        sh.keys(&line);
+        sh.expect("not joined");
+        sh.keys("k = 1\n");
+        sh.expect("joined at t=");
+    }
+    // 3,000 nested `if` blocks, typed a line at a time.
+    let ifs = format!(
+        "n = 1\n{}n = 2\n{}",
+        "if(n>0)\n".repeat(3_000),
+        "endif\n".repeat(3_000)
+    );
+    sh.keys(&ifs);
+    sh.expect("joined at t=");
+    sh.expect("not joined");
+    // Over it: skipped before the compiler.
+    for line in [parens(1_000_000), plus(1_000_000)] {
+        sh.keys(&line);
+        sh.expect("bytes (MAX_LINE_BYTES); skipped");
+    }
+    sh.keys("k = 7\n");
+    status_until(&mut sh, "the shell stopped reading", |v| {
+        v.contains("k  status 1, value 7")
+    });
+    sh.keys("exit\n");
+    sh.expect("left the shell at t=");
+    assert_eq!(sh.exit_code(), Some(0));
+}
