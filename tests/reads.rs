@@ -159,11 +159,7 @@ fn a_task_that_is_not_utf8_says_where() {
 fn the_documented_limits_are_the_ones_read_with() {
     let doc = std::fs::read_to_string(root().join("docs/run.md")).expect("docs/run.md");
     for kind in ilmr_files::Kind::ALL {
-        let row = format!(
-            "| {} MiB | `{}` |",
-            kind.limit() >> 20,
-            kind.limit_name()
-        );
+        let row = format!("| {} MiB | `{}` |", kind.limit() >> 20, kind.limit_name());
         assert!(doc.contains(&row), "docs/run.md lacks `{row}` for {kind:?}");
     }
 }

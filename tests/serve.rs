@@ -446,7 +446,10 @@ fn rejected_with_an_error(answer: &Value) -> bool {
 fn a_line_nested_past_the_limits_is_answered_and_everyone_else_goes_on() {
     let server = Server::start(&[]);
     let mut other = server.connect();
-    assert_eq!(other.ask(r#"{"ilmr": "m = goahead(0.3)"}"#)["ok"], json!(true));
+    assert_eq!(
+        other.ask(r#"{"ilmr": "m = goahead(0.3)"}"#)["ok"],
+        json!(true)
+    );
     // Each just under the 1 MiB request limit, so the compiler sees it whole.
     for (what, text) in [
         ("parentheses", nested_parens(400_000)),
@@ -519,10 +522,7 @@ fn a_task_nested_past_the_limits_is_a_clear_error_before_listening() {
         let _ = child.stderr.take().map(|mut s| s.read_to_string(&mut err));
         assert_eq!(status.code(), Some(code), "{depth}: {out}{err}");
         assert!(!out.contains("listening"), "{depth}: {out}");
-        assert!(
-            format!("{out}{err}").contains(says),
-            "{depth}: {out}{err}"
-        );
+        assert!(format!("{out}{err}").contains(says), "{depth}: {out}{err}");
     }
     let _ = std::fs::remove_dir_all(&dir);
 }

@@ -18,8 +18,8 @@ pub const COMPILER_STACK_BYTES: usize = 64 << 20;
 pub fn guarded<T>(doing: &str, f: impl FnOnce() -> T) -> Result<T, String> {
     catch_unwind(AssertUnwindSafe(f)).map_err(|payload| {
         let message = format!(
-            "ilmrc failed while {doing} ({}); nothing was joined and the robot goes on. \
-             This is a bug in ilmrc: please report the line",
+            "ilmrc failed while {doing} ({}); the robot goes on. This is a bug in ilmrc: \
+             please report the line",
             panic_text(payload.as_ref())
         );
         eprintln!("error: {message}");

@@ -12,6 +12,7 @@ use serde_json::{Map, Value};
 use super::protocol::{self, Parsed, Request};
 use super::reply;
 use crate::live::engine::Job;
+use crate::live::guard::guarded;
 
 use crate::live::MAX_LINE_BYTES as MAX_LINE;
 
@@ -89,14 +90,18 @@ fn read_requests(stream: TcpStream, conn: u64, jobs: &Sender<Job>, out: &SyncSen
             }
             continue;
         }
-        let parsed = protocol::parse(line);
-        let Some(answer) = ask(&parsed, conn, jobs, out) else {
-            continue;
+        // Parsing the request and rendering its answer happen on this thread; a panic
+        // there is this request's error, not the end of the connection.
+        let answered = guarded("answering the request", || {
+            let parsed = protocol::parse(line);
+            ask(&parsed, conn, jobs, out).map(|a| protocol::answer(a, parsed.id.as_ref()))
+        });
+        let answer = match answered {
+            Ok(Some(answer)) => answer,
+            Ok(None) => continue,
+            Err(why) => protocol::answer(protocol::error(&why), None),
         };
-        if out
-            .send(protocol::answer(answer, parsed.id.as_ref()))
-            .is_err()
-        {
+        if out.send(answer).is_err() {
             return;
         }
     }
