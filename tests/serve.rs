@@ -434,12 +434,13 @@ fn nested_ifs(depth: usize) -> String {
     )
 }
 
-/// A rejected answer whose diagnostics include an error.
-fn rejected_with_an_error(answer: &Value) -> bool {
+/// A rejected answer whose diagnostics include the error `code`.
+fn rejected_with(answer: &Value, code: &str) -> bool {
     answer["ok"] == json!(false)
-        && answer["diagnostics"]
-            .as_array()
-            .is_some_and(|d| d.iter().any(|d| d["severity"] == json!("error")))
+        && answer["diagnostics"].as_array().is_some_and(|d| {
+            d.iter()
+                .any(|d| d["severity"] == json!("error") && d["code"] == json!(code))
+        })
 }
 
 #[test]
@@ -451,16 +452,18 @@ fn a_line_nested_past_the_limits_is_answered_and_everyone_else_goes_on() {
         json!(true)
     );
     // Each just under the 1 MiB request limit, so the compiler sees it whole.
-    for (what, text) in [
-        ("parentheses", nested_parens(400_000)),
-        ("a + chain", plus_chain(400_000)),
-        ("nested ifs", nested_ifs(50_000)),
-        ("parentheses", nested_parens(3_000)),
-        ("nested ifs", nested_ifs(3_000)),
+    // E0104: more than 256 operators and parentheses on a line; E0210: more than 256
+    // nested blocks (docs/diagnostics.md).
+    for (what, text, code) in [
+        ("parentheses", nested_parens(400_000), "E0104"),
+        ("a + chain", plus_chain(400_000), "E0104"),
+        ("nested ifs", nested_ifs(50_000), "E0210"),
+        ("parentheses", nested_parens(3_000), "E0104"),
+        ("nested ifs", nested_ifs(3_000), "E0210"),
     ] {
         let mut c = server.connect();
         let answer = c.ask(&json!({ "ilmr": text, "id": what }).to_string());
-        assert!(rejected_with_an_error(&answer), "{what}: {answer}");
+        assert!(rejected_with(&answer, code), "{what}: {answer}");
         assert_eq!(answer["id"], json!(what));
         // The same connection, another client and the running task go on.
         assert_eq!(c.ask(r#"{"ilmr": "k = 1"}"#)["ok"], json!(true), "{what}");
@@ -491,8 +494,8 @@ fn a_task_nested_past_the_limits_is_a_clear_error_before_listening() {
     // 3,000 and 500,000 levels reach the compiler; 1,000,000 (14 MB) is over the
     // source file limit and is refused unread.
     for (depth, code, says) in [
-        (3_000, 1, "error"),
-        (500_000, 1, "error"),
+        (3_000, 1, "E0210"),
+        (500_000, 1, "E0210"),
         (1_000_000, 2, "the limit for a task or skill file"),
     ] {
         let task = dir.join(format!("deep{depth}.ilmr"));

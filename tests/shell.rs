@@ -419,7 +419,8 @@ fn a_line_nested_past_the_limits_is_an_error_and_the_shell_reads_on() {
     // Under the 1 MiB line limit: the compiler's depth limit answers.
     for line in [parens(3_000), parens(400_000), plus(400_000)] {
         sh.keys(&line);
-        sh.expect("not joined");
+        let answer = sh.expect("not joined");
+        assert!(answer.contains("[E0104]"), "{answer}");
         sh.keys("k = 1\n");
         sh.expect("joined at t=");
     }
@@ -431,7 +432,8 @@ fn a_line_nested_past_the_limits_is_an_error_and_the_shell_reads_on() {
     );
     sh.keys(&ifs);
     sh.expect("joined at t=");
-    sh.expect("not joined");
+    let answer = sh.expect("not joined");
+    assert!(answer.contains("[E0210]"), "{answer}");
     // Over it: skipped before the compiler.
     for line in [parens(1_000_000), plus(1_000_000)] {
         sh.keys(&line);

@@ -1,17 +1,12 @@
 //! What keeps one bad line from taking the robot down: the threads that compile ILMR
-//! text get a stack sized for the compiler's nesting limits, and a panic while a line
-//! is compiled or joined becomes that line's error.
+//! text (the engine's, for every line, and the one that compiles `--task`) get the
+//! stack the compiler's nesting limits need (`ilmr_compiler::limits::COMPILER_STACK`),
+//! and a panic while a line is compiled or joined becomes that line's error.
 
 use std::any::Any;
 use std::panic::{AssertUnwindSafe, catch_unwind};
 
-/// Stack of the threads that compile ILMR text: the engine's (every line) and the one
-/// that compiles `--task`. The compiler recurses once per level of nesting, up to its
-/// limits of 256 levels of blocks and of expressions. Measured on a debug build
-/// (`ulimit -s` under `ilmrc check`): 256 nested parentheses need 2-4 MiB of stack,
-/// 256 nested `if` blocks 256-512 KB, so 64 MiB is over ten times the worst line within
-/// the limits. It is address space: only the pages touched become memory.
-pub const COMPILER_STACK_BYTES: usize = 64 << 20;
+use ilmr_compiler::limits::COMPILER_STACK;
 
 /// Runs `f`; a panic comes back as a message saying what was being done, which is
 /// also logged on stderr (after the panic's own report, with its location).
@@ -27,13 +22,13 @@ pub fn guarded<T>(doing: &str, f: impl FnOnce() -> T) -> Result<T, String> {
     })
 }
 
-/// Runs `f` on a thread of its own with [`COMPILER_STACK_BYTES`] of stack and waits
+/// Runs `f` on a thread of its own with [`COMPILER_STACK`] of stack and waits
 /// for it; a panic comes back as a message, as from [`guarded`].
 pub fn on_compiler_stack<T: Send>(doing: &str, f: impl FnOnce() -> T + Send) -> Result<T, String> {
     std::thread::scope(|s| {
         let worker = std::thread::Builder::new()
             .name("ilmr-compile".into())
-            .stack_size(COMPILER_STACK_BYTES)
+            .stack_size(COMPILER_STACK)
             .spawn_scoped(s, || guarded(doing, f))
             .map_err(|e| format!("cannot start a thread for {doing}: {e}"))?;
         worker
@@ -67,7 +62,7 @@ mod tests {
 
     #[test]
     fn the_compiler_thread_has_its_stack_and_returns_its_value() {
-        // 16 MiB of locals would overflow a default 2 MiB thread and the 8 MiB main one.
+        // 12 MiB of locals: six times what a default thread (2 MiB) has.
         fn deep(n: u32) -> u32 {
             let pad = std::hint::black_box([1u8; 4096]);
             if n == 0 {
@@ -76,7 +71,7 @@ mod tests {
                 deep(n - 1) + u32::from(pad[n as usize % 4096])
             }
         }
-        assert_eq!(on_compiler_stack("recursing", || deep(4096)), Ok(4096));
+        assert_eq!(on_compiler_stack("recursing", || deep(3072)), Ok(3072));
         let r: Result<(), String> = on_compiler_stack("panicking", || panic!("inner"));
         assert!(r.is_err_and(|e| e.contains("panicking (inner)")));
     }

@@ -70,7 +70,7 @@ pub fn start(args: &RobotArgs) -> Result<Option<Live>, String> {
     let engine = Engine::new(vm, opened.model.clone());
     std::thread::Builder::new()
         .name("ilmr-vm".into())
-        .stack_size(guard::COMPILER_STACK_BYTES)
+        .stack_size(ilmr_compiler::limits::COMPILER_STACK)
         .spawn(move || engine.run(queue))
         .map_err(|e| format!("cannot start the robot's thread: {e}"))?;
     Ok(Some(Live {
