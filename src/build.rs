@@ -55,7 +55,7 @@ pub fn compile(
         format: Format::Human,
         files: vec![task.to_path_buf()],
     })?;
-    let model = inputs::load_robot(robot)?.model;
+    let model = inputs::load_robot_model(robot)?;
     let mut sources: Vec<Source> = vec![inputs::read_source(task)?];
     if let Some(dir) = skills {
         sources.extend(inputs::read_skill_dir(dir)?);

@@ -67,3 +67,21 @@ pub fn load_robot(spec: &str) -> Result<Robot, String> {
         file: Some(Source::new(spec, text)),
     })
 }
+
+/// The model a command drives or builds for, with its warnings (a value out of range, a
+/// line that could not be read: the default stands in) said on stderr, so that a run on
+/// a model `check` warns about is not silently a run on other values.
+pub fn load_robot_model(spec: &str) -> Result<RobotModel, String> {
+    let robot = load_robot(spec)?;
+    warn_about(spec, &robot.warnings);
+    Ok(robot.model)
+}
+
+pub fn warn_about(spec: &str, warnings: &[ModelWarning]) {
+    for w in warnings {
+        match w.line {
+            Some(line) => eprintln!("warning: {spec}:{line}: {}", w.message),
+            None => eprintln!("warning: {spec}: {}", w.message),
+        }
+    }
+}

@@ -82,7 +82,7 @@ pub fn start(args: &RobotArgs) -> Result<Option<Live>, String> {
 
 /// The module of an empty task, with the skills lines may call.
 fn no_task(robot: &str, skills: Option<&Path>) -> Result<Compiled, String> {
-    let model = crate::inputs::load_robot(robot)?.model;
+    let model = crate::inputs::load_robot_model(robot)?;
     let mut sources = vec![Source::new("<live>", "")];
     if let Some(dir) = skills {
         sources.extend(crate::inputs::read_skill_dir(dir)?);

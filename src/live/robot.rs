@@ -31,7 +31,7 @@ pub fn open(spec: &str, world: Option<&str>, seed: u64) -> Result<Opened, String
              path to a ROBO.INI file"
         ));
     }
-    let model = crate::inputs::load_robot(spec)?.model;
+    let model = crate::inputs::load_robot_model(spec)?;
     let kind = body_of(spec, &model);
     let world_spec = world.unwrap_or(default_world(kind));
     let loaded = load_world(world_spec)?;

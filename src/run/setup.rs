@@ -87,6 +87,7 @@ pub fn choose(c: &Choice<'_>) -> Result<Setup, String> {
                 e
             }
         })?;
+        crate::inputs::warn_about(c.robot, &loaded.warnings);
         let kind = body_of(c.robot, &loaded.model);
         let mut world = load_world(c.world.unwrap_or(default_world(kind)))?;
         if let Some(text) = c.start {
@@ -110,7 +111,7 @@ pub fn choose(c: &Choice<'_>) -> Result<Setup, String> {
         }
     }
     let model_spec = c.model.unwrap_or("moro").to_string();
-    let model = crate::inputs::load_robot(&model_spec)?.model;
+    let model = crate::inputs::load_robot_model(&model_spec)?;
     Ok(Setup {
         backend,
         model_spec,
