@@ -14,6 +14,26 @@ use crate::line_index::LineIndex;
 
 pub const SOURCE: &str = "ilmr";
 
+/// The language server's own code for a file whose analysis failed: a bug in the
+/// checker, isolated to the file. The compiler's codes are `E`/`W` and four digits.
+pub const ANALYSIS_FAILED: &str = "L0001";
+
+/// What a file the checker failed on shows instead of its diagnostics, at its start.
+pub const ANALYSIS_FAILED_MESSAGE: &str = "ilmr-lsp could not analyse this file: \
+    the checker failed on it (an internal error, reported in the server's log). \
+    The other files are analysed without it.";
+
+pub fn analysis_failed() -> lsp::Diagnostic {
+    lsp::Diagnostic {
+        range: Range::default(),
+        severity: Some(DiagnosticSeverity::ERROR),
+        code: Some(NumberOrString::String(ANALYSIS_FAILED.to_string())),
+        source: Some(SOURCE.to_string()),
+        message: ANALYSIS_FAILED_MESSAGE.to_string(),
+        ..Default::default()
+    }
+}
+
 /// Turns a file's span into a location; `None` for files no editor can open.
 pub trait Locate {
     fn locate(&self, file: FileId, span: Span) -> Option<(Uri, Range)>;

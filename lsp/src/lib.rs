@@ -12,14 +12,17 @@ pub mod context;
 pub mod diagnostics;
 pub mod docs;
 pub mod engine;
+pub mod framing;
 pub mod hover;
 pub mod line_index;
+pub mod message;
 pub mod navigation;
 pub mod outline;
 pub mod robot;
 pub mod semantic;
 pub mod server;
 pub mod signature;
+pub mod transport;
 pub mod workspace;
 
 pub use engine::{Engine, Publish, Settings};
