@@ -239,16 +239,22 @@ impl Program {
         let analysis = self.analysis();
         let mut out = Vec::new();
         for unit in &analysis.units {
+            // A set, not a search per binding: a name bound on every line of a long
+            // file would make that quadratic.
+            let mut via_skill: Option<std::collections::HashSet<Span>> = None;
             for (_, var) in unit.vars.iter() {
                 if var.spelling.to_lowercase() != name {
                     continue;
                 }
-                for &(file, span) in &var.defs {
-                    let via_skill = unit
-                        .refs
+                let via_skill = via_skill.get_or_insert_with(|| {
+                    unit.refs
                         .iter()
-                        .any(|(s, r)| *s == span && matches!(r, Resolved::Skill(_)));
-                    if !via_skill {
+                        .filter(|(_, r)| matches!(r, Resolved::Skill(_)))
+                        .map(|(s, _)| *s)
+                        .collect()
+                });
+                for &(file, span) in &var.defs {
+                    if !via_skill.contains(&span) {
                         out.push((file, span));
                     }
                 }

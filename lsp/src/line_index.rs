@@ -1,6 +1,7 @@
 //! The one place byte offsets meet LSP positions. The compiler's spans are bytes; LSP
 //! counts lines and UTF-16 code units. Lines holding only ASCII (nearly all of them)
-//! convert by arithmetic; the rest walk their characters.
+//! convert by arithmetic; the rest walk their characters from the nearest checkpoint,
+//! so that a position on a megabyte-long line costs no more than one on a short one.
 
 use ilmr_compiler::Span;
 use tower_lsp_server::ls_types::{Position, Range};
@@ -11,28 +12,74 @@ pub struct LineIndex {
     starts: Vec<u32>,
     /// Whether each line is pure ASCII, where bytes and UTF-16 units coincide.
     ascii: Vec<bool>,
+    /// On lines that are not ASCII, every `CHECKPOINT` bytes or so: a byte offset (a
+    /// character boundary) and its UTF-16 column.
+    checkpoints: Vec<(u32, u32)>,
     len: u32,
 }
+
+/// How far apart checkpoints are, in bytes: the most one conversion walks.
+const CHECKPOINT: usize = 1024;
 
 impl LineIndex {
     pub fn new(text: &str) -> LineIndex {
         let mut starts = vec![0];
         let mut ascii = Vec::new();
+        let mut checkpoints = Vec::new();
         let mut line_ascii = true;
-        for (i, b) in text.bytes().enumerate() {
-            if b == b'\n' {
+        // The line's first checkpoint, the last one's offset, the column so far.
+        let (mut line_checkpoints, mut last, mut column) = (0, 0, 0);
+        for (i, c) in text.char_indices() {
+            if i - last >= CHECKPOINT {
+                checkpoints.push((i as u32, column));
+                last = i;
+            }
+            if c == '\n' {
+                if line_ascii {
+                    checkpoints.truncate(line_checkpoints);
+                }
                 ascii.push(line_ascii);
                 line_ascii = true;
                 starts.push(i as u32 + 1);
-            } else if !b.is_ascii() {
-                line_ascii = false;
+                (line_checkpoints, last, column) = (checkpoints.len(), i + 1, 0);
+            } else {
+                line_ascii &= c.is_ascii();
+                column += c.len_utf16() as u32;
             }
+        }
+        if line_ascii {
+            checkpoints.truncate(line_checkpoints);
         }
         ascii.push(line_ascii);
         LineIndex {
             starts,
             ascii,
+            checkpoints,
             len: text.len() as u32,
+        }
+    }
+
+    /// The checkpoint of a line nearest before `offset` (a byte offset, or a column
+    /// when `by_column`), else the line's start.
+    fn checkpoint(&self, line: usize, at: usize, by_column: bool) -> (usize, usize) {
+        let start = self.starts[line] as usize;
+        let end = self
+            .starts
+            .get(line + 1)
+            .map_or(self.len as usize + 1, |&s| s as usize);
+        let from = self.checkpoints.partition_point(|c| (c.0 as usize) < start);
+        let to = self.checkpoints.partition_point(|c| (c.0 as usize) < end);
+        let ours = &self.checkpoints[from..to];
+        let before = ours.partition_point(|&(b, c)| {
+            if by_column {
+                c as usize <= at
+            } else {
+                b as usize <= at
+            }
+        });
+        match before.checked_sub(1).map(|i| ours[i]) {
+            Some((b, c)) => (b as usize, c as usize),
+            None => (start, 0),
         }
     }
 
@@ -74,7 +121,8 @@ impl LineIndex {
             while !text.is_char_boundary(end) {
                 end -= 1;
             }
-            text[start..end].chars().map(char::len_utf16).sum()
+            let (from, column) = self.checkpoint(line, end, false);
+            column + text[from..end].chars().map(char::len_utf16).sum::<usize>()
         };
         Position::new(line as u32, character as u32)
     }
@@ -91,10 +139,11 @@ impl LineIndex {
         if self.ascii[line] {
             return (span.start as usize + wanted).min(span.end as usize);
         }
-        let mut units = 0;
-        for (i, c) in span.slice(text).char_indices() {
+        let (from, mut units) = self.checkpoint(line, wanted, true);
+        let from = from.min(span.end as usize);
+        for (i, c) in text[from..span.end as usize].char_indices() {
             if units >= wanted {
-                return span.start as usize + i;
+                return from + i;
             }
             units += c.len_utf16();
         }
@@ -132,6 +181,27 @@ mod tests {
         assert_eq!(idx.offset(text, Position::new(2, 8)), end);
         // A column in the middle of a surrogate pair lands on the character after it.
         assert_eq!(idx.offset(text, Position::new(2, 7)), end);
+    }
+
+    /// Positions walked from the line's start, as the index did before checkpoints.
+    fn walked(text: &str, offset: usize) -> Position {
+        let line_start = text[..offset].rfind('\n').map_or(0, |i| i + 1);
+        let line = text[..offset].matches('\n').count() as u32;
+        let units: usize = text[line_start..offset].chars().map(char::len_utf16).sum();
+        Position::new(line, units as u32)
+    }
+
+    #[test]
+    fn long_lines_convert_through_checkpoints_as_walking_does() {
+        let line: String = (0..3_000).map(|i| ["ä", "a", "𝔸", "ab"][i % 4]).collect();
+        let text = format!("x\n{line}\nplain {}\n{line}", "b".repeat(5_000));
+        let idx = LineIndex::new(&text);
+        assert!(!idx.checkpoints.is_empty());
+        for (offset, _) in text.char_indices().chain([(text.len(), ' ')]) {
+            let p = walked(&text, offset);
+            assert_eq!(idx.position(&text, offset), p, "at byte {offset}");
+            assert_eq!(idx.offset(&text, p), offset, "at {p:?}");
+        }
     }
 
     #[test]
