@@ -150,6 +150,18 @@ impl LineIndex {
         span.end as usize
     }
 
+    /// Converts offsets given in increasing order, each line walked at most once:
+    /// semantic tokens ask for every token of a file.
+    pub fn walk<'a>(&'a self, text: &'a str) -> Walk<'a> {
+        Walk {
+            index: self,
+            text,
+            line: usize::MAX,
+            offset: 0,
+            column: 0,
+        }
+    }
+
     pub fn range(&self, text: &str, span: Span) -> Range {
         Range::new(
             self.position(text, span.start as usize),
@@ -161,6 +173,39 @@ impl LineIndex {
         let start = self.offset(text, range.start);
         let end = self.offset(text, range.end).max(start);
         Span::new(start, end)
+    }
+}
+
+/// See [`LineIndex::walk`]: the last position converted, to walk on from.
+pub struct Walk<'a> {
+    index: &'a LineIndex,
+    text: &'a str,
+    line: usize,
+    offset: usize,
+    column: usize,
+}
+
+impl Walk<'_> {
+    pub fn position(&mut self, offset: usize) -> Position {
+        let (index, text) = (self.index, self.text);
+        let mut offset = offset.min(index.len as usize);
+        let line = index.line_of(offset);
+        if index.ascii[line] {
+            return Position::new(line as u32, (offset - index.starts[line] as usize) as u32);
+        }
+        while !text.is_char_boundary(offset) {
+            offset -= 1;
+        }
+        let (mut from, mut column) = index.checkpoint(line, offset, false);
+        if line == self.line && from <= self.offset && self.offset <= offset {
+            (from, column) = (self.offset, self.column);
+        }
+        column += text[from..offset]
+            .chars()
+            .map(char::len_utf16)
+            .sum::<usize>();
+        (self.line, self.offset, self.column) = (line, offset, column);
+        Position::new(line as u32, column as u32)
     }
 }
 
@@ -197,9 +242,11 @@ mod tests {
         let text = format!("x\n{line}\nplain {}\n{line}", "b".repeat(5_000));
         let idx = LineIndex::new(&text);
         assert!(!idx.checkpoints.is_empty());
+        let mut walk = idx.walk(&text);
         for (offset, _) in text.char_indices().chain([(text.len(), ' ')]) {
             let p = walked(&text, offset);
             assert_eq!(idx.position(&text, offset), p, "at byte {offset}");
+            assert_eq!(walk.position(offset), p, "walking, at byte {offset}");
             assert_eq!(idx.offset(&text, p), offset, "at {p:?}");
         }
     }

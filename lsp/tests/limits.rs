@@ -1,0 +1,123 @@
+//! Hostile sizes through the engine: a 100,000-line file and a megabyte-long line get
+//! every feature's answer in linear time. The time bounds are guards against a
+//! quadratic walk (which takes hours at these sizes), not benchmarks.
+
+use std::time::{Duration, Instant};
+
+use ilmr_lsp::{Engine, Settings};
+use tower_lsp_server::ls_types::{Position, Range, Uri};
+
+const TASK: &str = "file:///ws/task.ilmr";
+
+/// Far above what these take in an unoptimised build, far below a quadratic walk.
+const GUARD: Duration = Duration::from_secs(60);
+
+fn engine_with(text: String) -> (Engine, Uri) {
+    let mut engine = Engine::new(
+        Vec::new(),
+        Settings {
+            robot: Some("moro".into()),
+            snippets: true,
+        },
+    );
+    let uri: Uri = TASK.parse().expect("a URI");
+    engine.open(uri.clone(), 1, text);
+    (engine, uri)
+}
+
+/// Asks every feature at `at` and names those whose answer was not empty.
+fn every_feature(engine: &Engine, uri: &Uri, at: Position) -> Vec<&'static str> {
+    let whole = Range::new(Position::new(0, 0), Position::new(u32::MAX, 0));
+    [
+        ("diagnostics", !engine.diagnostics(uri).is_empty()),
+        ("completion", !engine.completion(uri, at).is_empty()),
+        ("hover", engine.hover(uri, at).is_some()),
+        ("signature", engine.signature_help(uri, at).is_some()),
+        ("definition", !engine.definition(uri, at).is_empty()),
+        ("references", !engine.references(uri, at, true).is_empty()),
+        ("prepare_rename", engine.prepare_rename(uri, at).is_some()),
+        ("rename", engine.rename(uri, at, "uusi").is_ok()),
+        ("symbols", !engine.document_symbols(uri).is_empty()),
+        ("folding", !engine.folding_ranges(uri).is_empty()),
+        ("tokens", !engine.semantic_tokens(uri).is_empty()),
+        ("formatting", engine.formatting(uri).is_some()),
+        ("code_actions", !engine.code_actions(uri, whole).is_empty()),
+    ]
+    .into_iter()
+    .filter_map(|(name, answered)| answered.then_some(name))
+    .collect()
+}
+
+#[test]
+fn a_100000_line_file_gets_every_answer_in_linear_time() {
+    // One variable bound on every line: its 100,000 bindings and 200,000 references,
+    // which a search per reference turns into 10^10 steps.
+    let mut text = String::from("// kierros\nkäännös = 0\n");
+    for i in 0..100_000 {
+        text.push_str("käännös = käännös + 1\n");
+        if i % 100 == 0 {
+            text.push_str("if(käännös > 2)\n    wait(1)\nendif\n");
+        }
+    }
+    text.push_str("wait(käännös)\n");
+    let lines = text.lines().count() as u32;
+    assert!(lines > 100_000);
+    let started = Instant::now();
+    let (engine, uri) = engine_with(text);
+    let answered = every_feature(&engine, &uri, Position::new(lines - 1, 7));
+    // A clean file: no diagnostics, so no quick fixes.
+    let all_but = [
+        "completion",
+        "hover",
+        "signature",
+        "definition",
+        "references",
+    ];
+    let rest = [
+        "prepare_rename",
+        "rename",
+        "symbols",
+        "folding",
+        "tokens",
+        "formatting",
+    ];
+    assert_eq!(answered, [&all_but[..], &rest[..]].concat());
+    let references = engine.references(&uri, Position::new(2, 2), true);
+    assert_eq!(references.len(), 1 + 200_000 + 1_000 + 1);
+    assert!(started.elapsed() < GUARD, "{:?}", started.elapsed());
+}
+
+#[test]
+fn a_megabyte_line_gets_every_answer_in_linear_time() {
+    // Half a million numbers on one line that is not ASCII: every semantic token's
+    // column is counted in UTF-16 units, and walking the line for each is 10^11 steps.
+    let mut line = String::from("käännös = sensor(scanner,door,");
+    for _ in 0..500_000 {
+        line.push_str("1,");
+    }
+    line.push_str("1) // ä\n");
+    assert!(line.len() > 1_000_000);
+    let text = format!("ö = 1\n{line}wait(ö)\n");
+    let started = Instant::now();
+    let (engine, uri) = engine_with(text);
+    let answered = every_feature(&engine, &uri, Position::new(1, 3));
+    // `sensor` with half a million arguments is an error; the line holds no block.
+    let names = [
+        "diagnostics",
+        "completion",
+        "hover",
+        "definition",
+        "references",
+    ];
+    let rest = ["prepare_rename", "rename", "tokens", "formatting"];
+    assert_eq!(answered, [&names[..], &rest[..]].concat());
+    // In the middle of the arguments: the line before the cursor is read whole.
+    let inside = Position::new(1, 500_000);
+    assert!(engine.signature_help(&uri, inside).is_some());
+    assert!(
+        engine.completion(&uri, inside).is_empty(),
+        "no form takes so many"
+    );
+    assert!(engine.semantic_tokens(&uri).len() > 500_000);
+    assert!(started.elapsed() < GUARD, "{:?}", started.elapsed());
+}
