@@ -61,7 +61,10 @@ const SKIPPED_DIRS: &[&str] = &["node_modules", "target", ".git"];
 const MAX_DEPTH: usize = 6;
 /// A scan stops after this many files, so that opening a huge folder cannot stall the
 /// server; open documents are always known.
-const MAX_FILES: usize = 2_000;
+pub const MAX_FILES: usize = 2_000;
+/// A scan stops reading once the files read hold this many bytes: every change
+/// re-checks them all, and they stay in memory.
+pub const MAX_SCAN_BYTES: usize = 64 * 1024 * 1024;
 
 #[derive(Debug, Default)]
 pub struct Workspace {
@@ -93,8 +96,16 @@ impl Workspace {
             walk(root, 0, &mut found);
         }
         found.sort();
+        let mut held = 0;
         for path in found.into_iter().take(MAX_FILES) {
+            if held >= MAX_SCAN_BYTES {
+                break;
+            }
             self.read_from_disk(&path);
+            let uri = Uri::from_file_path(&path);
+            held += uri
+                .and_then(|u| self.docs.get(u.as_str()))
+                .map_or(0, |d| d.text.len());
         }
     }
 
@@ -259,6 +270,23 @@ mod tests {
         );
         assert_eq!(FileKind::of("/a/Robo.ini"), Some(FileKind::RobotModel));
         assert_eq!(FileKind::of("/a/other.ini"), None);
+    }
+
+    #[test]
+    fn a_scan_stops_reading_at_its_byte_budget() {
+        let root = std::env::temp_dir().join(format!("ilmr-lsp-scan-{}", std::process::id()));
+        std::fs::create_dir_all(&root).unwrap();
+        let big = "x = 1\n".repeat(MAX_SCAN_BYTES / 6 / 2 + 1);
+        for name in ["a.ilmr", "b.ilmr", "c.ilmr"] {
+            std::fs::write(root.join(name), &big).unwrap();
+        }
+        let ws = Workspace::new(vec![root.clone()]);
+        let names: Vec<&str> = ws
+            .documents()
+            .map(|d| d.uri.as_str().rsplit('/').next().unwrap())
+            .collect();
+        std::fs::remove_dir_all(&root).unwrap();
+        assert_eq!(names, ["a.ilmr", "b.ilmr"]);
     }
 
     #[test]
