@@ -58,7 +58,7 @@ impl Document {
 /// Directories never holding a project's own files, skipped by the scan.
 const SKIPPED_DIRS: &[&str] = &["node_modules", "target", ".git"];
 /// Deep enough for any project layout, shallow enough that a root of `/` stays cheap.
-const MAX_DEPTH: usize = 6;
+pub const MAX_DEPTH: usize = 6;
 /// A scan stops after this many files, so that opening a huge folder cannot stall the
 /// server; open documents are always known.
 pub const MAX_FILES: usize = 2_000;

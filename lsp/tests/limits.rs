@@ -121,3 +121,67 @@ fn a_megabyte_line_gets_every_answer_in_linear_time() {
     assert!(engine.semantic_tokens(&uri).len() > 500_000);
     assert!(started.elapsed() < GUARD, "{:?}", started.elapsed());
 }
+
+/// `64 MiB`, `8 KiB`, `2,000`: as the README's table writes them.
+fn shown(value: usize, bytes: bool) -> String {
+    const MIB: usize = 1024 * 1024;
+    if bytes && value % MIB == 0 {
+        return format!("{} MiB", value / MIB);
+    }
+    if bytes && value % 1024 == 0 {
+        return format!("{} KiB", value / 1024);
+    }
+    let digits = value.to_string();
+    let mut out = String::new();
+    for (i, d) in digits.chars().enumerate() {
+        if i > 0 && (digits.len() - i) % 3 == 0 {
+            out.push(',');
+        }
+        out.push(d);
+    }
+    out
+}
+
+#[test]
+fn the_readme_quotes_every_limit() {
+    use ilmr_lsp::{framing, server, workspace};
+    let limits = [
+        (
+            "framing::MAX_MESSAGE_BYTES",
+            framing::MAX_MESSAGE_BYTES,
+            true,
+        ),
+        ("framing::MAX_HEADER_BYTES", framing::MAX_HEADER_BYTES, true),
+        (
+            "server::ENGINE_STACK_BYTES",
+            server::ENGINE_STACK_BYTES,
+            true,
+        ),
+        ("server::STACK_MARGIN", server::STACK_MARGIN, false),
+        ("workspace::MAX_FILES", workspace::MAX_FILES, false),
+        ("workspace::MAX_SCAN_BYTES", workspace::MAX_SCAN_BYTES, true),
+        ("workspace::MAX_DEPTH", workspace::MAX_DEPTH, false),
+    ];
+    let readme = include_str!("../README.md");
+    let table = readme.split("### Limits").nth(1).expect("a Limits section");
+    let rows: Vec<&str> = table
+        .lines()
+        .skip_while(|l| !l.starts_with('|'))
+        .take_while(|l| l.starts_with('|'))
+        .skip(2)
+        .collect();
+    assert_eq!(
+        rows.len(),
+        limits.len(),
+        "one row per limit:\n{}",
+        rows.join("\n")
+    );
+    for (name, value, bytes) in limits {
+        let row = rows
+            .iter()
+            .find(|r| r.contains(&format!("`{name}`")))
+            .unwrap_or_else(|| panic!("no row for {name}"));
+        let cells: Vec<&str> = row.split('|').map(str::trim).collect();
+        assert_eq!(cells[2], shown(value, bytes), "{name}");
+    }
+}
