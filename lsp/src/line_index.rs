@@ -25,32 +25,30 @@ impl LineIndex {
     pub fn new(text: &str) -> LineIndex {
         let mut starts = vec![0];
         let mut ascii = Vec::new();
-        let mut checkpoints = Vec::new();
         let mut line_ascii = true;
-        // The line's first checkpoint, the last one's offset, the column so far.
-        let (mut line_checkpoints, mut last, mut column) = (0, 0, 0);
-        for (i, c) in text.char_indices() {
-            if i - last >= CHECKPOINT {
-                checkpoints.push((i as u32, column));
-                last = i;
-            }
-            if c == '\n' {
-                if line_ascii {
-                    checkpoints.truncate(line_checkpoints);
-                }
+        for (i, b) in text.bytes().enumerate() {
+            if b == b'\n' {
                 ascii.push(line_ascii);
                 line_ascii = true;
                 starts.push(i as u32 + 1);
-                (line_checkpoints, last, column) = (checkpoints.len(), i + 1, 0);
-            } else {
-                line_ascii &= c.is_ascii();
+            } else if !b.is_ascii() {
+                line_ascii = false;
+            }
+        }
+        ascii.push(line_ascii);
+        let mut checkpoints = Vec::new();
+        for (line, _) in ascii.iter().enumerate().filter(|(_, a)| !**a) {
+            let start = starts[line] as usize;
+            let end = starts.get(line + 1).map_or(text.len(), |&s| s as usize);
+            let (mut last, mut column) = (start, 0);
+            for (i, c) in text[start..end].char_indices() {
+                if i + start - last >= CHECKPOINT {
+                    last = i + start;
+                    checkpoints.push((last as u32, column));
+                }
                 column += c.len_utf16() as u32;
             }
         }
-        if line_ascii {
-            checkpoints.truncate(line_checkpoints);
-        }
-        ascii.push(line_ascii);
         LineIndex {
             starts,
             ascii,

@@ -1,5 +1,5 @@
-//! The protocol layer, the only file that knows tower-lsp-server: a route table from
-//! LSP methods to the engine's methods, and the engine's thread.
+//! The protocol layer: a route table from LSP methods to the engine's methods, and the
+//! engine's thread. `transport.rs` stands between it and stdio.
 //!
 //! The engine lives on a thread of its own and takes jobs in the order the handlers
 //! send them. Each handler sends its job before its first `await`, and the transport
