@@ -65,6 +65,9 @@ pub const MAX_FILES: usize = 2_000;
 /// A scan stops reading once the files read hold this many bytes: every change
 /// re-checks them all, and they stay in memory.
 pub const MAX_SCAN_BYTES: usize = 64 * 1024 * 1024;
+/// A scan stops after looking at this many directory entries, so that a root of `/`
+/// or a folder of millions of files costs a bounded time.
+pub const MAX_SCANNED_ENTRIES: usize = 100_000;
 
 #[derive(Debug, Default)]
 pub struct Workspace {
@@ -92,8 +95,9 @@ impl Workspace {
     pub fn scan(&mut self) {
         self.docs.retain(|_, d| d.is_open());
         let mut found = Vec::new();
+        let mut seen = 0;
         for root in &self.roots {
-            walk(root, 0, &mut found);
+            walk(root, 0, &mut found, &mut seen);
         }
         found.sort();
         let mut held = 0;
@@ -230,16 +234,24 @@ impl Workspace {
     }
 }
 
-fn walk(dir: &Path, depth: usize, found: &mut Vec<PathBuf>) {
+/// `seen` counts the directory entries looked at, against `MAX_SCANNED_ENTRIES`.
+fn walk(dir: &Path, depth: usize, found: &mut Vec<PathBuf>, seen: &mut usize) {
     if depth > MAX_DEPTH || found.len() >= MAX_FILES {
         return;
     }
     let Ok(entries) = std::fs::read_dir(dir) else {
         return;
     };
-    let mut entries: Vec<_> = entries.filter_map(Result::ok).collect();
+    let mut entries: Vec<_> = entries
+        .filter_map(Result::ok)
+        .take(MAX_SCANNED_ENTRIES.saturating_sub(*seen))
+        .collect();
+    *seen += entries.len();
     entries.sort_by_key(|e| e.file_name());
     for entry in entries {
+        if *seen >= MAX_SCANNED_ENTRIES {
+            return;
+        }
         let path = entry.path();
         let name = entry.file_name();
         let name = name.to_string_lossy();
@@ -248,7 +260,7 @@ fn walk(dir: &Path, depth: usize, found: &mut Vec<PathBuf>) {
         };
         if kind.is_dir() {
             if !name.starts_with('.') && !SKIPPED_DIRS.contains(&name.as_ref()) {
-                walk(&path, depth + 1, found);
+                walk(&path, depth + 1, found, seen);
             }
         } else if FileKind::of(&name).is_some() {
             found.push(path);
@@ -287,6 +299,21 @@ mod tests {
             .collect();
         std::fs::remove_dir_all(&root).unwrap();
         assert_eq!(names, ["a.ilmr", "b.ilmr"]);
+    }
+
+    #[test]
+    fn a_scan_stops_at_its_entry_budget() {
+        let root = std::env::temp_dir().join(format!("ilmr-lsp-entries-{}", std::process::id()));
+        let many = root.join("a-many");
+        std::fs::create_dir_all(&many).unwrap();
+        std::fs::write(root.join("b.ilmr"), "wait(1)\n").unwrap();
+        let before = Workspace::new(vec![root.clone()]).documents().count();
+        for i in 0..MAX_SCANNED_ENTRIES {
+            std::fs::write(many.join(i.to_string()), "").unwrap();
+        }
+        let after = Workspace::new(vec![root.clone()]).documents().count();
+        std::fs::remove_dir_all(&root).unwrap();
+        assert_eq!((before, after), (1, 0));
     }
 
     #[test]

@@ -161,6 +161,11 @@ fn the_readme_quotes_every_limit() {
         ("workspace::MAX_FILES", workspace::MAX_FILES, false),
         ("workspace::MAX_SCAN_BYTES", workspace::MAX_SCAN_BYTES, true),
         ("workspace::MAX_DEPTH", workspace::MAX_DEPTH, false),
+        (
+            "workspace::MAX_SCANNED_ENTRIES",
+            workspace::MAX_SCANNED_ENTRIES,
+            false,
+        ),
     ];
     let readme = include_str!("../README.md");
     let table = readme.split("### Limits").nth(1).expect("a Limits section");
