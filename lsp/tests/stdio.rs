@@ -512,3 +512,73 @@ fn malformed_messages_are_answered_and_the_server_goes_on() {
 
     s.shut_down();
 }
+
+/// Files nested 1,000,000 deep: the compiler stops at its limits with a diagnostic, and
+/// the server neither overflows its stack on them nor walks them for long.
+fn deep_files() -> [(&'static str, String, &'static str); 3] {
+    const N: usize = 1_000_000;
+    let parens = format!("x = {}1{}\nwait(x)\n", "(".repeat(N), ")".repeat(N));
+    let sum = format!("x = 1{}\nwait(x)\n", "+1".repeat(N - 1));
+    let ifs = format!("{}wait(1)\n{}", "if(1)\n".repeat(N), "endif\n".repeat(N));
+    [
+        ("parens.ilmr", parens, "E0104"),
+        ("sum.ilmr", sum, "E0104"),
+        ("ifs.ilmr", ifs, "E0210"),
+    ]
+}
+
+#[test]
+fn a_workspace_of_deeply_nested_files_is_served() {
+    let root = workspace("deep");
+    let files = deep_files();
+    for (name, text, _) in &files {
+        std::fs::write(root.join(name), text).unwrap();
+    }
+    // The files are read and checked while the server starts, before any is opened.
+    let mut s = Server::start(&root);
+    s.initialize();
+    for (name, text, code) in files {
+        let file = uri(&root, name);
+        s.notify(
+            "textDocument/didOpen",
+            json!({"textDocument": {"uri": file, "languageId": "ilmr", "version": 1, "text": text}}),
+        );
+        let published = s.diagnostics(&file);
+        let codes: Vec<&Value> = published["diagnostics"]
+            .as_array()
+            .expect("a list")
+            .iter()
+            .map(|d| &d["code"])
+            .collect();
+        assert!(codes.contains(&&json!(code)), "{name}: {codes:?}");
+        let doc = json!({"textDocument": {"uri": file}});
+        let at = json!({"textDocument": {"uri": file}, "position": position(0, 3)});
+        let deep = json!({"textDocument": {"uri": file}, "position": position(0, 500_000)});
+        for (method, params) in [
+            ("textDocument/documentSymbol", doc.clone()),
+            ("textDocument/foldingRange", doc.clone()),
+            ("textDocument/semanticTokens/full", doc.clone()),
+            (
+                "textDocument/formatting",
+                json!({"textDocument": {"uri": file}, "options": {"tabSize": 4, "insertSpaces": true}}),
+            ),
+            ("textDocument/hover", at.clone()),
+            ("textDocument/completion", deep.clone()),
+            ("textDocument/signatureHelp", deep),
+            ("textDocument/definition", at.clone()),
+            (
+                "textDocument/references",
+                json!({"textDocument": {"uri": file}, "position": position(0, 0),
+                       "context": {"includeDeclaration": true}}),
+            ),
+        ] {
+            let answer = s.request(method, params);
+            assert!(answer.get("error").is_none(), "{name} {method}: {answer}");
+        }
+        s.notify(
+            "textDocument/didClose",
+            json!({"textDocument": {"uri": file}}),
+        );
+    }
+    s.shut_down();
+}
