@@ -54,6 +54,8 @@ codes! {
         "A command's argument list has no closing `)` before the end of the line.";
     UnclosedPattern = "E0103", Error, "unclosed break pattern",
         "`break(` has no closing `)` before the end of the line. The pattern is taken up to the end of the line.";
+    TooComplex = "E0104", Error, "expression too complex",
+        "A line holds more operators and opening parentheses than the limit (256): every tool that reads the expression would nest that deep. Split it into several assignments.";
     UnclosedIf = "E0201", Error, "`if` without `endif`",
         "Every `if(...)` needs an `endif` on a line of its own at the same level.";
     UnclosedWhile = "E0202", Error, "`while` without `endwhile`",
@@ -72,6 +74,8 @@ codes! {
         "In a skill file every statement belongs to the skill whose `NAME:` header precedes it; these lines come before the first header.";
     NestedSkillHeader = "E0209", Error, "skill header inside a block",
         "A `NAME:` header starts a new skill and cannot stand inside an `if`, `while` or `check` block, or in a task file.";
+    TooDeep = "E0210", Error, "blocks nested too deeply",
+        "More blocks (`if`, `while`, `check`) are open inside one another than the limit (256). The lines inside the block that passes the limit are not checked. Move the inner part into a skill, or flatten the conditions.";
     UnknownCommand = "E0301", Error, "unknown command or skill",
         "The name is neither one of the 33 elementary commands nor a skill of the program (its own skill files, `--skills` and the built-in skills).";
     ArgumentCount = "E0302", Error, "wrong number of arguments",
@@ -108,6 +112,8 @@ codes! {
         "A skill calls itself, directly or through other skills. Skills are expanded as call frames; recursion would never end.";
     DuplicateSkill = "E0602", Error, "skill defined twice",
         "Two skills have the same name (names ignore case).";
+    SkillsTooDeep = "E0603", Error, "skill calls nested too deeply",
+        "A chain of skills calling skills is deeper than the VM runs (64 calls inside one another); the VM would refuse the innermost call. Call the inner skills from the task instead.";
     PatternMatchesNothing = "W0701", Warning, "break pattern matches no statement",
         "`break(pattern)` ends the live commands whose text contains the pattern. No statement of the program contains it, so the break can end nothing.";
     PatternMatchesSeveral = "W0702", Warning, "break pattern matches several statements",

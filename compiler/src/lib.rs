@@ -10,6 +10,7 @@ pub mod check;
 pub mod diagnostic;
 pub mod format;
 pub mod lexer;
+pub mod limits;
 pub mod lower;
 pub mod parser;
 pub mod render;

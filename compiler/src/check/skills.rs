@@ -111,9 +111,16 @@ impl Skills {
             skills.list[i].calls = calls;
             skills.list[i].binds = binds;
         }
-        skills.report_recursion(diags);
-        for i in 0..skills.list.len() {
-            skills.list[i].transitive = skills.reach_binds(SkillId(i as u32));
+        let heights = skills.report_recursion(diags);
+        let max_depth = usize::from(ilmr_vm::Config::default().max_call_depth);
+        for (i, &height) in heights.iter().enumerate() {
+            // A call of a skill past the depth limit is an error already; walking its
+            // whole chain from every skill on it would cost the square of its length.
+            skills.list[i].transitive = if height > max_depth {
+                skills.list[i].binds.clone()
+            } else {
+                skills.reach_binds(SkillId(i as u32))
+            };
         }
         skills
     }
@@ -142,12 +149,11 @@ impl Skills {
     /// Marks a skill, and the skills it calls, as called: a library skill is checked only
     /// then.
     pub fn mark_called(&mut self, id: SkillId) {
-        if std::mem::replace(&mut self.called[id.0 as usize], true) {
-            return;
-        }
-        let callees: Vec<SkillId> = self.list[id.0 as usize].calls.iter().map(|c| c.0).collect();
-        for c in callees {
-            self.mark_called(c);
+        let mut todo = vec![id];
+        while let Some(id) = todo.pop() {
+            if !std::mem::replace(&mut self.called[id.0 as usize], true) {
+                todo.extend(self.list[id.0 as usize].calls.iter().map(|c| c.0));
+            }
         }
     }
 
@@ -221,75 +227,132 @@ impl Skills {
         out
     }
 
-    /// E0601 once per cycle, at the call that closes it.
-    fn report_recursion(&self, diags: &mut Vec<Diagnostic>) {
+    /// E0601 once per cycle, at the call that closes it; E0603 at each skill whose
+    /// calls nest one deeper than the VM runs. One depth-first walk over the call graph,
+    /// on a stack of its own: a chain of skills is as long as a file makes it. Returns
+    /// each skill's height: the longest chain of calls a call of it makes, itself included.
+    fn report_recursion(&self, diags: &mut Vec<Diagnostic>) -> Vec<usize> {
         #[derive(Clone, Copy, PartialEq)]
         enum Mark {
             New,
             Active,
             Done,
         }
+        let max_depth = usize::from(ilmr_vm::Config::default().max_call_depth);
         let mut marks = vec![Mark::New; self.list.len()];
-        let mut path: Vec<(SkillId, Span)> = Vec::new();
-        fn visit(
-            skills: &Skills,
-            id: SkillId,
-            marks: &mut [Mark],
-            path: &mut Vec<(SkillId, Span)>,
-            diags: &mut Vec<Diagnostic>,
-        ) {
-            marks[id.0 as usize] = Mark::Active;
-            for &(callee, span) in &skills.list[id.0 as usize].calls {
+        let mut height = vec![1usize; self.list.len()];
+        // The walk's path: each skill with the index of its next call to follow, and the
+        // span of the call that entered the skill above it.
+        let mut path: Vec<(SkillId, usize, Span)> = Vec::new();
+        for root in 0..self.list.len() {
+            if marks[root] != Mark::New {
+                continue;
+            }
+            marks[root] = Mark::Active;
+            path.push((SkillId(root as u32), 0, Span::default()));
+            while let Some(&mut (id, ref mut next, _)) = path.last_mut() {
+                let calls = &self.list[id.0 as usize].calls;
+                let Some(&(callee, span)) = calls.get(*next) else {
+                    marks[id.0 as usize] = Mark::Done;
+                    path.pop();
+                    if let Some(&(caller, _, _)) = path.last() {
+                        let h = height[id.0 as usize] + 1;
+                        let caller = &mut height[caller.0 as usize];
+                        *caller = (*caller).max(h);
+                    }
+                    if height[id.0 as usize] == max_depth + 1 {
+                        diags.push(self.too_deep(id, &height, max_depth));
+                    }
+                    continue;
+                };
+                *next += 1;
                 match marks[callee.0 as usize] {
-                    Mark::Active => {
-                        let caller = skills.get(id);
-                        let start = path
-                            .iter()
-                            .position(|(s, _)| *s == callee)
-                            .unwrap_or(path.len());
-                        let mut cycle: Vec<&str> = path[start..]
-                            .iter()
-                            .map(|(s, _)| skills.get(*s).name.as_str())
-                            .collect();
-                        cycle.push(caller.name.as_str());
-                        cycle.push(skills.get(callee).name.as_str());
-                        cycle.dedup();
-                        let mut d = Diagnostic::new(
-                            Code::RecursiveSkill,
-                            caller.file,
-                            span,
-                            format!(
-                                "skill `{}` calls itself: {}",
-                                skills.get(callee).name,
-                                cycle.join(" -> ")
-                            ),
-                        )
-                        .with_label("this call closes the cycle");
-                        for &(s, call) in &path[start..] {
-                            let info = skills.get(s);
-                            d = d.with_secondary(
-                                info.file,
-                                call,
-                                format!("called from `{}`", info.name),
-                            );
-                        }
-                        diags.push(d);
-                    }
+                    Mark::Active => diags.push(self.cycle(callee, span, &path)),
                     Mark::New => {
-                        path.push((id, span));
-                        visit(skills, callee, marks, path, diags);
-                        path.pop();
+                        marks[callee.0 as usize] = Mark::Active;
+                        path.push((callee, 0, span));
                     }
-                    Mark::Done => {}
+                    Mark::Done => {
+                        let h = height[callee.0 as usize] + 1;
+                        let caller = &mut height[id.0 as usize];
+                        *caller = (*caller).max(h);
+                    }
                 }
             }
-            marks[id.0 as usize] = Mark::Done;
         }
-        for i in 0..self.list.len() {
-            if marks[i] == Mark::New {
-                visit(self, SkillId(i as u32), &mut marks, &mut path, diags);
+        height
+    }
+
+    /// The cycle closed by the call at `span` (from the skill on top of `path`) of
+    /// `callee`, which is on the path.
+    fn cycle(&self, callee: SkillId, span: Span, path: &[(SkillId, usize, Span)]) -> Diagnostic {
+        let start = path
+            .iter()
+            .position(|(s, _, _)| *s == callee)
+            .unwrap_or(path.len());
+        let on_cycle = &path[start..];
+        let caller = self.get(on_cycle.last().map_or(callee, |p| p.0));
+        let mut cycle: Vec<&str> = on_cycle
+            .iter()
+            .map(|(s, _, _)| self.get(*s).name.as_str())
+            .collect();
+        cycle.push(self.get(callee).name.as_str());
+        cycle.dedup();
+        let mut d = Diagnostic::new(
+            Code::RecursiveSkill,
+            caller.file,
+            span,
+            format!(
+                "skill `{}` calls itself: {}",
+                self.get(callee).name,
+                cycle.join(" -> ")
+            ),
+        )
+        .with_label("this call closes the cycle");
+        // Each skill on the cycle but the last was left by a call: the span stored with
+        // the skill after it.
+        for pair in on_cycle.windows(2) {
+            let info = self.get(pair[0].0);
+            d = d.with_secondary(info.file, pair[1].2, format!("called from `{}`", info.name));
+        }
+        d
+    }
+
+    /// E0603 at a skill whose calls nest `max_depth + 1` deep, naming the chain.
+    fn too_deep(&self, id: SkillId, height: &[usize], max_depth: usize) -> Diagnostic {
+        // Down the tallest callee each time; bounded, since a cycle (reported apart)
+        // leaves heights that need not fall along it.
+        let mut chain = vec![id];
+        while chain.len() <= max_depth
+            && let Some(&(next, _)) = chain.last().and_then(|at| {
+                self.list[at.0 as usize]
+                    .calls
+                    .iter()
+                    .max_by_key(|(c, _)| height[c.0 as usize])
+            })
+        {
+            chain.push(next);
+        }
+        let names: Vec<&str> = chain.iter().map(|s| self.get(*s).name.as_str()).collect();
+        let shown = match names.as_slice() {
+            [a, b, c, .., y, z] if names.len() > 6 => {
+                format!("{a} -> {b} -> {c} -> ... -> {y} -> {z}")
             }
-        }
+            all => all.join(" -> "),
+        };
+        let info = self.get(id);
+        Diagnostic::new(
+            Code::SkillsTooDeep,
+            info.file,
+            info.header,
+            format!(
+                "a call of `{}` nests {} skill calls ({shown}); the VM runs at most {max_depth}",
+                info.name,
+                max_depth + 1,
+            ),
+        )
+        .with_label("calling this skill would be refused")
+        .with_help("call the inner skills from the task, one after another")
     }
 }
 

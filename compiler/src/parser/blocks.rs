@@ -5,6 +5,7 @@
 
 use crate::ast::{Block, Conditional, Expr, FileKind, Name, Skill, SourceFile, Stmt, StmtKind};
 use crate::diagnostic::{Code, Diagnostic, FileId};
+use crate::limits::MAX_BLOCK_DEPTH;
 use crate::parser::lines::{Line, ParsedLine};
 use crate::span::Span;
 
@@ -107,6 +108,9 @@ pub struct Builder<'s> {
     skills: Vec<Skill<'s>>,
     /// Statements before the first skill header, kept as the task's blocks.
     task_blocks: Option<Box<[Block<'s>]>>,
+    /// Blocks open past [`MAX_BLOCK_DEPTH`], counted but not built: their lines are
+    /// dropped until the closers bring the depth back within the limit.
+    skipped: usize,
     diagnostics: Vec<Diagnostic>,
 }
 
@@ -123,6 +127,7 @@ impl<'s> Builder<'s> {
             parts,
             skills: Vec::new(),
             task_blocks: None,
+            skipped: 0,
             diagnostics: Vec::new(),
         }
     }
@@ -135,6 +140,43 @@ impl<'s> Builder<'s> {
     fn open(&mut self, opener: Opener<'s>, head: Span) {
         let frame = Frame::new(opener, head, &self.parts);
         self.stack.push(frame);
+    }
+
+    /// Opens a block, unless that would pass [`MAX_BLOCK_DEPTH`]: then it is reported
+    /// and skipped with everything inside it.
+    fn open_block(&mut self, opener: Opener<'s>, head: Span) {
+        let skill = self
+            .stack
+            .iter()
+            .any(|f| matches!(f.opener, Opener::Skill { .. }));
+        let depth = self.stack.len() - 1 - usize::from(skill);
+        if depth < MAX_BLOCK_DEPTH {
+            self.open(opener, head);
+            return;
+        }
+        self.skipped = 1;
+        self.diagnostics.push(
+            Diagnostic::new(
+                Code::TooDeep,
+                self.file,
+                head,
+                format!("blocks nested more than {MAX_BLOCK_DEPTH} deep"),
+            )
+            .with_label(format!(
+                "this block would be level {}; it and its contents are not checked",
+                depth + 1
+            ))
+            .with_help("move the inner part into a skill, or join the conditions"),
+        );
+    }
+
+    /// A line inside a skipped block: only openers and closers count.
+    fn skip(&mut self, line: &Line<'s>) {
+        match line {
+            Line::IfHead { .. } | Line::WhileHead { .. } | Line::Check => self.skipped += 1,
+            Line::EndIf | Line::EndWhile | Line::Checkend => self.skipped -= 1,
+            _ => {}
+        }
     }
 
     /// Ends the top frame's current block.
@@ -156,6 +198,14 @@ impl<'s> Builder<'s> {
 
     pub fn line(&mut self, parsed: ParsedLine<'s>) {
         let span = parsed.span;
+        if self.skipped > 0 {
+            // A skill header ends every open block, skipped ones too.
+            if !matches!(parsed.line, Line::SkillHeader(_)) {
+                self.skip(&parsed.line);
+                return;
+            }
+            self.skipped = 0;
+        }
         match parsed.line {
             // A line with only a comment has no tokens, yet it is not empty: commenting
             // out a line must not split a block and change what runs concurrently
@@ -163,12 +213,12 @@ impl<'s> Builder<'s> {
             Line::Blank if self.holds_comment(span) => {}
             Line::Blank => self.flush(),
             Line::Stmt(kind) => self.parts.stmts.push(Stmt { kind, span }),
-            Line::IfHead { keyword, cond } => self.open(Opener::If { keyword, cond }, span),
+            Line::IfHead { keyword, cond } => self.open_block(Opener::If { keyword, cond }, span),
             Line::WhileHead {
                 bind,
                 keyword,
                 cond,
-            } => self.open(
+            } => self.open_block(
                 Opener::While {
                     bind,
                     keyword,
@@ -176,7 +226,7 @@ impl<'s> Builder<'s> {
                 },
                 span,
             ),
-            Line::Check => self.open(Opener::Check, span),
+            Line::Check => self.open_block(Opener::Check, span),
             Line::EndIf => self.close(Closer::EndIf, span),
             Line::EndWhile => self.close(Closer::EndWhile, span),
             Line::Checkend => self.close(Closer::Checkend, span),

@@ -9,10 +9,10 @@ mod lines;
 
 use chumsky::error::{RichPattern, RichReason};
 
-use crate::ast::SourceFile;
-use crate::ast::StmtKind;
+use crate::ast::{Expr, ExprKind, Name, SourceFile, StmtKind};
 use crate::diagnostic::{Code, Diagnostic, FileId};
 use crate::lexer::{self, Token};
+use crate::limits;
 use crate::parser::lines::{Line, ParsedLine};
 use crate::span::Span;
 
@@ -46,6 +46,9 @@ pub fn parse<'s>(source: &'s str, file: FileId) -> Parsed<'s> {
     let mut previous_end = source.len() as u32;
     let mut ended = false;
     let mut break_patterns = false;
+    // Operators and parentheses on the current line, and where they passed the limit.
+    let mut operators = 0usize;
+    let mut too_complex = None;
     loop {
         let (token, span) = match tokens.next() {
             Some(next) => next,
@@ -59,10 +62,19 @@ pub fn parse<'s>(source: &'s str, file: FileId) -> Parsed<'s> {
                 break_patterns |= lexer::break_pattern(source, span).inner.is_some();
                 patterns.extend(unclosed_pattern(source, span, file));
             }
+            operators += usize::from(limits::counts_as_operator(token));
+            if operators == limits::MAX_LINE_OPERATORS + 1 && too_complex.is_none() {
+                too_complex = Some(span);
+            }
             line.push((token, span));
             continue;
         }
         match (line.first(), line.last()) {
+            (Some(_), Some(_)) if too_complex.is_some() => {
+                let at = too_complex.unwrap_or(span);
+                syntax.push(too_complex_diagnostic(at, file));
+                emit(unparsed_line(&line, source));
+            }
             (Some(&(_, first)), Some(&(_, last))) => match fast::line(&line, source) {
                 Some(parsed) => emit(ParsedLine {
                     line: parsed,
@@ -92,6 +104,8 @@ pub fn parse<'s>(source: &'s str, file: FileId) -> Parsed<'s> {
         }
         previous_end = span.end;
         line.clear();
+        operators = 0;
+        too_complex = None;
     }
     let (tree, structure) = builder.finish(tokens.comments);
     finish(
@@ -99,6 +113,64 @@ pub fn parse<'s>(source: &'s str, file: FileId) -> Parsed<'s> {
         [patterns, syntax, structure, unclosed],
         break_patterns,
     )
+}
+
+/// A line past [`limits::MAX_LINE_OPERATORS`], which is not parsed: what it opens (so
+/// that its `endif` still matches) and what it binds are kept, its expressions become
+/// errors.
+fn unparsed_line<'s>(line: &[(Token, Span)], source: &'s str) -> ParsedLine<'s> {
+    let (first, last) = (line[0].1, line[line.len() - 1].1);
+    let span = first.to(last);
+    let rest = |from: usize| Expr {
+        kind: ExprKind::Error,
+        span: line
+            .get(from)
+            .map_or(Span::empty(last.end as usize), |&(_, s)| s.to(last)),
+    };
+    let kinds: Vec<Token> = line.iter().take(3).map(|&(t, _)| t).collect();
+    let line = match kinds.as_slice() {
+        [Token::If, ..] => Line::IfHead {
+            keyword: first,
+            cond: rest(1),
+        },
+        [Token::While, ..] => Line::WhileHead {
+            bind: None,
+            keyword: first,
+            cond: rest(1),
+        },
+        [Token::Ident, Token::Assign, Token::While] => Line::WhileHead {
+            bind: Some(Name {
+                text: first.slice(source),
+                span: first,
+            }),
+            keyword: line[2].1,
+            cond: rest(3),
+        },
+        // The variable stays bound, so its later uses are not reported as well.
+        [Token::Ident, Token::Assign, ..] => Line::Stmt(StmtKind::Assign {
+            target: Name {
+                text: first.slice(source),
+                span: first,
+            },
+            value: rest(2),
+        }),
+        _ => Line::Stmt(StmtKind::Error),
+    };
+    ParsedLine { line, span }
+}
+
+fn too_complex_diagnostic(at: Span, file: FileId) -> Diagnostic {
+    Diagnostic::new(
+        Code::TooComplex,
+        file,
+        at,
+        format!(
+            "this line holds more than {} operators and parentheses",
+            limits::MAX_LINE_OPERATORS
+        ),
+    )
+    .with_label("the limit is passed here; the line is not checked further")
+    .with_help("split the expression into several assignments")
 }
 
 /// Diagnostics in source order; those at one place keep the order of their kinds.

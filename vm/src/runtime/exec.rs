@@ -732,9 +732,33 @@ impl<H: Hal, C: Clock> Vm<H, C> {
         reason: Option<String>,
         notify: bool,
     ) {
+        let Some(parent) = self.end_one(idx, how, linked, reason) else {
+            return;
+        };
+        if notify {
+            self.notify_up(parent, idx);
+        }
+    }
+
+    /// Tells `parent` that `child` ended, and its parent in turn when that ends it too.
+    /// A loop rather than recursion: the chain is as long as the nesting, blocks inside
+    /// skills inside blocks, which no native stack need hold.
+    fn notify_up(&mut self, mut parent: u32, mut child: u32) {
+        while parent != NONE {
+            let Some(grandparent) = self.child_ended(parent, child) else {
+                return;
+            };
+            child = parent;
+            parent = grandparent;
+        }
+    }
+
+    /// [`Vm::end_node`] without telling the parent, which it returns (`None` when the
+    /// node had ended already).
+    fn end_one(&mut self, idx: u32, how: How, linked: bool, reason: Option<String>) -> Option<u32> {
         let node = *self.nodes.get(idx);
         if node.kind == Kind::Free {
-            return;
+            return None;
         }
         let is_command = !matches!(node.kind, Kind::Block(_) | Kind::Root);
         let code = self.end_code.take();
@@ -790,9 +814,7 @@ impl<H: Hal, C: Clock> Vm<H, C> {
         if was_head {
             self.start_next_movement(linked);
         }
-        if notify && parent != NONE {
-            self.child_ended(parent, idx);
-        }
+        Some(parent)
     }
 
     /// Ends a node as refused with a stable code (issue 7's refusals and faults).
@@ -806,23 +828,31 @@ impl<H: Hal, C: Clock> Vm<H, C> {
         self.end_node(idx, How::Refused, false, Some(refusal.message), true);
     }
 
-    fn child_ended(&mut self, parent: u32, child: u32) {
+    /// What `parent` does when `child` has ended; when that ends `parent` as well, its
+    /// own parent, to be told next.
+    fn child_ended(&mut self, parent: u32, child: u32) -> Option<u32> {
         let p = *self.nodes.get(parent);
         match p.kind {
             Kind::Block(b) => {
                 if b.holder == child {
                     self.set_block(parent, |s| s.holder = NONE);
                     self.enqueue(parent);
+                    None
                 } else if b.issued && p.children == 0 {
-                    self.end_node(parent, How::Completed, false, None, true);
+                    self.end_one(parent, How::Completed, false, None)
+                } else {
+                    None
                 }
             }
-            Kind::If { .. } => self.end_node(parent, How::Completed, false, None, true),
-            Kind::While { .. } => self.enqueue(parent),
-            Kind::Call { .. } if p.children == 0 => {
-                self.end_node(parent, How::Completed, false, None, true)
+            Kind::If { .. } => self.end_one(parent, How::Completed, false, None),
+            Kind::While { .. } => {
+                self.enqueue(parent);
+                None
             }
-            _ => {}
+            Kind::Call { .. } if p.children == 0 => {
+                self.end_one(parent, How::Completed, false, None)
+            }
+            _ => None,
         }
     }
 

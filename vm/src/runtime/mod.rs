@@ -26,8 +26,10 @@ use nodes::{Class, Kind, NodeRef, Nodes};
 use trace::{Event, EventKind};
 use vars::{NONE, VarRecord, Vars};
 
-/// Depth of the expression stack; `Module::validate` rejects deeper expressions.
-pub const EXPR_STACK: usize = 32;
+/// Depth of the expression stack; `Module::validate` rejects deeper expressions. An
+/// expression of n operators needs at most n + 1 slots, and the compiler accepts at most
+/// 256 operators on a line, so every expression it accepts fits.
+pub const EXPR_STACK: usize = 257;
 
 /// What a reading variable keeps following after its command
 /// ended (`v = sensor(battery)`).

@@ -1,0 +1,47 @@
+//! How large a program may be where size becomes depth: every pass over the tree (the
+//! parser, the checker, the lowering, the formatter, the language server) recurses once
+//! per level, so the levels are bounded before any tree is built. A program past a limit
+//! gets a diagnostic at the first place it is passed; the tree never holds more.
+//!
+//! The limits are far above what tasks use (the dissertation's tasks in `examples/` nest
+//! at most 4 blocks deep and hold at most 2 operators and parentheses on a line). At the
+//! limits, an unoptimised build needs up to 4 MB of native stack (chumsky's combinators
+//! are deep there), an optimised one a fraction of that: threads that compile get
+//! [`COMPILER_STACK`].
+
+use crate::lexer::Token;
+
+/// Blocks (`if`, `while`, `check`) open at once, inside one another.
+pub const MAX_BLOCK_DEPTH: usize = 256;
+
+/// Operators (`+ - * /`, unary minus, comparisons) and opening parentheses on one line.
+/// An expression tree is no deeper than the operators it holds, so this also bounds
+/// every expression's depth and the VM's evaluation stack
+/// ([`ilmr_vm::runtime::EXPR_STACK`]).
+pub const MAX_LINE_OPERATORS: usize = 256;
+
+const _: () = assert!(MAX_LINE_OPERATORS < ilmr_vm::runtime::EXPR_STACK);
+
+/// The native stack a thread that checks, lowers or formats a program is given: twice
+/// what an unoptimised build needs at the limits (`compiler/tests/limits.rs` runs there
+/// on half of it). Only touched pages cost memory.
+pub const COMPILER_STACK: usize = 16 << 20;
+
+/// Whether a token counts towards [`MAX_LINE_OPERATORS`].
+pub fn counts_as_operator(token: Token) -> bool {
+    matches!(
+        token,
+        Token::LParen
+            | Token::Plus
+            | Token::Minus
+            | Token::Star
+            | Token::Slash
+            | Token::EqEq
+            | Token::NotEq
+            | Token::Lt
+            | Token::Le
+            | Token::Gt
+            | Token::Ge
+            | Token::GeAlt
+    )
+}
