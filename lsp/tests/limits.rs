@@ -1,11 +1,15 @@
-//! Hostile sizes through the engine: a 100,000-line file and a megabyte-long line get
+//! Hostile sizes through the engine: files at and past the compiler's depth limits fit
+//! the engine's stack with a margin; a 100,000-line file and a megabyte-long line get
 //! every feature's answer in linear time. The time bounds are guards against a
 //! quadratic walk (which takes hours at these sizes), not benchmarks.
 
 use std::time::{Duration, Instant};
 
+use ilmr_compiler::diagnostic::Code;
+use ilmr_compiler::limits::{MAX_BLOCK_DEPTH, MAX_LINE_OPERATORS};
+use ilmr_lsp::outline::MAX_OUTLINE_DEPTH;
 use ilmr_lsp::{Engine, Settings};
-use tower_lsp_server::ls_types::{Position, Range, Uri};
+use tower_lsp_server::ls_types::{DocumentSymbol, NumberOrString, Position, Range, Uri};
 
 const TASK: &str = "file:///ws/task.ilmr";
 
@@ -189,4 +193,89 @@ fn the_readme_quotes_every_limit() {
         let cells: Vec<&str> = row.split('|').map(str::trim).collect();
         assert_eq!(cells[2], shown(value, bytes), "{name}");
     }
+}
+
+/// Files at the compiler's limits, with where their deepest point is, and the same one
+/// level past them and 1,000,000 levels deep.
+fn deep_files(depth_past: usize) -> Vec<(&'static str, String, Position)> {
+    let ops = MAX_LINE_OPERATORS + depth_past;
+    let blocks = MAX_BLOCK_DEPTH + depth_past;
+    let parens = format!("x = {}1{}", "(".repeat(ops), ")".repeat(ops));
+    let sum = format!("x = 1{}", "+1".repeat(ops));
+    let ifs = format!(
+        "x = 1\n{}{parens}\n{}",
+        "if(x)\n".repeat(blocks),
+        "endif\n".repeat(blocks)
+    );
+    let whiles = format!(
+        "x = 1\n{}{sum}\n{}",
+        "while(x < 2)\n".repeat(blocks),
+        "endwhile\n".repeat(blocks)
+    );
+    let middle = |ops: usize| Position::new(0, (4 + ops) as u32);
+    let inner = Position::new(blocks as u32 + 1, (4 + ops) as u32);
+    vec![
+        ("parens", format!("{parens}\nwait(x)\n"), middle(ops)),
+        ("sum", format!("{sum}\nwait(x)\n"), middle(ops)),
+        ("ifs", ifs, inner),
+        ("whiles", whiles, inner),
+    ]
+}
+
+fn too_deep(engine: &Engine, uri: &Uri) -> bool {
+    let limit_codes = [Code::TooComplex.as_str(), Code::TooDeep.as_str()];
+    engine.diagnostics(uri).iter().any(
+        |d| matches!(&d.code, Some(NumberOrString::String(c)) if limit_codes.contains(&c.as_str())),
+    )
+}
+
+#[test]
+fn the_engine_stack_holds_the_deepest_files_with_a_margin() {
+    // On a stack STACK_MARGIN times smaller than the engine's: a file at the limits
+    // with every feature asked at its deepest point, and files past them.
+    let stack = ilmr_lsp::server::ENGINE_STACK_BYTES / ilmr_lsp::server::STACK_MARGIN;
+    let run = std::thread::Builder::new()
+        .stack_size(stack)
+        .spawn(|| {
+            for (past, accepted) in [(0, true), (1, false), (1_000_000, false)] {
+                for (name, text, deepest) in deep_files(past) {
+                    let (engine, uri) = engine_with(text);
+                    assert_eq!(!too_deep(&engine, &uri), accepted, "{name} {past} past");
+                    every_feature(&engine, &uri, deepest);
+                }
+            }
+        })
+        .expect("a thread");
+    run.join().expect("no overflow, no panic");
+}
+
+fn outline_depth(symbols: &[DocumentSymbol]) -> usize {
+    symbols
+        .iter()
+        .map(|s| 1 + outline_depth(s.children.as_deref().unwrap_or_default()))
+        .max()
+        .unwrap_or(0)
+}
+
+fn outline_count(symbols: &[DocumentSymbol]) -> usize {
+    symbols
+        .iter()
+        .map(|s| 1 + outline_count(s.children.as_deref().unwrap_or_default()))
+        .sum()
+}
+
+#[test]
+fn the_outline_nests_no_deeper_than_its_limit_and_keeps_every_block() {
+    let ifs = format!(
+        "x = 1\n{}wait(1)\n{}",
+        "if(x)\n".repeat(MAX_BLOCK_DEPTH),
+        "endif\n".repeat(MAX_BLOCK_DEPTH)
+    );
+    let (engine, uri) = engine_with(ifs);
+    let symbols = engine.document_symbols(&uri);
+    assert_eq!(outline_depth(&symbols), MAX_OUTLINE_DEPTH);
+    assert_eq!(outline_count(&symbols), MAX_BLOCK_DEPTH);
+    // As JSON, well within the depth serde-based clients read (128).
+    let json = serde_json::to_string(&symbols).unwrap();
+    assert!(serde_json::from_str::<serde_json::Value>(&json).is_ok());
 }

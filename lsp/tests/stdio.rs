@@ -8,6 +8,7 @@ use std::process::{Child, ChildStdin, Command, Stdio};
 use std::sync::mpsc::{Receiver, channel};
 use std::time::Duration;
 
+use ilmr_compiler::diagnostic::Code;
 use serde_json::{Value, json};
 
 const TIMEOUT: Duration = Duration::from_secs(20);
@@ -39,7 +40,9 @@ fn read_message(reader: &mut impl BufRead) -> Option<Value> {
     }
     let mut body = vec![0; length?];
     reader.read_exact(&mut body).ok()?;
-    serde_json::from_slice(&body).ok()
+    // serde_json's default depth limit, as clients built on serde have it.
+    let message = serde_json::from_slice(&body);
+    Some(message.unwrap_or_else(|e| panic!("the server's message does not parse: {e}")))
 }
 
 impl Server {
@@ -521,9 +524,9 @@ fn deep_files() -> [(&'static str, String, &'static str); 3] {
     let sum = format!("x = 1{}\nwait(x)\n", "+1".repeat(N - 1));
     let ifs = format!("{}wait(1)\n{}", "if(1)\n".repeat(N), "endif\n".repeat(N));
     [
-        ("parens.ilmr", parens, "E0104"),
-        ("sum.ilmr", sum, "E0104"),
-        ("ifs.ilmr", ifs, "E0210"),
+        ("parens.ilmr", parens, Code::TooComplex.as_str()),
+        ("sum.ilmr", sum, Code::TooComplex.as_str()),
+        ("ifs.ilmr", ifs, Code::TooDeep.as_str()),
     ]
 }
 
