@@ -162,6 +162,7 @@ fn the_readme_quotes_every_limit() {
             true,
         ),
         ("server::STACK_MARGIN", server::STACK_MARGIN, false),
+        ("outline::MAX_OUTLINE_DEPTH", MAX_OUTLINE_DEPTH, false),
         ("workspace::MAX_FILES", workspace::MAX_FILES, false),
         ("workspace::MAX_SCAN_BYTES", workspace::MAX_SCAN_BYTES, true),
         ("workspace::MAX_DEPTH", workspace::MAX_DEPTH, false),
