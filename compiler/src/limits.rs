@@ -10,6 +10,7 @@
 //! [`COMPILER_STACK`].
 
 use crate::lexer::Token;
+use crate::span::Span;
 
 /// Blocks (`if`, `while`, `check`) open at once, inside one another.
 pub const MAX_BLOCK_DEPTH: usize = 256;
@@ -26,6 +27,14 @@ const _: () = assert!(MAX_LINE_OPERATORS < ilmr_vm::runtime::EXPR_STACK);
 /// what an unoptimised build needs at the limits (`compiler/tests/limits.rs` runs there
 /// on half of it). Only touched pages cost memory.
 pub const COMPILER_STACK: usize = 16 << 20;
+
+/// The operator or parenthesis at which a line's tokens pass [`MAX_LINE_OPERATORS`].
+pub fn operators_past_limit(line: &[(Token, Span)]) -> Option<Span> {
+    line.iter()
+        .filter(|(t, _)| counts_as_operator(*t))
+        .nth(MAX_LINE_OPERATORS)
+        .map(|&(_, span)| span)
+}
 
 /// Whether a token counts towards [`MAX_LINE_OPERATORS`].
 pub fn counts_as_operator(token: Token) -> bool {

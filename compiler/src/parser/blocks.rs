@@ -145,15 +145,21 @@ impl<'s> Builder<'s> {
     /// Opens a block, unless that would pass [`MAX_BLOCK_DEPTH`]: then it is reported
     /// and skipped with everything inside it.
     fn open_block(&mut self, opener: Opener<'s>, head: Span) {
-        let skill = self
-            .stack
-            .iter()
-            .any(|f| matches!(f.opener, Opener::Skill { .. }));
+        // A skill's frame, when there is one, lies right above the root.
+        let skill = matches!(
+            self.stack.get(1).map(|f| &f.opener),
+            Some(Opener::Skill { .. })
+        );
         let depth = self.stack.len() - 1 - usize::from(skill);
         if depth < MAX_BLOCK_DEPTH {
             self.open(opener, head);
-            return;
+        } else {
+            self.too_deep(head, depth);
         }
+    }
+
+    #[cold]
+    fn too_deep(&mut self, head: Span, depth: usize) {
         self.skipped = 1;
         self.diagnostics.push(
             Diagnostic::new(
@@ -170,13 +176,20 @@ impl<'s> Builder<'s> {
         );
     }
 
-    /// A line inside a skipped block: only openers and closers count.
-    fn skip(&mut self, line: &Line<'s>) {
+    /// Whether a line is inside a skipped block, where only openers and closers count.
+    /// A skill header ends every open block, skipped ones too.
+    #[cold]
+    fn skip(&mut self, line: &Line<'s>) -> bool {
         match line {
             Line::IfHead { .. } | Line::WhileHead { .. } | Line::Check => self.skipped += 1,
             Line::EndIf | Line::EndWhile | Line::Checkend => self.skipped -= 1,
+            Line::SkillHeader(_) => {
+                self.skipped = 0;
+                return false;
+            }
             _ => {}
         }
+        true
     }
 
     /// Ends the top frame's current block.
@@ -198,13 +211,8 @@ impl<'s> Builder<'s> {
 
     pub fn line(&mut self, parsed: ParsedLine<'s>) {
         let span = parsed.span;
-        if self.skipped > 0 {
-            // A skill header ends every open block, skipped ones too.
-            if !matches!(parsed.line, Line::SkillHeader(_)) {
-                self.skip(&parsed.line);
-                return;
-            }
-            self.skipped = 0;
+        if self.skipped > 0 && self.skip(&parsed.line) {
+            return;
         }
         match parsed.line {
             // A line with only a comment has no tokens, yet it is not empty: commenting

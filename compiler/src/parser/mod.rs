@@ -46,9 +46,6 @@ pub fn parse<'s>(source: &'s str, file: FileId) -> Parsed<'s> {
     let mut previous_end = source.len() as u32;
     let mut ended = false;
     let mut break_patterns = false;
-    // Operators and parentheses on the current line, and where they passed the limit.
-    let mut operators = 0usize;
-    let mut too_complex = None;
     loop {
         let (token, span) = match tokens.next() {
             Some(next) => next,
@@ -62,13 +59,13 @@ pub fn parse<'s>(source: &'s str, file: FileId) -> Parsed<'s> {
                 break_patterns |= lexer::break_pattern(source, span).inner.is_some();
                 patterns.extend(unclosed_pattern(source, span, file));
             }
-            operators += usize::from(limits::counts_as_operator(token));
-            if operators == limits::MAX_LINE_OPERATORS + 1 && too_complex.is_none() {
-                too_complex = Some(span);
-            }
             line.push((token, span));
             continue;
         }
+        // Only a line of more tokens than the limit can pass it.
+        let too_complex = (line.len() > limits::MAX_LINE_OPERATORS)
+            .then(|| limits::operators_past_limit(&line))
+            .flatten();
         match (line.first(), line.last()) {
             (Some(_), Some(_)) if too_complex.is_some() => {
                 let at = too_complex.unwrap_or(span);
@@ -104,8 +101,6 @@ pub fn parse<'s>(source: &'s str, file: FileId) -> Parsed<'s> {
         }
         previous_end = span.end;
         line.clear();
-        operators = 0;
-        too_complex = None;
     }
     let (tree, structure) = builder.finish(tokens.comments);
     finish(
