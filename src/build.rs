@@ -131,7 +131,7 @@ pub fn build(args: BuildArgs) -> ExitCode {
 }
 
 pub fn disasm(args: DisasmArgs) -> ExitCode {
-    let bytes = match std::fs::read(&args.file) {
+    let bytes = match ilmr_files::read(&args.file, ilmr_files::Kind::Module) {
         Ok(b) => b,
         Err(e) => {
             eprintln!("error: cannot read `{}`: {e}", args.file.display());

@@ -6,7 +6,7 @@ use ilmr_compiler::check::Source;
 use ilmr_model::{ModelWarning, RobotModel};
 
 pub fn read_source(path: &Path) -> Result<Source, String> {
-    std::fs::read_to_string(path)
+    ilmr_files::read_text(path, ilmr_files::Kind::Source)
         .map(|text| Source::new(path.display().to_string(), text))
         .map_err(|e| format!("cannot read `{}`: {e}", path.display()))
 }
@@ -57,7 +57,10 @@ pub fn load_robot(spec: &str) -> Result<Robot, String> {
     }
     let (model, warnings) =
         RobotModel::load(path).map_err(|e| format!("cannot read robot model `{spec}`: {e}"))?;
-    let text = std::fs::read_to_string(path).unwrap_or_default();
+    // The model was read a moment ago; its text only places its warnings.
+    let text = ilmr_files::read(path, ilmr_files::Kind::RobotModel)
+        .map(|bytes| String::from_utf8_lossy(&bytes).into_owned())
+        .unwrap_or_default();
     Ok(Robot {
         model,
         warnings,

@@ -27,7 +27,7 @@ pub fn run(args: ReplayArgs) -> ExitCode {
 }
 
 fn replay(args: &ReplayArgs) -> Result<(), String> {
-    let text = std::fs::read_to_string(&args.trace)
+    let text = ilmr_files::read_text(&args.trace, ilmr_files::Kind::Trace)
         .map_err(|e| format!("cannot read trace `{}`: {e}", args.trace.display()))?;
     let record = RunRecord::from_jsonl(&text).map_err(|e| {
         format!(

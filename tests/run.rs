@@ -365,3 +365,129 @@ fn a_line_joins_through_add_line_without_copying_the_program() {
     vm.run_for(1.0);
     assert_eq!(vm.var("extra").map(|v| v.value > 0.0), Some(true));
 }
+
+/// The lines of a trace file, each parsed (a trace is JSON Lines through and through).
+fn trace_events(path: &Path) -> Vec<serde_json::Value> {
+    std::fs::read_to_string(path)
+        .unwrap_or_default()
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap_or_else(|e| panic!("{e}: {l}")))
+        .collect()
+}
+
+#[test]
+fn a_fault_the_robot_cannot_take_is_a_usage_error_naming_what_it_has() {
+    let trace = scratch("fault-trace.jsonl");
+    let cases = [
+        (
+            "actuator_dead:nonexistent",
+            "--fault `actuator_dead@0:nonexistent`: moro has no actuator `nonexistent`; its \
+             actuators are drive, horn",
+        ),
+        (
+            "actuator_dead@0:scanner",
+            "--fault `actuator_dead@0:scanner`: `scanner` is a sensor of moro, not an \
+             actuator; its actuators are drive, horn",
+        ),
+        (
+            "nav_frozen",
+            "--fault `nav_frozen@0`: Moro has no navigation fix; the faults it can take are \
+             scanner_dropout, odometry_slip, odometry_bias, odometry_dropout, dead_battery, \
+             actuator_dead, obstacle_appears",
+        ),
+        (
+            "scanner_dropout@5.5",
+            "--fault `scanner_dropout@5.5`: it starts at 5.5 s, after the run ends \
+             (--max-time 5)",
+        ),
+    ];
+    for (fault, message) in cases {
+        // A trace of an earlier run must not survive as if it were this one's.
+        std::fs::write(&trace, "stale\n").unwrap();
+        let (code, out, err) = ilmrc(&[
+            "run",
+            "--max-time",
+            "5",
+            "--fault",
+            fault,
+            "--trace",
+            trace.to_str().unwrap(),
+            "examples/short_task.ilmr",
+        ]);
+        assert_eq!(code, 2, "{fault}: {out}{err}");
+        assert_eq!(err.trim(), format!("error: {message}"), "{fault}");
+        let events = trace_events(&trace);
+        assert_eq!(events.len(), 2, "{fault}: {events:?}");
+        assert_eq!(events[0]["event"], "run");
+        assert_eq!(events[0]["robot"], "moro");
+        assert_eq!(events[1]["event"], "failed");
+        assert_eq!(events[1]["reason"], message);
+        assert_eq!(events[1]["exit"], 2);
+    }
+    // The robot's own actuator, and a start within the run, are taken.
+    for fault in ["actuator_dead@1:horn", "scanner_dropout@5"] {
+        let (code, out, err) = ilmrc(&[
+            "run",
+            "--max-time",
+            "5",
+            "--fault",
+            fault,
+            "examples/short_task.ilmr",
+        ]);
+        assert_eq!(code, 0, "{fault}: {out}{err}");
+    }
+    let _ = std::fs::remove_file(&trace);
+}
+
+#[test]
+fn a_world_fault_for_a_missing_part_is_refused_by_run_serve_and_shell() {
+    let world = scratch("fault-world.toml");
+    let text = ilmr_sim::world::SHIPPED
+        .iter()
+        .find(|(n, _)| *n == "empty")
+        .map(|(_, t)| *t)
+        .unwrap();
+    std::fs::write(
+        &world,
+        format!("{text}\n[[fault]]\nkind = \"actuator_dead\"\nactuator = \"wings\"\n"),
+    )
+    .unwrap();
+    let w = world.to_str().unwrap();
+    let message = format!(
+        "error: fault `actuator_dead@0:wings` of world `{w}`: moro has no actuator `wings`; \
+         its actuators are drive, horn"
+    );
+    for args in [
+        vec!["run", "--world", w, "examples/short_task.ilmr"],
+        vec!["serve", "--listen", "127.0.0.1:0", "--world", w],
+        vec!["shell", "--world", w],
+    ] {
+        let (code, out, err) = ilmrc_within(&args, std::time::Duration::from_secs(60));
+        assert_eq!((code, err.trim()), (2, message.as_str()), "{args:?}: {out}");
+    }
+    let _ = std::fs::remove_file(&world);
+}
+
+#[test]
+fn a_rejected_task_leaves_a_trace_that_says_so() {
+    let dir = scratch("rejected");
+    std::fs::create_dir_all(&dir).unwrap();
+    let task = dir.join("bad.ilmr");
+    std::fs::write(&task, "goahed(1)\n").unwrap();
+    let trace = dir.join("trace.jsonl");
+    let (code, out, _) = ilmrc(&[
+        "run",
+        "--trace",
+        trace.to_str().unwrap(),
+        task.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 1, "{out}");
+    assert!(out.contains("E0301"), "{out}");
+    let events = trace_events(&trace);
+    assert_eq!(
+        events.last().map(|e| e["event"].clone()),
+        Some("failed".into())
+    );
+    assert_eq!(events.last().map(|e| e["exit"].clone()), Some(1.into()));
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -398,3 +398,134 @@ fn an_accepted_line_brings_its_warnings() {
 // Garbage request lines over TCP, through this file's `Server` and `Client`.
 #[path = "fuzz/serve_garbage.rs"]
 mod serve_garbage;
+
+#[test]
+fn a_blank_line_is_answered_so_a_planner_never_waits_for_nothing() {
+    let server = Server::start(&[]);
+    let mut c = server.connect();
+    for blank in ["", "   ", "\r"] {
+        let answer = c.ask(blank);
+        assert_eq!(answer["ok"], json!(false), "{blank:?}: {answer}");
+        assert_eq!(
+            answer["error"],
+            json!("empty line: send one JSON object per line"),
+            "{blank:?}"
+        );
+    }
+    assert_eq!(c.ask(r#"{"status": true, "id": 4}"#)["id"], json!(4));
+}
+
+/// `x = ((...1...))` with `depth` parentheses.
+fn nested_parens(depth: usize) -> String {
+    format!("x = {}1{}", "(".repeat(depth), ")".repeat(depth))
+}
+
+/// `x = 1+1+...` with `terms` terms.
+fn plus_chain(terms: usize) -> String {
+    format!("x = 1{}", "+1".repeat(terms.saturating_sub(1)))
+}
+
+/// `depth` `if` blocks, one inside the other.
+fn nested_ifs(depth: usize) -> String {
+    format!(
+        "n = 1\n{}n = 2\n{}",
+        "if(n>0)\n".repeat(depth),
+        "endif\n".repeat(depth)
+    )
+}
+
+/// A rejected answer whose diagnostics include the error `code`.
+fn rejected_with(answer: &Value, code: &str) -> bool {
+    answer["ok"] == json!(false)
+        && answer["diagnostics"].as_array().is_some_and(|d| {
+            d.iter()
+                .any(|d| d["severity"] == json!("error") && d["code"] == json!(code))
+        })
+}
+
+#[test]
+fn a_line_nested_past_the_limits_is_answered_and_everyone_else_goes_on() {
+    let server = Server::start(&[]);
+    let mut other = server.connect();
+    assert_eq!(
+        other.ask(r#"{"ilmr": "m = goahead(0.3)"}"#)["ok"],
+        json!(true)
+    );
+    // Each just under the 1 MiB request limit, so the compiler sees it whole.
+    // E0104: more than 256 operators and parentheses on a line; E0210: more than 256
+    // nested blocks (docs/diagnostics.md).
+    for (what, text, code) in [
+        ("parentheses", nested_parens(400_000), "E0104"),
+        ("a + chain", plus_chain(400_000), "E0104"),
+        ("nested ifs", nested_ifs(50_000), "E0210"),
+        ("parentheses", nested_parens(3_000), "E0104"),
+        ("nested ifs", nested_ifs(3_000), "E0210"),
+    ] {
+        let mut c = server.connect();
+        let answer = c.ask(&json!({ "ilmr": text, "id": what }).to_string());
+        assert!(rejected_with(&answer, code), "{what}: {answer}");
+        assert_eq!(answer["id"], json!(what));
+        // The same connection, another client and the running task go on.
+        assert_eq!(c.ask(r#"{"ilmr": "k = 1"}"#)["ok"], json!(true), "{what}");
+        let status = other.ask(r#"{"status": true}"#);
+        assert_eq!(status["ok"], json!(true), "{what}: {status}");
+    }
+    // Past the request limit: refused before the compiler, this connection closed.
+    for text in [nested_parens(1_000_000), plus_chain(1_000_000)] {
+        let mut c = server.connect();
+        let answer = c.ask(&json!({ "ilmr": text }).to_string());
+        assert_eq!(answer["ok"], json!(false), "{answer}");
+        assert!(
+            answer["error"]
+                .as_str()
+                .is_some_and(|e| e.starts_with("request line longer than")),
+            "{answer}"
+        );
+    }
+    let status = other.ask(r#"{"status": true}"#);
+    assert!(status["ticks"].as_u64() > Some(0), "{status}");
+    assert_eq!(other.ask(r#"{"ilmr": "wait(m)"}"#)["ok"], json!(true));
+}
+
+#[test]
+fn a_task_nested_past_the_limits_is_a_clear_error_before_listening() {
+    let dir = std::env::temp_dir().join(format!("ilmr-serve-deep-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    // 3,000 and 500,000 levels reach the compiler; 1,000,000 (14 MB) is over the
+    // source file limit and is refused unread.
+    for (depth, code, says) in [
+        (3_000, 1, "E0210"),
+        (500_000, 1, "E0210"),
+        (1_000_000, 2, "the limit for a task or skill file"),
+    ] {
+        let task = dir.join(format!("deep{depth}.ilmr"));
+        std::fs::write(&task, nested_ifs(depth)).expect("write task");
+        let mut child = Command::new(env!("CARGO_BIN_EXE_ilmrc"))
+            .args(["serve", "--listen", "127.0.0.1:0", "--task"])
+            .arg(&task)
+            .env("NO_COLOR", "1")
+            .stdout(Stdio::piped())
+            .stderr(Stdio::piped())
+            .spawn()
+            .expect("start ilmrc serve");
+        let deadline = Instant::now() + Duration::from_secs(120);
+        let status = loop {
+            if let Some(status) = child.try_wait().expect("wait") {
+                break status;
+            }
+            if Instant::now() > deadline {
+                let _ = child.kill();
+                panic!("serve --task with {depth} nested ifs did not end");
+            }
+            std::thread::sleep(Duration::from_millis(50));
+        };
+        let mut out = String::new();
+        let mut err = String::new();
+        let _ = child.stdout.take().map(|mut s| s.read_to_string(&mut out));
+        let _ = child.stderr.take().map(|mut s| s.read_to_string(&mut err));
+        assert_eq!(status.code(), Some(code), "{depth}: {out}{err}");
+        assert!(!out.contains("listening"), "{depth}: {out}");
+        assert!(format!("{out}{err}").contains(says), "{depth}: {out}{err}");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}

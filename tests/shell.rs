@@ -104,6 +104,13 @@ impl Shell {
         }
     }
 
+    /// Sends raw bytes, which need not be UTF-8.
+    fn bytes(&mut self, bytes: &[u8]) {
+        let stdin = self.stdin.as_mut().expect("stdin open");
+        stdin.write_all(bytes).expect("send bytes");
+        stdin.flush().expect("flush bytes");
+    }
+
     /// Sends keys as typed (a terminal wants `\r` for Enter, a pipe `\n`).
     fn keys(&mut self, keys: &str) {
         let stdin = self.stdin.as_mut().expect("stdin open");
@@ -375,4 +382,68 @@ fn a_bad_task_or_robot_exits_before_the_prompt() {
     sh.keys("wait(m)\n");
     sh.expect("joined at t=");
     let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn a_piped_line_that_is_not_utf8_or_too_long_is_skipped_and_reading_goes_on() {
+    let mut sh = Shell::piped(&[]);
+    sh.expect("ILMR shell");
+    sh.bytes(b"n = 1\ngo\xffahead(1)\n");
+    sh.expect("joined at t=");
+    sh.expect("error: line 2 is not UTF-8 (invalid byte at column 3); skipped");
+    // Three mebibytes on one line: far above the limit, held a buffer at a time.
+    let mut long = b"x = ".to_vec();
+    long.extend(std::iter::repeat_n(b'(', 3 << 20));
+    long.push(b'\n');
+    sh.bytes(&long);
+    sh.expect("error: line 3 is longer than");
+    sh.expect("bytes (MAX_LINE_BYTES); skipped");
+    // A block that lost a line is dropped, not joined without it.
+    sh.bytes(b"while(n < 3)\n\xfe\nn = 5\n");
+    sh.expect("error: line 5 is not UTF-8 (invalid byte at column 1); skipped, and the unfinished block was dropped");
+    sh.expect("joined at t=");
+    status_until(&mut sh, "the line after the bad ones did not run", |v| {
+        v.contains("n  status 1, value 5")
+    });
+    sh.keys("exit\n");
+    sh.expect("left the shell at t=");
+    assert_eq!(sh.exit_code(), Some(0));
+}
+
+#[test]
+fn a_line_nested_past_the_limits_is_an_error_and_the_shell_reads_on() {
+    let mut sh = Shell::piped(&[]);
+    sh.expect("ILMR shell");
+    let parens = |n: usize| format!("x = {}1{}\n", "(".repeat(n), ")".repeat(n));
+    let plus = |n: usize| format!("x = 1{}\n", "+1".repeat(n - 1));
+    // Under the 1 MiB line limit: the compiler's depth limit answers.
+    for line in [parens(3_000), parens(400_000), plus(400_000)] {
+        sh.keys(&line);
+        let answer = sh.expect("not joined");
+        assert!(answer.contains("[E0104]"), "{answer}");
+        sh.keys("k = 1\n");
+        sh.expect("joined at t=");
+    }
+    // 3,000 nested `if` blocks, typed a line at a time.
+    let ifs = format!(
+        "n = 1\n{}n = 2\n{}",
+        "if(n>0)\n".repeat(3_000),
+        "endif\n".repeat(3_000)
+    );
+    sh.keys(&ifs);
+    sh.expect("joined at t=");
+    let answer = sh.expect("not joined");
+    assert!(answer.contains("[E0210]"), "{answer}");
+    // Over it: skipped before the compiler.
+    for line in [parens(1_000_000), plus(1_000_000)] {
+        sh.keys(&line);
+        sh.expect("bytes (MAX_LINE_BYTES); skipped");
+    }
+    sh.keys("k = 7\n");
+    status_until(&mut sh, "the shell stopped reading", |v| {
+        v.contains("k  status 1, value 7")
+    });
+    sh.keys("exit\n");
+    sh.expect("left the shell at t=");
+    assert_eq!(sh.exit_code(), Some(0));
 }

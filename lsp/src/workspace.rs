@@ -123,7 +123,11 @@ impl Workspace {
         if self.docs.get(uri.as_str()).is_some_and(Document::is_open) {
             return;
         }
-        match std::fs::read(path) {
+        let limit = match kind {
+            FileKind::Program => ilmr_files::Kind::Source,
+            FileKind::RobotModel => ilmr_files::Kind::RobotModel,
+        };
+        match ilmr_files::read(path, limit) {
             Ok(bytes) => {
                 let text = String::from_utf8_lossy(&bytes).into_owned();
                 self.docs.insert(

@@ -14,8 +14,11 @@ use ilmr_hal::Pose;
 use ilmr_model::RobotModel;
 use ilmr_sim::SimRobot;
 use ilmr_stdlib::VarKind;
+use ilmr_vm::bytecode::BlockId;
 use ilmr_vm::runtime::trace::fmt_num;
 use ilmr_vm::{Activity, LineError, ModuleBuilder, SimClock, VarRecord, Vm};
+
+use super::guard;
 
 /// What a front end asks of the VM thread.
 pub enum Job {
@@ -152,11 +155,25 @@ impl Engine {
     fn handle(&mut self, job: Job) {
         match job {
             Job::Line { text, reply } => {
-                let answer = self.line(&text);
+                let t = self.vm.time();
+                // `line` catches a panic of the compiler itself, leaving the module as
+                // it was; this catches one of the VM's joining, after which the line's
+                // blocks may be in the module but are never run.
+                let answer = guard::guarded("joining the line", || self.line(&text))
+                    .unwrap_or_else(|why| LineAnswer {
+                        t,
+                        outcome: Outcome::Failed(why),
+                    });
                 let _ = reply.send(answer);
             }
             Job::Check { text, reply } => {
-                let _ = reply.send(self.check(&text));
+                let t = self.vm.time();
+                let answer = guard::guarded("checking the line", || self.check(&text))
+                    .unwrap_or_else(|why| LineAnswer {
+                        t,
+                        outcome: Outcome::Failed(why),
+                    });
+                let _ = reply.send(answer);
             }
             Job::Status { reply } => {
                 let _ = reply.send(self.status());
@@ -181,16 +198,39 @@ impl Engine {
     /// Joins `text` to the running task, or says why not; subscribers see a `line`
     /// event either way, as in `ilmrc run`'s trace.
     fn line(&mut self, text: &str) -> LineAnswer {
-        let model = &self.model;
         let options = LineOptions { robotless: false };
+        self.join(text, |b, model, warnings| {
+            lower_line_warned(text, b, model, options, warnings)
+        })
+    }
+
+    /// Joins what `lower` builds for `text`. A panic inside `lower` is caught there, so
+    /// the VM takes the line as rejected and truncates the module to what it was.
+    fn join(
+        &mut self,
+        text: &str,
+        lower: impl FnOnce(
+            &mut ModuleBuilder,
+            &RobotModel,
+            &mut Vec<Diagnostic>,
+        ) -> Result<Vec<BlockId>, Vec<Diagnostic>>,
+    ) -> LineAnswer {
         let t = self.vm.time();
         let mut warnings = Vec::new();
-        let result = self
-            .vm
-            .add_line(|b| lower_line_warned(text, b, model, options, &mut warnings));
+        let model = &self.model;
+        let result = self.vm.add_line(|b| {
+            match guard::guarded("compiling the line", || lower(b, model, &mut warnings)) {
+                Ok(Ok(start)) => Ok(start),
+                Ok(Err(diagnostics)) => Err(Refusal::Diagnostics(diagnostics)),
+                Err(why) => Err(Refusal::Panicked(why)),
+            }
+        });
         let outcome = match result {
             Ok(()) => Outcome::Accepted { warnings },
-            Err(LineError::Lower(diagnostics)) => Outcome::Rejected { diagnostics },
+            Err(LineError::Lower(Refusal::Diagnostics(diagnostics))) => {
+                Outcome::Rejected { diagnostics }
+            }
+            Err(LineError::Lower(Refusal::Panicked(why))) => Outcome::Failed(why),
             Err(LineError::Invalid(e)) => Outcome::Failed(format!("the line was not joined: {e}")),
             Err(LineError::Replaced) => Outcome::Failed(
                 "the line was not joined: the lowering did not return the program".into(),
@@ -278,6 +318,13 @@ impl Engine {
     }
 }
 
+/// Why a line's lowering gave nothing to join.
+enum Refusal {
+    Diagnostics(Vec<Diagnostic>),
+    /// The compiler panicked; the message says so.
+    Panicked(String),
+}
+
 /// The `line` event of `ilmrc run`'s trace, written as it writes it, plus the codes
 /// of a joined line's warnings.
 fn line_event(t: f64, text: &str, outcome: &Outcome) -> String {
@@ -299,4 +346,58 @@ fn line_event(t: f64, text: &str, outcome: &Outcome) -> String {
     }
     line.push('}');
     line
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::build::Compiled;
+
+    /// MoRo in the empty world with no task, as `serve` starts without `--task`.
+    fn engine() -> Engine {
+        let opened =
+            super::super::robot::open("moro", Some("empty"), 0).unwrap_or_else(|e| panic!("{e}"));
+        let Ok(Compiled::Module(module)) = super::super::no_task(&opened.spec, None) else {
+            panic!("the empty task compiles");
+        };
+        let vm = Vm::new(*module, opened.robot, SimClock, opened.config)
+            .unwrap_or_else(|e| panic!("{e}"));
+        Engine::new(vm, opened.model)
+    }
+
+    fn counts(e: &Engine) -> ilmr_vm::bytecode::Counts {
+        e.vm.module().counts()
+    }
+
+    #[test]
+    fn a_panic_while_a_line_compiles_is_its_error_and_the_task_is_kept() {
+        let mut e = engine();
+        assert!(matches!(e.line("n = 1").outcome, Outcome::Accepted { .. }));
+        let before = counts(&e);
+        let options = LineOptions { robotless: false };
+        // Half a line is built into the module before the compiler falls over.
+        let answer = e.join("m = 2", |b, model, warnings| {
+            let built = lower_line_warned("m = 2", b, model, options, warnings);
+            assert!(built.is_ok());
+            panic!("the compiler fell over")
+        });
+        match answer.outcome {
+            Outcome::Failed(why) => assert!(
+                why.starts_with("ilmrc failed while compiling the line (the compiler fell over)"),
+                "{why}"
+            ),
+            other => panic!("{other:?}"),
+        }
+        assert_eq!(counts(&e), before, "the half-built line was not taken back");
+        assert!(e.vm.var("m").is_none());
+        // The engine goes on: the next line joins and the robot ticks.
+        assert!(matches!(
+            e.line("n = n + 1").outcome,
+            Outcome::Accepted { .. }
+        ));
+        for _ in 0..3 {
+            e.vm.tick();
+        }
+        assert_eq!(e.vm.var("n").map(|r| r.value), Some(2.0));
+    }
 }

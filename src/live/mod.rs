@@ -3,6 +3,7 @@
 //! both put in front of the dissertation's language process.
 
 pub mod engine;
+pub mod guard;
 mod robot;
 
 use std::path::{Path, PathBuf};
@@ -38,6 +39,11 @@ pub struct RobotArgs {
     pub task: Option<PathBuf>,
 }
 
+/// The longest line `serve` takes as one request and `shell` as one typed line, bytes;
+/// a longer one is refused (`serve` closes the connection, `shell` skips to the next
+/// line), so that a client cannot make either hold unbounded input.
+pub const MAX_LINE_BYTES: usize = 1 << 20;
+
 /// A robot whose VM runs on its own thread.
 pub struct Live {
     /// The VM thread's queue; it stops when every sender is gone.
@@ -51,10 +57,10 @@ pub struct Live {
 /// `None` when the task has errors (they were printed).
 pub fn start(args: &RobotArgs) -> Result<Option<Live>, String> {
     let opened = robot::open(&args.robot, args.world.as_deref(), args.seed)?;
-    let module = match &args.task {
-        Some(task) => compile(task, &opened.spec, args.skills.as_deref(), |_| Vec::new())?,
-        None => no_task(&opened.spec, args.skills.as_deref())?,
-    };
+    let module = guard::on_compiler_stack("compiling the task", || match &args.task {
+        Some(task) => compile(task, &opened.spec, args.skills.as_deref(), |_| Vec::new()),
+        None => no_task(&opened.spec, args.skills.as_deref()),
+    })??;
     let module = match module {
         Compiled::Module(m) => *m,
         Compiled::Rejected => return Ok(None),
@@ -64,6 +70,7 @@ pub fn start(args: &RobotArgs) -> Result<Option<Live>, String> {
     let engine = Engine::new(vm, opened.model.clone());
     std::thread::Builder::new()
         .name("ilmr-vm".into())
+        .stack_size(ilmr_compiler::limits::COMPILER_STACK)
         .spawn(move || engine.run(queue))
         .map_err(|e| format!("cannot start the robot's thread: {e}"))?;
     Ok(Some(Live {

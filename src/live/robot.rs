@@ -6,7 +6,7 @@ use ilmr_model::RobotModel;
 use ilmr_sim::SimRobot;
 use ilmr_vm::{Config, TraceLevel};
 
-use crate::run::setup::{body_of, default_world, load_world, vm_config};
+use crate::run::setup::{body_of, check_faults, default_world, load_world, vm_config};
 
 /// Ticks between pose samples in the event stream: 10 Hz.
 const POSE_EVERY: u32 = 10;
@@ -34,7 +34,9 @@ pub fn open(spec: &str, world: Option<&str>, seed: u64) -> Result<Opened, String
     let model = crate::inputs::load_robot(spec)?.model;
     let kind = body_of(spec, &model);
     let world_spec = world.unwrap_or(default_world(kind));
-    let loaded = load_world(world_spec)?.world;
+    let loaded = load_world(world_spec)?;
+    check_faults(&loaded, &model, kind, None, 0)?;
+    let loaded = loaded.world;
     let body = ilmr_sim::config_from_model(&model, kind);
     let start = loaded.start;
     let robot = SimRobot::new(model.clone(), kind, loaded, seed).map_err(|e| {

@@ -88,16 +88,46 @@ pub struct RunArgs {
 }
 
 pub fn run(args: RunArgs) -> ExitCode {
-    match execute(&args) {
-        Ok(code) => code,
+    let mut reached = Reached::default();
+    let (code, failure) = match execute(&args, &mut reached) {
+        Ok(Ran::Ended) => return ExitCode::SUCCESS,
+        Ok(Ran::Rejected) => (
+            crate::EXIT_ERRORS,
+            "the task has errors; they were printed with the checker's diagnostics".to_string(),
+        ),
         Err(message) => {
             eprintln!("error: {message}");
-            ExitCode::from(crate::EXIT_USAGE)
+            (crate::EXIT_USAGE, message)
         }
+    };
+    // A run that failed before it started still leaves a trace that says why, rather
+    // than an empty file or the last run's trace; one that failed while it ran keeps
+    // what it wrote.
+    if let (Some(path), false) = (&args.trace, reached.running)
+        && let Err(e) = record::write_failure(path, reached.header.as_deref(), &failure, code)
+        && !failure.starts_with("cannot write trace")
+    {
+        eprintln!("warning: {e}");
     }
+    ExitCode::from(code)
 }
 
-fn execute(args: &RunArgs) -> Result<ExitCode, String> {
+/// How far a run got, for the trace of one that fails.
+#[derive(Default)]
+struct Reached {
+    /// The trace's `run` line, once the robot and world are known.
+    header: Option<String>,
+    /// The VM has started: the trace holds the run so far.
+    running: bool,
+}
+
+enum Ran {
+    Ended,
+    /// The checker rejected the task.
+    Rejected,
+}
+
+fn execute(args: &RunArgs, reached: &mut Reached) -> Result<Ran, String> {
     if !(args.max_time.is_finite() && args.max_time >= 0.0) {
         return Err(format!("--max-time {} is not a time", args.max_time));
     }
@@ -117,6 +147,11 @@ fn execute(args: &RunArgs) -> Result<ExitCode, String> {
             );
         };
         loaded.world.faults.extend(args.faults.iter().cloned());
+    }
+    reached.header = record::header(&setup, args);
+    if let (Backend::Sim(kind), Some(loaded)) = (setup.backend, setup.world.as_ref()) {
+        let end = Some(args.max_time);
+        setup::check_faults(loaded, &setup.model, kind, end, args.faults.len())?;
     }
     let scenario = match &args.scenario {
         Some(p) => Scenario::load(p)?,
@@ -139,7 +174,7 @@ fn execute(args: &RunArgs) -> Result<ExitCode, String> {
     })?;
     let module = match compiled {
         Compiled::Module(m) => *m,
-        Compiled::Rejected => return Ok(ExitCode::from(crate::EXIT_ERRORS)),
+        Compiled::Rejected => return Ok(Ran::Rejected),
     };
     let robot = setup::open(&setup, &scenario, args.seed)?;
     let body = match setup.backend {
@@ -161,8 +196,8 @@ fn execute(args: &RunArgs) -> Result<ExitCode, String> {
         pose_every: args.pose_every,
         ..setup::vm_config(&setup.model, body.as_ref())
     };
-    if let Some(line) = record::header(&setup, args) {
-        sink.line(&line)?;
+    if let Some(line) = &reached.header {
+        sink.line(line)?;
     }
     let parts = Parts {
         setup: &setup,
@@ -172,9 +207,11 @@ fn execute(args: &RunArgs) -> Result<ExitCode, String> {
     };
     if args.realtime {
         let vm = Vm::new(module, robot, RealClock::new(), config).map_err(|e| e.to_string())?;
+        reached.running = true;
         drive(vm, parts, args)
     } else {
         let vm = Vm::new(module, robot, SimClock, config).map_err(|e| e.to_string())?;
+        reached.running = true;
         drive(vm, parts, args)
     }
 }
@@ -191,7 +228,7 @@ fn drive<C: Clock>(
     mut vm: Vm<AnyRobot, C>,
     mut parts: Parts<'_>,
     args: &RunArgs,
-) -> Result<ExitCode, String> {
+) -> Result<Ran, String> {
     let scenario = parts.scenario;
     for (name, points) in &scenario.paths {
         vm.add_path(name, points.clone());
@@ -258,5 +295,5 @@ fn drive<C: Clock>(
         "{}",
         summary::render(&session, &vm, outcome, args, parts.setup)
     );
-    Ok(ExitCode::SUCCESS)
+    Ok(Ran::Ended)
 }

@@ -104,6 +104,26 @@ pub fn header(setup: &Setup, args: &RunArgs) -> Option<String> {
     Some(line)
 }
 
+/// The whole trace of a run that failed before it started: its `run` line when the
+/// robot and world were known, then a `failed` event with the reason and exit code.
+pub fn write_failure(
+    path: &Path,
+    header: Option<&str>,
+    reason: &str,
+    exit: u8,
+) -> Result<(), String> {
+    let mut text = String::new();
+    if let Some(h) = header {
+        text.push_str(h);
+        text.push('\n');
+    }
+    text.push_str(&format!(
+        "{{\"t\":0,\"event\":\"failed\",\"reason\":{},\"exit\":{exit}}}\n",
+        json(reason)
+    ));
+    std::fs::write(path, text).map_err(|e| format!("cannot write trace `{}`: {e}", path.display()))
+}
+
 fn json(s: &str) -> String {
     serde_json::to_string(s).unwrap_or_else(|_| "\"\"".into())
 }

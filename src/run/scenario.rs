@@ -95,7 +95,7 @@ pub struct Line {
 
 impl Scenario {
     pub fn load(path: &std::path::Path) -> Result<Scenario, String> {
-        let text = std::fs::read_to_string(path)
+        let text = ilmr_files::read_text(path, ilmr_files::Kind::Scenario)
             .map_err(|e| format!("cannot read scenario `{}`: {e}", path.display()))?;
         let mut s: Scenario = serde_json::from_str(&text)
             .map_err(|e| format!("scenario `{}`: {e}", path.display()))?;

@@ -67,9 +67,10 @@ pub fn choose(c: &Choice<'_>) -> Result<Setup, String> {
             ));
         }
         let builtin = RobotModel::builtin(c.robot).is_some();
-        if !builtin
-            && c.robot.contains(['/', '\\', '.'])
-            && !std::path::Path::new(c.robot).is_file()
+        // A missing file is an error here, where `check` warns and uses the defaults:
+        // a run drives the body the file describes. Anything else wrong with the path
+        // (a directory, a device) is said as `check` says it.
+        if !builtin && c.robot.contains(['/', '\\', '.']) && !std::path::Path::new(c.robot).exists()
         {
             return Err(format!(
                 "cannot read robot model `{}`: no such file",
@@ -159,14 +160,39 @@ pub fn load_world(spec: &str) -> Result<LoadedWorld, String> {
             names.join(", ")
         ));
     }
-    let text =
-        std::fs::read_to_string(path).map_err(|e| format!("cannot read world `{spec}`: {e}"))?;
+    let text = ilmr_files::read_text(path, ilmr_files::Kind::World)
+        .map_err(|e| format!("cannot read world `{spec}`: {e}"))?;
     let world = World::from_toml(&text, spec).map_err(|e| format!("bad world file: {e}"))?;
     Ok(LoadedWorld {
         world,
         name: spec.to_string(),
         text,
     })
+}
+
+/// Checks each fault of `world` against the robot (`model` on the body `kind`) and the
+/// run's end: a fault for a part the robot lacks, or one that starts after the end,
+/// would do nothing. The last `flags` faults came from `--fault`, the others from the
+/// world's `[[fault]]` entries; the message says which.
+pub fn check_faults(
+    world: &LoadedWorld,
+    model: &RobotModel,
+    kind: RobotKind,
+    max_time: Option<f64>,
+    flags: usize,
+) -> Result<(), String> {
+    let body = ilmr_sim::config_from_model(model, kind);
+    let from_world = world.world.faults.len().saturating_sub(flags);
+    for (i, spec) in world.world.faults.iter().enumerate() {
+        ilmr_sim::faults::check_fits(spec, &body, model, max_time).map_err(|e| {
+            if i < from_world {
+                format!("fault `{spec}` of world `{}`: {e}", world.name)
+            } else {
+                format!("--fault `{spec}`: {e}")
+            }
+        })?;
+    }
+    Ok(())
 }
 
 /// `X,Y,H`: metres and degrees in the world frame, inside the world's bounds.

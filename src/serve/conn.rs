@@ -12,10 +12,9 @@ use serde_json::{Map, Value};
 use super::protocol::{self, Parsed, Request};
 use super::reply;
 use crate::live::engine::Job;
+use crate::live::guard::guarded;
 
-/// The longest request line, bytes; a longer one is refused and the connection closed
-/// (a client cannot make the server hold unbounded input).
-pub const MAX_LINE: usize = 1 << 20;
+use crate::live::MAX_LINE_BYTES as MAX_LINE;
 
 /// Lines queued for a connection before a subscriber that does not read is dropped.
 const OUT_QUEUE: usize = 4096;
@@ -82,17 +81,27 @@ fn read_requests(stream: TcpStream, conn: u64, jobs: &Sender<Job>, out: &SyncSen
                 continue;
             }
         };
+        // A planner that waits for one answer per line it sent must not wait forever
+        // for a blank one.
         if line.is_empty() {
+            let answer = protocol::error("empty line: send one JSON object per line");
+            if out.send(protocol::answer(answer, None)).is_err() {
+                return;
+            }
             continue;
         }
-        let parsed = protocol::parse(line);
-        let Some(answer) = ask(&parsed, conn, jobs, out) else {
-            continue;
+        // Parsing the request and rendering its answer happen on this thread; a panic
+        // there is this request's error, not the end of the connection.
+        let answered = guarded("answering the request", || {
+            let parsed = protocol::parse(line);
+            ask(&parsed, conn, jobs, out).map(|a| protocol::answer(a, parsed.id.as_ref()))
+        });
+        let answer = match answered {
+            Ok(Some(answer)) => answer,
+            Ok(None) => continue,
+            Err(why) => protocol::answer(protocol::error(&why), None),
         };
-        if out
-            .send(protocol::answer(answer, parsed.id.as_ref()))
-            .is_err()
-        {
+        if out.send(answer).is_err() {
             return;
         }
     }

@@ -6,6 +6,7 @@
 
 mod complete;
 mod input;
+mod piped;
 mod show;
 
 use std::io::{IsTerminal, Write};
@@ -73,6 +74,10 @@ fn execute(args: &ShellArgs) -> Result<ExitCode, String> {
         words: Arc::clone(&words),
     }));
     if let Some(path) = args.history.as_ref().filter(|p| p.exists()) {
+        // rustyline reads the file itself, without a limit; this read refuses what it
+        // should not be given (a device, a FIFO, a huge file) first.
+        ilmr_files::read(path, ilmr_files::Kind::History)
+            .map_err(|e| format!("cannot read history `{}`: {e}", path.display()))?;
         editor
             .load_history(path)
             .map_err(|e| format!("cannot read history `{}`: {e}", path.display()))?;
@@ -90,8 +95,29 @@ fn execute(args: &ShellArgs) -> Result<ExitCode, String> {
         ilmr_vm::runtime::trace::fmt_num(first.pose.y)
     );
     let mut collector = Collector::default();
+    // rustyline reads a pipe whole-line and unbounded, and ends at the first byte that
+    // is not UTF-8; piped lines are read here instead.
+    let mut piped = (!std::io::stdin().is_terminal())
+        .then(|| piped::Piped::new(std::io::BufReader::new(std::io::stdin())));
     'typing: loop {
         let _ = std::io::stdout().flush();
+        if let Some(p) = piped.as_mut() {
+            match p.next_line() {
+                Ok(Some(Ok(line))) => {
+                    if act(collector.take(&line), &live, &words, &watch, style)? == Next::Quit {
+                        break 'typing;
+                    }
+                }
+                // A block missing one of its lines is not the block that was meant.
+                Ok(Some(Err(why))) => match collector.cancel() {
+                    true => println!("error: {why}, and the unfinished block was dropped"),
+                    false => println!("error: {why}"),
+                },
+                Ok(None) => break,
+                Err(e) => return Err(format!("cannot read a line: {e}")),
+            }
+            continue;
+        }
         let typed = match editor.readline(collector.prompt()) {
             Ok(typed) => typed,
             Err(ReadlineError::Interrupted) => {

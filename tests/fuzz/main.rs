@@ -22,37 +22,51 @@ mod taskgen;
 
 use engine::Budget;
 
+/// Runs a target where the tools compile: on a thread with the compiler's stack
+/// (`ilmr_compiler::limits::COMPILER_STACK`; a test thread has 2 MiB, less than an
+/// unoptimised compiler needs at its nesting limits).
+fn on_compiler_stack<T: Send>(target: impl FnOnce() -> T + Send) -> T {
+    std::thread::scope(|s| {
+        std::thread::Builder::new()
+            .stack_size(ilmr_compiler::limits::COMPILER_STACK)
+            .spawn_scoped(s, target)
+            .expect("start the target's thread")
+            .join()
+            .unwrap_or_else(|panic| std::panic::resume_unwind(panic))
+    })
+}
+
 #[test]
 fn task_files_never_panic() {
-    let stats = targets::tasks::fuzz(Budget::from_env(300));
+    let stats = on_compiler_stack(|| targets::tasks::fuzz(Budget::from_env(300)));
     assert!(stats.corpus >= 10, "{stats:?}");
 }
 
 #[test]
 fn skill_files_never_panic() {
-    let stats = targets::skills::fuzz(Budget::from_env(250));
+    let stats = on_compiler_stack(|| targets::skills::fuzz(Budget::from_env(250)));
     assert!(stats.corpus >= 3, "{stats:?}");
 }
 
 #[test]
 fn robot_models_never_panic() {
-    let stats = targets::models::fuzz(Budget::from_env(100));
+    let stats = on_compiler_stack(|| targets::models::fuzz(Budget::from_env(100)));
     assert!(stats.corpus >= 3, "{stats:?}");
 }
 
 #[test]
 fn bytecode_modules_are_checked_before_they_run() {
-    let stats = targets::modules::fuzz(Budget::from_env(1000));
+    let stats = on_compiler_stack(|| targets::modules::fuzz(Budget::from_env(1000)));
     assert!(stats.corpus >= 10, "{stats:?}");
 }
 
 #[test]
 fn serve_requests_are_answered() {
-    let stats = targets::requests::fuzz(Budget::from_env(5000));
+    let stats = on_compiler_stack(|| targets::requests::fuzz(Budget::from_env(5000)));
     assert!(stats.corpus >= 5, "{stats:?}");
 }
 
 #[test]
 fn the_module_loader_says_what_is_wrong() {
-    targets::modules::errors_are_clear();
+    on_compiler_stack(targets::modules::errors_are_clear);
 }

@@ -2,6 +2,7 @@
 //! The line is already split into fields; what it means in context
 //! (duplicates, ranges of known parameters, defaults) is `parse`'s job.
 
+use crate::limits::{MAX_DEVICE_ID, MAX_MAGNITUDE, MAX_READINGS, out_of_range, shown};
 use crate::model::{Device, NamedValue, Object};
 use crate::names::is_valid_name;
 
@@ -80,10 +81,6 @@ pub(crate) struct Problem {
     pub(crate) message: String,
 }
 
-/// Device ids stay below 2^31 so that they convert to `f64` exactly and fit
-/// the intermediate process's integer messages.
-const MAX_DEVICE_ID: i64 = i32::MAX as i64;
-
 /// Reads the fields of one entry line of `section`. `fields` is never empty.
 pub(crate) fn read_entry(section: Section, fields: &[&str], line: u32) -> Result<Entry, Problem> {
     let Some(&first) = fields.first() else {
@@ -133,6 +130,20 @@ pub(crate) fn read_entry(section: Section, fields: &[&str], line: u32) -> Result
     }
 }
 
+/// A number a device, colour, identifier or unknown parameter may hold:
+/// within `MAX_MAGNITUDE` either way. Known parameters have their own ranges.
+pub(crate) fn bounded(value: f64, what: &str) -> Result<f64, String> {
+    if value.abs() <= MAX_MAGNITUDE {
+        Ok(value)
+    } else {
+        Err(out_of_range(
+            what,
+            &shown(value),
+            &format!("-{} to {}", shown(MAX_MAGNITUDE), shown(MAX_MAGNITUDE)),
+        ))
+    }
+}
+
 fn count_message(section: Section, fields: &[&str]) -> String {
     let mut message = format!(
         "[{}] expects {}, found {} field{}",
@@ -166,13 +177,20 @@ fn read_device(name: String, fields: &[&str], line: u32) -> Result<Entry, String
             ));
         }
     };
-    let min = number(min, "minimum")?;
-    let max = number(max, "maximum")?;
+    let min = bounded(number(min, "minimum")?, &format!("{name} minimum"))?;
+    let max = bounded(number(max, "maximum")?, &format!("{name} maximum"))?;
     if min > max {
         return Err(format!("minimum {min} is greater than maximum {max}"));
     }
-    let readings = match readings.parse::<u32>() {
-        Ok(n) if n >= 1 => n,
+    let readings = match readings.parse::<u64>() {
+        Ok(n) if (1..=u64::from(MAX_READINGS)).contains(&n) => n as u32,
+        Ok(n) if n > 0 => {
+            return Err(out_of_range(
+                &format!("{name} readings"),
+                &n.to_string(),
+                &format!("1 to {MAX_READINGS}"),
+            ));
+        }
         _ => {
             return Err(format!(
                 "number of readings `{readings}` is not a positive integer"

@@ -10,6 +10,7 @@
 
 mod docs;
 mod entry;
+mod limits;
 mod load;
 mod model;
 mod names;
@@ -17,7 +18,8 @@ mod params;
 mod parse;
 mod write;
 
-pub use docs::parameter_table_markdown;
+pub use docs::{field_table_markdown, parameter_table_markdown};
+pub use limits::{MAX_DEVICE_ID, MAX_MAGNITUDE, MAX_READINGS, MAX_SECTION_ENTRIES};
 pub use model::{Device, ModelName, ModelWarning, NamedValue, Object, RobotModel};
 pub use names::{SUPERVISOR, SUPERVISOR_FAULTS};
 pub use params::{PARAMETER_SPECS, ParamDefault, ParamSpec, Valid, parameter_spec};

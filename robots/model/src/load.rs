@@ -37,20 +37,21 @@ impl RobotModel {
     /// A missing file is not an error: the result is the defaults model
     /// with one warning naming the path. Text that is not UTF-8 is read with
     /// the bad bytes replaced, and warned about. Only other I/O failures
-    /// (permissions, a directory, a device error) are `Err`, since no
+    /// (permissions, a directory, a device or FIFO, a file over
+    /// `ilmr_files::MAX_ROBOT_MODEL_BYTES`) are `Err`, since no
     /// default can stand in for a file that exists but cannot be read
     /// without hiding a real fault from the operator.
     pub fn load(path: &Path) -> io::Result<(RobotModel, Vec<ModelWarning>)> {
-        let bytes = match std::fs::read(path) {
+        let bytes = match ilmr_files::read(path, ilmr_files::Kind::RobotModel) {
             Ok(bytes) => bytes,
-            Err(e) if e.kind() == io::ErrorKind::NotFound => {
+            Err(e) if e.is_not_found() => {
                 let warning = ModelWarning::file(format!(
                     "robot model file `{}` not found; the built-in defaults are used",
                     path.display()
                 ));
                 return Ok((RobotModel::defaults(), vec![warning]));
             }
-            Err(e) => return Err(e),
+            Err(e) => return Err(e.into()),
         };
         let name = path
             .file_stem()

@@ -23,8 +23,6 @@ pub enum ParamDefault {
 /// Which values a parameter admits. A value outside is a corrupt line.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Valid {
-    /// `> 0`.
-    Positive,
     /// `> 0` and `<= max`.
     PositiveAtMost(f64),
     /// `min ..= max`.
@@ -34,7 +32,6 @@ pub enum Valid {
 impl Valid {
     pub fn admits(self, v: f64) -> bool {
         match self {
-            Valid::Positive => v > 0.0,
             Valid::PositiveAtMost(max) => v > 0.0 && v <= max,
             Valid::Between(min, max) => (min..=max).contains(&v),
         }
@@ -43,7 +40,6 @@ impl Valid {
     /// The range as the docs and warnings write it.
     pub fn describe(self) -> String {
         match self {
-            Valid::Positive => "> 0".to_string(),
             Valid::PositiveAtMost(max) => format!("> 0 and <= {max}"),
             Valid::Between(min, max) => format!("{min} to {max}"),
         }
@@ -65,15 +61,28 @@ pub struct ParamSpec {
     pub readers: &'static str,
 }
 
-// Ranges: rates are capped at the VM's 100 Hz tick, since a faster source
-// cannot be observed; angles of the body pose at 90 degrees.
+// Ranges: wide enough for any wheeled robot a developer would describe (the
+// dissertation's MoRo and Workpartner sit well inside), narrow enough that no
+// value makes the tools allocate or loop in proportion to it (issue 12).
+// Rates are capped at the VM's 100 Hz tick, since a faster source cannot be
+// observed, and floored where a period would outlast any supervision timeout;
+// angles of the body pose at 90 degrees.
 const TICK_HZ: f64 = 100.0;
+const MIN_RATE_HZ: f64 = 0.1;
+/// m/s: 36 km/h, well past any mobile robot of the dissertation's kind.
+const SPEED: f64 = 10.0;
+/// 1/m: a 1 cm turning radius.
+const CURVATURE: f64 = 100.0;
+/// V: past any traction battery.
+const VOLTAGE: f64 = 1000.0;
+/// s: ten minutes without a sample is no supervision at all.
+const SUPERVISION_TIMEOUT: f64 = 600.0;
 
 pub const MAX_TIME_TO_SEARCH: ParamSpec = ParamSpec {
     name: "max_time_to_search",
     unit: "s",
     default: ParamDefault::Value(10.0),
-    valid: Valid::Positive,
+    valid: Valid::PositiveAtMost(3600.0),
     meaning: "How long a search (`sensor(scanner,door)`, `findtarget`) should look before it ends without a find (Figure 39). Loaded and range-checked; the VM does not yet end searches by it: a search runs until it finds.",
     readers: "none yet",
 };
@@ -81,7 +90,7 @@ pub const DEFAULT_SPEED: ParamSpec = ParamSpec {
     name: "default_speed",
     unit: "m/s",
     default: ParamDefault::Value(0.2),
-    valid: Valid::Positive,
+    valid: Valid::PositiveAtMost(SPEED),
     meaning: "Speed of movement commands until the task gives `speed(...)`; must not exceed `max_speed`.",
     readers: "vm, motion",
 };
@@ -89,7 +98,7 @@ pub const MAX_SPEED: ParamSpec = ParamSpec {
     name: "max_speed",
     unit: "m/s",
     default: ParamDefault::Value(0.6),
-    valid: Valid::Positive,
+    valid: Valid::PositiveAtMost(SPEED),
     meaning: "Largest speed magnitude: `speed(v)` admits -max_speed..max_speed (the VM refuses a computed speed beyond it).",
     readers: "compiler (range check), vm, motion, sim",
 };
@@ -97,7 +106,7 @@ pub const POS_INTERVAL: ParamSpec = ParamSpec {
     name: "pos_interval",
     unit: "m",
     default: ParamDefault::Value(0.5),
-    valid: Valid::Positive,
+    valid: Valid::Between(0.01, 100.0),
     meaning: "Distance travelled between two positions stored by `record(file)`; `followpath` reads them back as its reference points.",
     readers: "vm (record), motion (followpath)",
 };
@@ -105,7 +114,7 @@ pub const OMAX_CURVATURE: ParamSpec = ParamSpec {
     name: "omax_curvature",
     unit: "1/m",
     default: ParamDefault::Value(0.4),
-    valid: Valid::Positive,
+    valid: Valid::PositiveAtMost(CURVATURE),
     meaning: "Largest curvature of the path around an obstacle (section 4.5.7); the path planner uses min(omax_curvature, max_curvature) so the robot can drive it.",
     readers: "motion (obstacle avoidance)",
 };
@@ -113,7 +122,7 @@ pub const CURINC: ParamSpec = ParamSpec {
     name: "curinc",
     unit: "1/(m s)",
     default: ParamDefault::Value(0.8),
-    valid: Valid::Positive,
+    valid: Valid::PositiveAtMost(100.0),
     meaning: "Largest rate of change of curvature, the Δc of equations (4)-(8) of the position controller.",
     readers: "motion (position controller), sim (steering rate)",
 };
@@ -121,7 +130,7 @@ pub const ROBOT_LENGTH: ParamSpec = ParamSpec {
     name: "robot_length",
     unit: "m",
     default: ParamDefault::Value(2.2),
-    valid: Valid::Positive,
+    valid: Valid::Between(0.05, 20.0),
     meaning: "Length of the robot's footprint; obstacle avoidance returns to the path only when the rear has passed the obstacle (Figure 34 H).",
     readers: "motion, sim",
 };
@@ -129,7 +138,7 @@ pub const ROBOT_WIDTH: ParamSpec = ParamSpec {
     name: "robot_width",
     unit: "m",
     default: ParamDefault::Value(1.0),
-    valid: Valid::Positive,
+    valid: Valid::Between(0.05, 10.0),
     meaning: "Width of the robot's footprint; the obstacle check area is 1.2 x robot_width wide (equation (12)).",
     readers: "motion, sim",
 };
@@ -137,7 +146,7 @@ pub const FOLLOWWALL_D: ParamSpec = ParamSpec {
     name: "followwall_d",
     unit: "m",
     default: ParamDefault::Value(1.0),
-    valid: Valid::Positive,
+    valid: Valid::PositiveAtMost(50.0),
     meaning: "Distance kept to the wall by `followwall(left)` and `followwall(right)` when no distance is given.",
     readers: "compiler (default argument), motion",
 };
@@ -145,7 +154,7 @@ pub const BS_SECURITY: ParamSpec = ParamSpec {
     name: "bs_security",
     unit: "m",
     default: ParamDefault::Value(1.0),
-    valid: Valid::Positive,
+    valid: Valid::PositiveAtMost(10.0),
     meaning: "Security distance of the scanner used as a safety switch: an obstacle nearer than this in the direction of travel stops the robot, whatever `obsavoid` is set to.",
     readers: "motion, sim",
 };
@@ -153,7 +162,7 @@ pub const MAX_CURVATURE: ParamSpec = ParamSpec {
     name: "max_curvature",
     unit: "1/m",
     default: ParamDefault::Value(0.25),
-    valid: Valid::Positive,
+    valid: Valid::PositiveAtMost(CURVATURE),
     meaning: "Largest curvature the robot can drive (1 / smallest turning radius): the default arc of `turn(left)`, the admissibility test of a Bezier path (section 4.5.2.1), R_max of equation (11).",
     readers: "compiler (range of `turn(c=)`), motion, sim",
 };
@@ -161,7 +170,7 @@ pub const MAX_ACCELERATION: ParamSpec = ParamSpec {
     name: "max_acceleration",
     unit: "m/s^2",
     default: ParamDefault::Value(0.3),
-    valid: Valid::Positive,
+    valid: Valid::Between(0.01, 20.0),
     meaning: "Largest rate at which the speed is raised.",
     readers: "motion, sim",
 };
@@ -169,7 +178,7 @@ pub const MAX_DECELERATION: ParamSpec = ParamSpec {
     name: "max_deceleration",
     unit: "m/s^2",
     default: ParamDefault::Value(0.5),
-    valid: Valid::Positive,
+    valid: Valid::Between(0.01, 20.0),
     meaning: "Largest rate at which the speed is lowered: `stop`, `advancestop` and the ends of paths brake with it.",
     readers: "motion, sim",
 };
@@ -177,7 +186,7 @@ pub const WHEELBASE: ParamSpec = ParamSpec {
     name: "wheelbase",
     unit: "m",
     default: ParamDefault::Value(1.3),
-    valid: Valid::Positive,
+    valid: Valid::Between(0.05, 20.0),
     meaning: "Distance from the steering axle to the fixed axle; turns a curvature into a steering angle (Workpartner's articulation joint, MoRo's front wheel).",
     readers: "hal, sim",
 };
@@ -185,7 +194,7 @@ pub const LOW_BATTERY: ParamSpec = ParamSpec {
     name: "LowBattery",
     unit: "V",
     default: ParamDefault::Value(23.0),
-    valid: Valid::Positive,
+    valid: Valid::PositiveAtMost(VOLTAGE),
     meaning: "Battery voltage below which the task should go and charge (Figure 20: `if(Battery<LowBattery)`); below battery_full. The supervisor raises `battery_low` below it.",
     readers: "compiler (model constant), vm (supervision), sim",
 };
@@ -193,7 +202,7 @@ pub const BATTERY_FULL: ParamSpec = ParamSpec {
     name: "battery_full",
     unit: "V",
     default: ParamDefault::Value(25.6),
-    valid: Valid::Positive,
+    valid: Valid::PositiveAtMost(VOLTAGE),
     meaning: "Voltage of a fully charged battery; the simulator starts a run there.",
     readers: "sim, hal",
 };
@@ -201,7 +210,7 @@ pub const SCANNER_RANGE: ParamSpec = ParamSpec {
     name: "scanner_range",
     unit: "m",
     default: ParamDefault::Value(30.0),
-    valid: Valid::Positive,
+    valid: Valid::PositiveAtMost(250.0),
     meaning: "Furthest scanner reading that counts as a hit (Figure 39's scanner reads 0..30000 mm).",
     readers: "sim, motion (environment map)",
 };
@@ -209,7 +218,7 @@ pub const SCANNER_RATE: ParamSpec = ParamSpec {
     name: "scanner_rate",
     unit: "Hz",
     default: ParamDefault::Value(2.0),
-    valid: Valid::PositiveAtMost(TICK_HZ),
+    valid: Valid::Between(MIN_RATE_HZ, TICK_HZ),
     meaning: "Rate of new scans, so of environment-map updates and obstacle checks (2-4 Hz in the dissertation).",
     readers: "sim, hal, motion",
 };
@@ -217,7 +226,7 @@ pub const ODOMETRY_RATE: ParamSpec = ParamSpec {
     name: "odometry_rate",
     unit: "Hz",
     default: ParamDefault::Value(10.0),
-    valid: Valid::PositiveAtMost(TICK_HZ),
+    valid: Valid::Between(MIN_RATE_HZ, TICK_HZ),
     meaning: "Rate of wheel odometry samples.",
     readers: "sim, hal",
 };
@@ -225,7 +234,7 @@ pub const SCANNER_TIMEOUT: ParamSpec = ParamSpec {
     name: "scanner_timeout",
     unit: "s",
     default: ParamDefault::Value(1.5),
-    valid: Valid::Positive,
+    valid: Valid::PositiveAtMost(SUPERVISION_TIMEOUT),
     meaning: "Supervision: no scan for this long is a scanner fault and the robot stops; should exceed 1/scanner_rate.",
     readers: "vm (supervision), hal",
 };
@@ -233,7 +242,7 @@ pub const ODOMETRY_TIMEOUT: ParamSpec = ParamSpec {
     name: "odometry_timeout",
     unit: "s",
     default: ParamDefault::Value(0.5),
-    valid: Valid::Positive,
+    valid: Valid::PositiveAtMost(SUPERVISION_TIMEOUT),
     meaning: "Supervision: no odometry sample for this long is a fault and the robot stops; should exceed 1/odometry_rate.",
     readers: "vm (supervision), hal",
 };
@@ -241,7 +250,7 @@ pub const NAV_RATE: ParamSpec = ParamSpec {
     name: "nav_rate",
     unit: "Hz",
     default: ParamDefault::Absent,
-    valid: Valid::PositiveAtMost(TICK_HZ),
+    valid: Valid::Between(MIN_RATE_HZ, TICK_HZ),
     meaning: "Rate of position fixes from a separate navigation subsystem (Workpartner: 2 Hz); absent when the robot has none.",
     readers: "sim, hal",
 };
@@ -249,7 +258,7 @@ pub const NAV_TIMEOUT: ParamSpec = ParamSpec {
     name: "nav_timeout",
     unit: "s",
     default: ParamDefault::Absent,
-    valid: Valid::Positive,
+    valid: Valid::PositiveAtMost(SUPERVISION_TIMEOUT),
     meaning: "Supervision: no navigation fix for this long is a fault; should exceed 1/nav_rate.",
     readers: "vm (supervision), hal",
 };
@@ -257,7 +266,7 @@ pub const DEADRECKONING_RATE: ParamSpec = ParamSpec {
     name: "deadreckoning_rate",
     unit: "Hz",
     default: ParamDefault::SameAs(&ODOMETRY_RATE),
-    valid: Valid::PositiveAtMost(TICK_HZ),
+    valid: Valid::Between(MIN_RATE_HZ, TICK_HZ),
     meaning: "Rate of dead-reckoning updates between navigation fixes (equation (1); Workpartner: 10 Hz); defaults to odometry_rate.",
     readers: "hal, sim",
 };
@@ -281,7 +290,7 @@ pub const MAX_CLEARANCE: ParamSpec = ParamSpec {
     name: "max_clearance",
     unit: "m",
     default: ParamDefault::Absent,
-    valid: Valid::Positive,
+    valid: Valid::PositiveAtMost(1.0),
     meaning: "`bodypose(rc=)` admits 0..max_clearance; absent when the robot has no body pose.",
     readers: "compiler (range check), vm (refusal), hal, sim",
 };
@@ -290,7 +299,7 @@ pub const STOP_MARGIN: ParamSpec = ParamSpec {
     name: "stop_margin",
     unit: "m",
     default: ParamDefault::Value(0.2),
-    valid: Valid::Positive,
+    valid: Valid::PositiveAtMost(10.0),
     meaning: "Supervision: with obstacle avoidance off, an obstacle in the checked area nearer than the braking distance plus this stops the robot, which then stands this far from it.",
     readers: "vm (supervision)",
 };
@@ -298,7 +307,7 @@ pub const LOCALIZATION_JUMP: ParamSpec = ParamSpec {
     name: "localization_jump",
     unit: "m",
     default: ParamDefault::Value(0.5),
-    valid: Valid::Positive,
+    valid: Valid::PositiveAtMost(100.0),
     meaning: "Supervision: the pose estimate moving this much further in one tick than the robot can drive is a localization jump.",
     readers: "vm (supervision)",
 };
@@ -314,7 +323,7 @@ pub const OPERATION_TIMEOUT: ParamSpec = ParamSpec {
     name: "operation_timeout",
     unit: "s",
     default: ParamDefault::Value(60.0),
-    valid: Valid::Positive,
+    valid: Valid::PositiveAtMost(3600.0),
     meaning: "Supervision: an asynchronous operation (`init`, `manipulate`, `movemode`) that has not answered after this long is cancelled and refused.",
     readers: "vm (supervision)",
 };
@@ -322,7 +331,7 @@ pub const DEGRADED_SPEED: ParamSpec = ParamSpec {
     name: "degraded_speed",
     unit: "m/s",
     default: ParamDefault::Value(0.1),
-    valid: Valid::Positive,
+    valid: Valid::PositiveAtMost(SPEED),
     meaning: "Supervision: the speed limit while the navigation fix is missing and the robot drives on dead reckoning alone.",
     readers: "vm (supervision)",
 };
@@ -660,7 +669,10 @@ mod tests {
 
     #[test]
     fn ranges_admit_and_reject() {
-        assert!(Valid::Positive.admits(0.1) && !Valid::Positive.admits(0.0));
+        assert!(Valid::PositiveAtMost(1.0).admits(0.1) && !Valid::PositiveAtMost(1.0).admits(0.0));
+        for v in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
+            assert!(!Valid::PositiveAtMost(1.0).admits(v) && !Valid::Between(0.0, 1.0).admits(v));
+        }
         assert!(Valid::PositiveAtMost(100.0).admits(100.0));
         assert!(!Valid::PositiveAtMost(100.0).admits(100.5));
         assert!(Valid::Between(0.0, 90.0).admits(0.0) && !Valid::Between(0.0, 90.0).admits(-1.0));

@@ -12,7 +12,8 @@
 
 use std::collections::BTreeMap;
 
-use crate::entry::{Entry, Problem, Section, parse_number, read_entry};
+use crate::entry::{Entry, Problem, Section, bounded, parse_number, read_entry};
+use crate::limits::{MAX_SECTION_ENTRIES, out_of_range, shown};
 use crate::model::{ModelWarning, NamedValue, RobotModel};
 use crate::names::{fold, is_valid_name, same_name};
 use crate::params::{
@@ -99,6 +100,8 @@ struct Parser {
     before_first_tag: Option<Skipped>,
     after_end: Option<Skipped>,
     unknown: Option<UnknownSection>,
+    /// Entry lines of a section past `MAX_SECTION_ENTRIES`.
+    too_many: BTreeMap<Section, Skipped>,
 }
 
 impl Parser {
@@ -124,6 +127,7 @@ impl Parser {
             before_first_tag: None,
             after_end: None,
             unknown: None,
+            too_many: BTreeMap::new(),
         }
     }
 
@@ -219,6 +223,21 @@ impl Parser {
     // ---- entries ------------------------------------------------------
 
     fn entry(&mut self, section: Section, fields: &[&str], line: u32) {
+        if self.entries(section) >= MAX_SECTION_ENTRIES {
+            match self.too_many.get_mut(&section) {
+                Some(s) => s.count += 1,
+                None => {
+                    self.too_many.insert(
+                        section,
+                        Skipped {
+                            first: line,
+                            count: 1,
+                        },
+                    );
+                }
+            }
+            return;
+        }
         if let Some(&first) = fields.first()
             && is_valid_name(first)
             && let Some(&first_line) = self.seen.get(&(section, fold(first)))
@@ -236,12 +255,50 @@ impl Parser {
             Ok(Entry::Value(value)) if section == Section::Parameters => {
                 self.parameter(value);
             }
+            Ok(Entry::Object(object))
+                if let Some(Err(message)) = object
+                    .params
+                    .iter()
+                    .filter_map(|p| parse_number(p))
+                    .map(|v| bounded(v, &format!("{} parameter", object.name)))
+                    .find(Result::is_err) =>
+            {
+                self.substitute(
+                    section,
+                    Problem {
+                        name: Some(object.name),
+                        message,
+                    },
+                    line,
+                );
+            }
+            Ok(Entry::Value(value)) if bounded(value.value, &value.name).is_err() => {
+                let message = bounded(value.value, &value.name).err().unwrap_or_default();
+                self.substitute(
+                    section,
+                    Problem {
+                        name: Some(value.name),
+                        message,
+                    },
+                    line,
+                );
+            }
             Ok(entry) => {
                 if let Err(message) = self.add(section, entry) {
                     self.warn(line, format!("{message}; the line is ignored"));
                 }
             }
             Err(problem) => self.substitute(section, problem, line),
+        }
+    }
+
+    fn entries(&self, section: Section) -> usize {
+        match section {
+            Section::Devices => self.model.devices.len(),
+            Section::Objects => self.model.objects.len(),
+            Section::Colors => self.model.colors.len(),
+            Section::Identifiers => self.model.identifiers.len(),
+            Section::Parameters => self.model.parameters.len(),
         }
     }
 
@@ -277,19 +334,22 @@ impl Parser {
     fn parameter(&mut self, value: NamedValue) {
         let line = value.line;
         let Some(spec) = parameter_spec(&value.name) else {
-            let _ = self.add(Section::Parameters, Entry::Value(value));
+            match bounded(value.value, &value.name) {
+                Ok(_) => {
+                    let _ = self.add(Section::Parameters, Entry::Value(value));
+                }
+                Err(message) => self.warn(line, format!("{message}; the line is ignored")),
+            }
             return;
         };
         if spec.valid.admits(value.value) {
             let _ = self.add(Section::Parameters, Entry::Value(value));
             return;
         }
-        let problem = format!(
-            "parameter `{}` = {} is outside its range ({} {})",
-            value.name,
-            value.value,
-            spec.valid.describe(),
-            spec.unit
+        let problem = out_of_range(
+            &value.name,
+            &shown(value.value),
+            &format!("{} {}", spec.valid.describe(), spec.unit),
         );
         self.substitute(
             Section::Parameters,
@@ -410,6 +470,18 @@ impl Parser {
                 s.first,
                 format!(
                     "{} before the first section tag {} ignored",
+                    lines(s.count),
+                    if s.count == 1 { "is" } else { "are" }
+                ),
+            );
+        }
+        for (section, s) in std::mem::take(&mut self.too_many) {
+            self.warn(
+                s.first,
+                format!(
+                    "[{}]: more than {MAX_SECTION_ENTRIES} entries, out of range (expected at most \
+                     {MAX_SECTION_ENTRIES}); {} from here on {} ignored",
+                    section.tag(),
                     lines(s.count),
                     if s.count == 1 { "is" } else { "are" }
                 ),

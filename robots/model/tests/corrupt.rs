@@ -71,9 +71,9 @@ robot_width 0
          line 7: value `four` is not a number; the default `odo 4` is used
          line 10: value `fast` is not a number; the default 0.6 is used
          line 11: value `0,2` is not a number (write `.` as the decimal point); the default 0.2 is used
-         line 12: parameter `max_roll` = 120 is outside its range (0 to 90 deg); the line is ignored
-         line 13: parameter `deadreckoning_rate` = -1 is outside its range (> 0 and <= 100 Hz); the line is ignored, so the value of `odometry_rate` is used
-         line 14: parameter `robot_width` = 0 is outside its range (> 0 m); the default 1 is used",
+         line 12: max_roll: 120 out of range (expected 0 to 90 deg); the line is ignored
+         line 13: deadreckoning_rate: -1 out of range (expected 0.1 to 100 Hz); the line is ignored, so the value of `odometry_rate` is used
+         line 14: robot_width: 0 out of range (expected 0.05 to 10 m); the default 1 is used",
     );
     assert_eq!(m.identifier("wheels"), Some(5.0));
     assert_eq!(m.identifier("odo"), Some(4.0));

@@ -42,6 +42,57 @@ fn step_10ms_with_scan_office(b: divan::Bencher) {
     .bench_local_refs(|s| s.step(0.01));
 }
 
+/// The most walls a world file admits (`MAX_WALLS`), 0.8 m each, spread over
+/// a 1 km site round a clear patch where the robot stands: what a tick costs
+/// when the world is huge but the robot's surroundings are ordinary.
+fn many_walls() -> ilmr_sim::World {
+    let n = ilmr_sim::world::limits::MAX_WALLS;
+    let mut text = String::from(
+        "name = \"many\"\nbounds = { min = [0.0, 0.0], max = [1000.0, 1000.0] }\nstart = { x = 8.0, y = 5.0 }\n",
+    );
+    let mut rng = ilmr_sim::rng::Rng::new(1);
+    let mut made = 0;
+    while made < n {
+        let (x, y) = (999.0 * rng.uniform(), 999.0 * rng.uniform());
+        if x < 40.0 && y < 30.0 {
+            continue;
+        }
+        let a = std::f64::consts::TAU * rng.uniform();
+        let (x2, y2) = (
+            (x + 0.8 * a.cos()).clamp(0.0, 1000.0),
+            (y + 0.8 * a.sin()).clamp(0.0, 1000.0),
+        );
+        text.push_str(&format!("[[wall]]\nfrom = [{x}, {y}]\nto = [{x2}, {y2}]\n"));
+        made += 1;
+    }
+    match ilmr_sim::World::from_toml(&text, "many") {
+        Ok(w) => w,
+        Err(e) => panic!("{e}"),
+    }
+}
+
+#[divan::bench(sample_count = 20)]
+fn step_10ms_with_scan_100000_walls(b: divan::Bencher) {
+    let world = many_walls();
+    let mut cfg = RobotConfig::moro();
+    cfg.scanner.rate_hz = 100.0;
+    b.with_inputs(|| {
+        let mut s = match Simulator::new(cfg.clone(), world.clone(), 1) {
+            Ok(s) => s,
+            Err(e) => panic!("{e}"),
+        };
+        let _ = s.set_setpoints(0.3, 0.2);
+        s
+    })
+    .bench_local_refs(|s| s.step(0.01));
+}
+
+#[divan::bench(sample_count = 5, sample_size = 1)]
+fn load_100000_walls(b: divan::Bencher) {
+    let world = many_walls();
+    b.bench(|| world.scene());
+}
+
 #[divan::bench]
 fn step_10ms_without_scan_office(b: divan::Bencher) {
     let mut cfg = RobotConfig::moro();

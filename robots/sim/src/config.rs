@@ -427,9 +427,10 @@ impl RobotConfig {
         {
             return Err(format!("{name} must be zero or positive, got {v}"));
         }
-        if self.scanner.readings < 2 {
+        let most = ilmr_model::MAX_READINGS as usize;
+        if !(2..=most).contains(&self.scanner.readings) {
             return Err(format!(
-                "scanner.readings must be at least 2, got {}",
+                "scanner.readings must be 2 to {most}, got {}",
                 self.scanner.readings
             ));
         }

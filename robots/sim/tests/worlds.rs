@@ -101,7 +101,7 @@ fn bad_worlds_report_line_and_field() {
         ),
         (
             "[[obstacle]]\nshape = \"circle\"\ncenter = [2.0, 2.0]\nradius = -0.5\n",
-            "bad.toml:8: obstacle #1 radius: must be a positive number, got -0.5",
+            "bad.toml:8: obstacle #1 radius: -0.5 out of range (expected > 0 and <= 100 m)",
         ),
         (
             "[[obstacle]]\nshape = \"triangle\"\ncenter = [2.0, 2.0]\n",

@@ -6,18 +6,21 @@
 //! entries ([`world`]), from `ilmrc run --fault KIND[@START[+DURATION]][:PARAM]`
 //! ([`flag`]), or from [`random_plan`] for soak tests. A [`FaultPlan`] turns
 //! them into the simulator's active [`Faults`] at each step; the simulator's
-//! hooks read those.
+//! hooks read those. [`check_fits`] refuses a fault for a part the robot lacks
+//! or one that starts after the run ends.
 //!
 //! A fault is active on `[start, start + duration)`, and a reading taken, or a
 //! step ending, at time `t` is affected exactly when the fault is active at `t`.
 
 mod active;
+pub mod fit;
 pub mod flag;
 mod plan;
 mod random;
 pub mod world;
 
 pub use active::Faults;
+pub use fit::check_fits;
 pub use plan::{FaultPlan, ObstacleChange};
 pub use random::random_plan;
 

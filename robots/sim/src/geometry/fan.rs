@@ -71,7 +71,15 @@ impl Scene {
         // and that span a turn either way, which never overlap.
         let mut runs: Vec<(usize, usize, usize)> = Vec::new();
         let usable = step > 0.0 && step.is_finite() && first.is_finite() && origin.is_finite();
-        for (j, s) in self.solids().iter().enumerate() {
+        // Only the solids whose shape may lie within range: the rest would
+        // be left out below anyway, or could not be met within the range.
+        let near = if origin.is_finite() && max_range.is_finite() {
+            self.within_reach(origin, max_range + NEAR)
+        } else {
+            (0..self.solids().len()).collect()
+        };
+        for j in near {
+            let s = &self.solids()[j];
             if !s.active {
                 continue;
             }

@@ -3,6 +3,7 @@
 //! solid of a world.
 
 mod fan;
+mod index;
 mod scene;
 mod shapes;
 

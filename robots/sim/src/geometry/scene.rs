@@ -1,8 +1,13 @@
 //! Every solid of a world in one flat list, for ray casting and collision.
-//! The list is small (tens of solids), so a bounding-circle reject in front of
-//! the exact test serves a single ray; a scan's fan of beams first sorts the
-//! solids by direction (`fan.rs`).
+//! The fixed solids (walls, obstacles) are also in a uniform grid
+//! (`index.rs`), so that a query looks only at the cells it crosses; the
+//! few solids that move or come and go (targets, pickup boxes, appearing
+//! obstacles) are tested one by one. Every query answers exactly what a test
+//! of every solid in list order would: the nearest hit, ties to the solid
+//! listed first. A scan's fan of beams first sorts the solids near it by
+//! direction (`fan.rs`).
 
+use super::index::SolidGrid;
 use super::{Obb, Shape, Vec2};
 use serde::{Deserialize, Serialize};
 
@@ -47,11 +52,27 @@ pub struct Hit {
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct Scene {
     solids: Vec<Solid>,
+    /// The fixed solids: walls and obstacles.
+    grid: SolidGrid,
+    /// Every other solid, ascending.
+    loose: Vec<usize>,
+}
+
+/// Solids that never move once the scene is built: they may be switched
+/// off (`active`), but not moved, since the grid places them once.
+fn fixed(what: SolidRef) -> bool {
+    matches!(what, SolidRef::Wall(_) | SolidRef::Obstacle(_))
 }
 
 impl Scene {
     pub fn new(solids: Vec<Solid>) -> Self {
-        Scene { solids }
+        let (members, loose): (Vec<usize>, Vec<usize>) =
+            (0..solids.len()).partition(|&i| fixed(solids[i].what));
+        Scene {
+            grid: SolidGrid::new(&solids, &members),
+            loose,
+            solids,
+        }
     }
 
     pub fn solids(&self) -> &[Solid] {
@@ -59,15 +80,79 @@ impl Scene {
     }
 
     /// The solid standing for `what`, if the scene has one.
+    pub fn find(&self, what: SolidRef) -> Option<&Solid> {
+        self.index_of(what).map(|i| &self.solids[i])
+    }
+
+    /// The solid standing for `what`, if the scene has one. A wall or
+    /// obstacle may be switched off through it, not moved.
     pub fn find_mut(&mut self, what: SolidRef) -> Option<&mut Solid> {
-        self.solids.iter_mut().find(|s| s.what == what)
+        self.index_of(what).map(|i| &mut self.solids[i])
+    }
+
+    fn index_of(&self, what: SolidRef) -> Option<usize> {
+        if fixed(what) {
+            return self.solids.iter().position(|s| s.what == what);
+        }
+        self.loose
+            .iter()
+            .copied()
+            .find(|&i| self.solids[i].what == what)
+    }
+
+    /// Ascending, without repeats: the loose solids and the fixed ones
+    /// listed in the grid's cells that meet the box `lo..hi`.
+    fn near(&self, lo: Vec2, hi: Vec2) -> Vec<usize> {
+        let mut out = self.loose.clone();
+        if lo.is_finite() && hi.is_finite() {
+            self.grid.within(lo, hi, &mut out);
+        } else {
+            out.extend((0..self.solids.len()).filter(|&i| fixed(self.solids[i].what)));
+        }
+        out.sort_unstable();
+        out.dedup();
+        out
+    }
+
+    /// Ascending: every solid whose shape may come within `reach` of `origin`.
+    pub(crate) fn within_reach(&self, origin: Vec2, reach: f64) -> Vec<usize> {
+        let r = Vec2::new(reach, reach);
+        self.near(origin - r, origin + r)
     }
 
     /// The nearest solid along a ray with unit direction `dir`, within `max_range`.
     /// Ties go to the solid listed first, so results never depend on anything
     /// but the scene's order.
     pub fn ray(&self, origin: Vec2, dir: Vec2, max_range: f64) -> Option<Hit> {
-        self.ray_among(origin, dir, max_range, 0..self.solids.len())
+        if !(origin.is_finite() && dir.is_finite() && max_range.is_finite()) {
+            return self.ray_among(origin, dir, max_range, 0..self.solids.len());
+        }
+        // The nearest so far and its index: ties go to the lower index, as
+        // in a test of every solid in order.
+        let mut best: Option<(Hit, usize)> = None;
+        let test = |i: usize, best: &mut Option<(Hit, usize)>| {
+            let limit = best.map_or(max_range, |(h, _)| h.distance);
+            if let Some(h) = self.ray_among(origin, dir, limit, std::iter::once(i))
+                && best.is_none_or(|(b, j)| (h.distance, i) < (b.distance, j))
+            {
+                *best = Some((h, i));
+            }
+        };
+        for &i in &self.loose {
+            test(i, &mut best);
+        }
+        // A solid met before the ray enters a cell is listed in a cell
+        // already crossed, so no later cell can hold a nearer one.
+        self.grid.along(origin, dir, max_range, |cell, enter| {
+            if best.is_some_and(|(h, _)| h.distance < enter) {
+                return false;
+            }
+            for &i in cell {
+                test(i, &mut best);
+            }
+            true
+        });
+        best.map(|(h, _)| h)
     }
 
     /// As `ray`, over the solids `among` (indices into `solids()`, ascending)
@@ -111,8 +196,9 @@ impl Scene {
     /// The first solid (in scene order) that the footprint overlaps.
     pub fn overlapping(&self, footprint: &Obb) -> Option<SolidRef> {
         let fr = footprint.bounding_radius();
-        self.solids
-            .iter()
+        self.within_reach(footprint.center, fr)
+            .into_iter()
+            .map(|i| &self.solids[i])
             .filter(|s| s.active)
             .filter(|s| (s.shape.center() - footprint.center).length() <= s.bound + fr)
             .find(|s| s.shape.overlaps_box(footprint))
@@ -121,7 +207,9 @@ impl Scene {
 
     /// Whether a point lies inside any active solid.
     pub fn contains(&self, p: Vec2) -> bool {
-        self.solids.iter().any(|s| s.active && s.shape.contains(p))
+        self.near(p, p)
+            .into_iter()
+            .any(|i| self.solids[i].active && self.solids[i].shape.contains(p))
     }
 }
 

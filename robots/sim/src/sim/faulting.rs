@@ -13,14 +13,7 @@ impl Simulator {
         let specs = self.world.faults.clone();
         for s in &specs {
             s.check().map_err(SimError::OutOfRange)?;
-            let missing = match s.kind {
-                FaultKind::NavFrozen if self.cfg.nav.is_none() => Some("navigation fix"),
-                FaultKind::ManipulatorSilent if self.cfg.kind == crate::RobotKind::Moro => {
-                    Some("manipulator")
-                }
-                _ => None,
-            };
-            if let Some(what) = missing {
+            if let Some(what) = crate::faults::fit::missing_part(&s.kind, &self.cfg) {
                 return Err(SimError::Unsupported {
                     robot: self.cfg.kind,
                     what,

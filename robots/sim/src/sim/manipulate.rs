@@ -54,12 +54,7 @@ impl Simulator {
             return Err(SimError::Manipulation("not carrying a box".into()));
         };
         let b = &self.cfg.body;
-        let Some(solid) = self
-            .scene
-            .solids()
-            .iter()
-            .find(|s| s.what == SolidRef::PickupBox(i))
-        else {
+        let Some(solid) = self.scene.find(SolidRef::PickupBox(i)) else {
             return Err(SimError::Manipulation(
                 "the carried box is not in the scene".into(),
             ));

@@ -176,12 +176,7 @@ impl Simulator {
             if self.carrying == Some(i) {
                 continue;
             }
-            let Some(solid) = self
-                .scene
-                .solids()
-                .iter()
-                .find(|s| s.what == SolidRef::PickupBox(i))
-            else {
+            let Some(solid) = self.scene.find(SolidRef::PickupBox(i)) else {
                 continue;
             };
             if let Shape::Box(shape) = solid.shape {

@@ -13,6 +13,9 @@ pub struct Walker {
     speed: f64,
     mode: PathMode,
     standing: bool,
+    /// Metres after which a `loop` or `back_and_forth` walk is where it was,
+    /// going the same way; 0 for `once`.
+    cycle: f64,
 }
 
 impl Walker {
@@ -20,7 +23,13 @@ impl Walker {
         let mut points = vec![t.start];
         points.extend(t.waypoints.iter().copied());
         let length: f64 = points.windows(2).map(|w| w[0].distance(w[1])).sum();
+        let cycle = match t.path {
+            PathMode::Once => 0.0,
+            PathMode::Loop => length + points[points.len() - 1].distance(points[0]),
+            PathMode::BackAndForth => 2.0 * length,
+        };
         Walker {
+            cycle,
             position: t.start,
             next: 1,
             forward: true,
@@ -34,6 +43,15 @@ impl Walker {
 
     pub fn step(&mut self, dt: f64) {
         let mut left = self.speed * dt;
+        // Whole rounds leave the walker where it is, so only the rest is
+        // walked: a step never visits more than one round of waypoints,
+        // however fast the target (issue 12: 1e12 m/s on a loop never ended).
+        if self.cycle > 0.0 && left >= self.cycle {
+            left %= self.cycle;
+        }
+        if !left.is_finite() {
+            return;
+        }
         while left > 0.0 && !self.standing {
             let goal = self.points[self.next];
             let d = self.position.distance(goal);
@@ -112,5 +130,35 @@ mod tests {
         assert!(w.position.distance(Vec2::new(0.0, 0.0)) < 1e-12);
         w.step(1.0);
         assert!(w.position.distance(Vec2::new(1.0, 0.0)) < 1e-12);
+    }
+
+    #[test]
+    fn a_very_fast_target_steps_in_bounded_time_and_stays_on_its_path() {
+        for path in [PathMode::Once, PathMode::Loop, PathMode::BackAndForth] {
+            let mut t = target(path);
+            t.speed = 1e12;
+            let mut w = Walker::new(&t);
+            for _ in 0..100 {
+                w.step(0.01);
+            }
+            assert!(w.position.is_finite(), "{path:?}");
+            assert!(
+                (0.0..=2.0).contains(&w.position.x) && (0.0..=1.0).contains(&w.position.y),
+                "{path:?}: {:?}",
+                w.position
+            );
+            t.speed = f64::MAX;
+            let mut w = Walker::new(&t);
+            w.step(1.0);
+            assert!(w.position.is_finite(), "{path:?}");
+        }
+        // Whole rounds: back where it started.
+        let mut w = Walker::new(&target(PathMode::Loop));
+        w.step(10.0 * (3.0 + 5f64.sqrt()));
+        assert!(
+            w.position.distance(Vec2::new(0.0, 0.0)) < 1e-6,
+            "{:?}",
+            w.position
+        );
     }
 }

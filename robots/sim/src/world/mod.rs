@@ -3,6 +3,7 @@
 
 mod error;
 mod format;
+pub mod limits;
 mod shipped;
 mod validate;
 
@@ -135,12 +136,13 @@ impl World {
 
     pub fn from_path(path: &Path) -> Result<World, WorldError> {
         let source = path.display().to_string();
-        let text = std::fs::read_to_string(path).map_err(|e| WorldError {
-            source: source.clone(),
-            line: 0,
-            field: None,
-            message: format!("cannot read the world file: {e}"),
-        })?;
+        let text =
+            ilmr_files::read_text(path, ilmr_files::Kind::World).map_err(|e| WorldError {
+                source: source.clone(),
+                line: 0,
+                field: None,
+                message: format!("cannot read the world file: {e}"),
+            })?;
         World::from_toml(&text, &source)
     }
 

@@ -1,10 +1,14 @@
 //! From TOML text to a [`World`]: parse with serde, then check every entry and
 //! report the first fault with its line and field.
 
+use std::collections::{BTreeMap, BTreeSet};
+
 use super::error::{field_line, line_of};
 use super::format::{Point, WorldFile};
+use super::limits::*;
 use super::{Bounds, Charger, Door, PickupBox, Plate, Target, Wall, World, WorldError};
 use crate::geometry::{Circle, Obb, Pose, Shape, Vec2};
+use toml::Spanned;
 
 const DEFAULT_WALL_THICKNESS: f64 = 0.15;
 const DEFAULT_TARGET_RADIUS: f64 = 0.25;
@@ -44,11 +48,12 @@ impl Checker<'_> {
     }
 
     fn point(&self, e: Entry<'_>, key: &str, p: Point) -> Result<Vec2, WorldError> {
-        if p.iter().all(|v| v.is_finite()) {
-            Ok(Vec2::new(p[0], p[1]))
-        } else {
-            Err(self.err(e, key, "coordinates must be finite numbers"))
+        let max = MAX_COORDINATE;
+        let expected = format!("-{max:e} to {max:e} m");
+        for v in p {
+            self.range(e, key, v, v.abs() <= max, &expected)?;
         }
+        Ok(Vec2::new(p[0], p[1]))
     }
 
     fn inside(&self, e: Entry<'_>, key: &str, b: &Bounds, p: Point) -> Result<Vec2, WorldError> {
@@ -67,41 +72,106 @@ impl Checker<'_> {
         }
     }
 
-    fn positive(&self, e: Entry<'_>, key: &str, v: f64) -> Result<f64, WorldError> {
-        if v.is_finite() && v > 0.0 {
-            Ok(v)
-        } else {
-            Err(self.err(e, key, format!("must be a positive number, got {v}")))
-        }
+    /// A size: finite, above 0 and at most `max` metres.
+    fn size(&self, e: Entry<'_>, key: &str, v: f64, max: f64) -> Result<f64, WorldError> {
+        self.range(
+            e,
+            key,
+            v,
+            v > 0.0 && v <= max,
+            &format!("> 0 and <= {max} m"),
+        )
     }
 
-    fn non_negative(&self, e: Entry<'_>, key: &str, v: f64) -> Result<f64, WorldError> {
-        if v.is_finite() && v >= 0.0 {
+    fn range(
+        &self,
+        e: Entry<'_>,
+        key: &str,
+        v: f64,
+        admitted: bool,
+        expected: &str,
+    ) -> Result<f64, WorldError> {
+        if v.is_finite() && admitted {
             Ok(v)
+        } else if v.is_finite() {
+            Err(self.err(
+                e,
+                key,
+                format!("{} out of range (expected {expected})", shown(v)),
+            ))
         } else {
-            Err(self.err(e, key, format!("must be zero or positive, got {v}")))
+            Err(self.err(e, key, format!("{v} is not a number (expected {expected})")))
         }
     }
 
     fn degrees(&self, e: Entry<'_>, key: &str, v: f64) -> Result<f64, WorldError> {
-        if v.is_finite() {
-            Ok(v.to_radians())
-        } else {
-            Err(self.err(e, key, "must be a finite angle in degrees"))
-        }
+        let max = MAX_HEADING_DEG;
+        self.range(e, key, v, v.abs() <= max, &format!("-{max} to {max} deg"))
+            .map(f64::to_radians)
     }
 
-    fn unique(&self, e: Entry<'_>, key: &str, id: &str, seen: &[String]) -> Result<(), WorldError> {
+    fn unique(
+        &self,
+        e: Entry<'_>,
+        key: &str,
+        id: &str,
+        seen: &mut BTreeSet<String>,
+    ) -> Result<(), WorldError> {
         if id.is_empty() {
             return Err(self.err(e, key, "must not be empty"));
         }
-        if seen.iter().any(|s| s == id) {
+        if !seen.insert(id.to_string()) {
             return Err(self.err(e, key, format!("`{id}` is used twice")));
         }
         Ok(())
     }
 
+    /// The first entry past `max` of a list, as an error at its header.
+    fn count<T>(&self, list: &[Spanned<T>], what: &str, max: usize) -> Result<(), WorldError> {
+        let Some(extra) = list.get(max) else {
+            return Ok(());
+        };
+        Err(WorldError {
+            source: self.source.to_string(),
+            line: line_of(self.text, extra.span().start),
+            field: Some(format!("{what} #{}", max + 1)),
+            message: format!(
+                "{} [[{what}]] entries out of range (expected at most {max})",
+                list.len()
+            ),
+        })
+    }
+
+    /// Walls and obstacles add their outline to the site plan the VM keeps.
+    fn outline(
+        &self,
+        e: Entry<'_>,
+        key: &str,
+        total: &mut f64,
+        add: f64,
+    ) -> Result<(), WorldError> {
+        *total += add;
+        if *total <= MAX_OUTLINE_LENGTH {
+            return Ok(());
+        }
+        Err(self.err(
+            e,
+            key,
+            format!(
+                "the walls and obstacles so far measure {:.0} m, out of range (expected at most {MAX_OUTLINE_LENGTH} m in all)",
+                *total
+            ),
+        ))
+    }
+
     fn world(&self, f: WorldFile) -> Result<World, WorldError> {
+        self.count(&f.wall, "wall", MAX_WALLS)?;
+        self.count(&f.door, "door", MAX_DOORS)?;
+        self.count(&f.obstacle, "obstacle", MAX_OBSTACLES)?;
+        self.count(&f.pickup_box, "pickup_box", MAX_PICKUP_BOXES)?;
+        self.count(&f.target, "target", MAX_TARGETS)?;
+        self.count(&f.plate, "plate", MAX_PLATES)?;
+        self.count(&f.fault, "fault", MAX_FAULTS)?;
         let be = Entry {
             at: f.bounds.span().start,
             label: "bounds",
@@ -110,6 +180,17 @@ impl Checker<'_> {
         let max = self.point(be, "max", f.bounds.get_ref().max)?;
         if max.x <= min.x || max.y <= min.y {
             return Err(self.err(be, "max", "must be above and to the right of `min`"));
+        }
+        let side = (max.x - min.x).max(max.y - min.y);
+        if side > MAX_WORLD_SIDE {
+            return Err(self.err(
+                be,
+                "max",
+                format!(
+                    "a side of {} m out of range (expected at most {MAX_WORLD_SIDE} m)",
+                    shown(side)
+                ),
+            ));
         }
         let bounds = Bounds { min, max };
 
@@ -122,12 +203,13 @@ impl Checker<'_> {
         let start = Pose::new(p.x, p.y, self.degrees(se, "heading", s.heading)?);
 
         let mut walls = Vec::new();
-        let mut labels = Vec::new();
+        let mut wall_ids = BTreeSet::new();
+        let mut outline = 0.0;
         for (i, w) in f.wall.iter().enumerate() {
-            labels.push(format!("wall #{}", i + 1));
+            let label = format!("wall #{}", i + 1);
             let e = Entry {
                 at: w.span().start,
-                label: &labels[i],
+                label: &label,
             };
             let d = w.get_ref();
             let from = self.inside(e, "from", &bounds, d.from)?;
@@ -135,14 +217,15 @@ impl Checker<'_> {
             if from.distance(to) < 1e-6 {
                 return Err(self.err(e, "to", "a wall needs two distinct ends"));
             }
-            let thickness = self.positive(
+            let thickness = self.size(
                 e,
                 "thickness",
                 d.thickness.unwrap_or(DEFAULT_WALL_THICKNESS),
+                MAX_WALL_THICKNESS,
             )?;
+            self.outline(e, "to", &mut outline, from.distance(to))?;
             let id = d.id.clone().unwrap_or_else(|| format!("wall{}", i + 1));
-            let seen: Vec<String> = walls.iter().map(|w: &Wall| w.id.clone()).collect();
-            self.unique(e, "id", &id, &seen)?;
+            self.unique(e, "id", &id, &mut wall_ids)?;
             walls.push(Wall {
                 id,
                 from,
@@ -175,7 +258,9 @@ impl Checker<'_> {
                     let r = d
                         .radius
                         .ok_or_else(|| self.err(e, "radius", "a circle needs `radius`"))?;
-                    Shape::Circle(Circle::new(center, self.positive(e, "radius", r)?))
+                    let r = self.size(e, "radius", r, MAX_OBSTACLE_SIZE)?;
+                    self.outline(e, "radius", &mut outline, std::f64::consts::TAU * r)?;
+                    Shape::Circle(Circle::new(center, r))
                 }
                 "box" => {
                     if d.radius.is_some() {
@@ -188,9 +273,10 @@ impl Checker<'_> {
                     let size = d.size.ok_or_else(|| {
                         self.err(e, "size", "a box needs `size = [length, width]`")
                     })?;
-                    let l = self.positive(e, "size", size[0])?;
-                    let w = self.positive(e, "size", size[1])?;
+                    let l = self.size(e, "size", size[0], MAX_OBSTACLE_SIZE)?;
+                    let w = self.size(e, "size", size[1], MAX_OBSTACLE_SIZE)?;
                     let h = self.degrees(e, "heading", d.heading.unwrap_or(0.0))?;
+                    self.outline(e, "size", &mut outline, 2.0 * (l + w))?;
                     Shape::Box(Obb::new(center, h, l, w))
                 }
                 other => {
@@ -205,6 +291,7 @@ impl Checker<'_> {
         }
 
         let mut pickup_boxes: Vec<PickupBox> = Vec::new();
+        let mut box_ids = BTreeSet::new();
         for (i, b) in f.pickup_box.iter().enumerate() {
             let label = format!("pickup_box #{}", i + 1);
             let e = Entry {
@@ -212,11 +299,10 @@ impl Checker<'_> {
                 label: &label,
             };
             let d = b.get_ref();
-            let seen: Vec<String> = pickup_boxes.iter().map(|b| b.id.clone()).collect();
-            self.unique(e, "id", &d.id, &seen)?;
+            self.unique(e, "id", &d.id, &mut box_ids)?;
             let center = self.inside(e, "center", &bounds, d.center)?;
-            let l = self.positive(e, "size", d.size[0])?;
-            let w = self.positive(e, "size", d.size[1])?;
+            let l = self.size(e, "size", d.size[0], MAX_PICKUP_BOX_SIZE)?;
+            let w = self.size(e, "size", d.size[1], MAX_PICKUP_BOX_SIZE)?;
             let h = self.degrees(e, "heading", d.heading)?;
             pickup_boxes.push(PickupBox {
                 id: d.id.clone(),
@@ -226,6 +312,7 @@ impl Checker<'_> {
         }
 
         let mut targets: Vec<Target> = Vec::new();
+        let mut target_names = BTreeSet::new();
         for (i, t) in f.target.iter().enumerate() {
             let label = format!("target #{}", i + 1);
             let e = Entry {
@@ -233,11 +320,31 @@ impl Checker<'_> {
                 label: &label,
             };
             let d = t.get_ref();
-            let seen: Vec<String> = targets.iter().map(|t| t.name.clone()).collect();
-            self.unique(e, "name", &d.name, &seen)?;
+            self.unique(e, "name", &d.name, &mut target_names)?;
             let start = self.inside(e, "position", &bounds, d.position)?;
-            let radius = self.positive(e, "radius", d.radius.unwrap_or(DEFAULT_TARGET_RADIUS))?;
-            let speed = self.non_negative(e, "speed", d.speed)?;
+            let radius = self.size(
+                e,
+                "radius",
+                d.radius.unwrap_or(DEFAULT_TARGET_RADIUS),
+                MAX_TARGET_RADIUS,
+            )?;
+            let speed = self.range(
+                e,
+                "speed",
+                d.speed,
+                (0.0..=MAX_TARGET_SPEED).contains(&d.speed),
+                &format!("0 to {MAX_TARGET_SPEED} m/s"),
+            )?;
+            if d.waypoints.len() > MAX_WAYPOINTS {
+                return Err(self.err(
+                    e,
+                    "waypoints",
+                    format!(
+                        "{} waypoints out of range (expected at most {MAX_WAYPOINTS})",
+                        d.waypoints.len()
+                    ),
+                ));
+            }
             let waypoints = d
                 .waypoints
                 .iter()
@@ -272,10 +379,11 @@ impl Checker<'_> {
                 Some(Charger {
                     position: self.inside(e, "position", &bounds, d.position)?,
                     heading: self.degrees(e, "heading", d.heading)?,
-                    radius: self.positive(
+                    radius: self.size(
                         e,
                         "radius",
                         d.radius.unwrap_or(DEFAULT_CHARGER_RADIUS),
+                        MAX_CHARGER_RADIUS,
                     )?,
                     colour: d.colour,
                 })
@@ -292,7 +400,12 @@ impl Checker<'_> {
             let d = p.get_ref();
             plates.push(Plate {
                 position: self.inside(e, "position", &bounds, d.position)?,
-                radius: self.positive(e, "radius", d.radius.unwrap_or(DEFAULT_PLATE_RADIUS))?,
+                radius: self.size(
+                    e,
+                    "radius",
+                    d.radius.unwrap_or(DEFAULT_PLATE_RADIUS),
+                    MAX_PLATE_RADIUS,
+                )?,
             });
         }
 
@@ -327,6 +440,12 @@ impl Checker<'_> {
     /// Checks the doors and cuts their openings out of the walls.
     fn doors(&self, f: &WorldFile, walls: &mut [Wall]) -> Result<Vec<Door>, WorldError> {
         let mut doors: Vec<Door> = Vec::new();
+        let mut door_ids = BTreeSet::new();
+        let wall_index: BTreeMap<&str, usize> = walls
+            .iter()
+            .enumerate()
+            .map(|(i, w)| (w.id.as_str(), i))
+            .collect();
         // Per wall: (start, end) of each opening along the wall, with its door index.
         let mut cuts: Vec<Vec<(f64, f64, usize)>> = vec![Vec::new(); walls.len()];
         for (i, d) in f.door.iter().enumerate() {
@@ -337,15 +456,19 @@ impl Checker<'_> {
             };
             let def = d.get_ref();
             let id = def.id.clone().unwrap_or_else(|| format!("door{}", i + 1));
-            let seen: Vec<String> = doors.iter().map(|d| d.id.clone()).collect();
-            self.unique(e, "id", &id, &seen)?;
-            let wi = walls
-                .iter()
-                .position(|w| w.id == def.wall)
+            self.unique(e, "id", &id, &mut door_ids)?;
+            let wi = *wall_index
+                .get(def.wall.as_str())
                 .ok_or_else(|| self.err(e, "wall", format!("no wall has the id `{}`", def.wall)))?;
             let wall = &walls[wi];
-            let width = self.positive(e, "width", def.width)?;
             let len = wall.from.distance(wall.to);
+            let width = self.range(
+                e,
+                "width",
+                def.width,
+                def.width > 0.0 && def.width <= len,
+                &format!("> 0 and <= {len:.3} m, the length of wall `{}`", wall.id),
+            )?;
             if !def.at.is_finite() {
                 return Err(self.err(e, "at", "must be a finite distance"));
             }

@@ -25,6 +25,13 @@ const STEP: f64 = 0.05;
 const SKIN: f64 = 0.05;
 /// Rounding allowance of the distance bounds that skip poses, metres.
 const SLACK: f64 = 1e-6;
+/// Most poses one sweep holds. The distance comes from the braking distance
+/// plus `stop_margin`, which a robot model bounds; this bound holds whatever
+/// a HAL or model reports, so memory never follows an unchecked number.
+const MAX_POSES: usize = 4000;
+/// Farthest a sweep looks, metres: `MAX_POSES` steps. No robot brakes over
+/// that, and a point further off cannot matter to this tick's stop.
+const MAX_DISTANCE: f64 = MAX_POSES as f64 * STEP;
 
 /// One sweep of a footprint along an arc, its poses worked out once: the box
 /// that holds every point it can meet, and the first contact.
@@ -63,7 +70,9 @@ impl Footprint {
     /// The robot at `(x, y, h)` driving `distance` metres along curvature `c`
     /// (1/m) in direction `sign` (+1 forwards, -1 backwards).
     pub fn sweep(&self, pose: (f64, f64, f64), sign: f64, c: f64, distance: f64) -> Sweep {
-        let steps = (distance / STEP).ceil().max(1.0) as usize;
+        // NaN stays NaN (clamp keeps it), which sweeps nothing, as before.
+        let distance = distance.clamp(-MAX_DISTANCE, MAX_DISTANCE);
+        let steps = (distance / STEP).ceil().max(1.0).min(MAX_POSES as f64) as usize;
         let poses = (0..=steps)
             .map(|i| {
                 let d = distance * i as f64 / steps as f64;
@@ -333,6 +342,25 @@ mod tests {
             met += usize::from(want.is_finite());
         }
         assert!(met > 300, "contacts met: {met}");
+    }
+
+    #[test]
+    fn a_huge_or_infinite_distance_sweeps_a_bounded_number_of_poses() {
+        for distance in [1e6, 1e308, f64::INFINITY, f64::MAX, -1e308, f64::NAN] {
+            let sweep = MORO.sweep((0.0, 0.0, 0.0), 1.0, 0.3, distance);
+            assert!(sweep.poses.len() <= MAX_POSES + 1, "{distance}");
+            assert!(sweep.reach.is_finite() || distance.is_nan(), "{distance}");
+            let _ = sweep.bounds();
+        }
+        // A point ahead is still met on a sweep of any length.
+        let d = MORO.first_contact(
+            (0.0, 0.0, 0.0),
+            1.0,
+            0.0,
+            1e308,
+            [Point2::new(10.0, 0.0)].into_iter(),
+        );
+        assert!((d - 9.0).abs() <= STEP + 1e-9, "{d}");
     }
 
     #[test]
