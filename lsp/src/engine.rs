@@ -217,6 +217,9 @@ impl Engine {
     }
 
     pub fn diagnostics(&self, uri: &Uri) -> Vec<Diagnostic> {
+        if self.workspace.get(uri).is_some_and(too_large) {
+            return vec![diagnostics::too_large()];
+        }
         if self
             .program
             .failures()
@@ -418,6 +421,7 @@ fn check(
 ) -> Program {
     let files = workspace
         .programs()
+        .filter(|d| !too_large(d))
         .map(|d| (d.uri.as_str().to_string(), d.text.clone()))
         .collect();
     let program = Program::check(files, &robot.model, analyzer);
@@ -428,4 +432,10 @@ fn check(
         ));
     }
     program
+}
+
+/// A program file larger than `ilmrc` reads one: not analysed (the disk scan does not
+/// even read one; an editor may still open it).
+fn too_large(doc: &Document) -> bool {
+    doc.kind == FileKind::Program && doc.text.len() as u64 > ilmr_files::MAX_SOURCE_BYTES
 }

@@ -14,10 +14,13 @@ use std::io::Read;
 use crate::message::{PARSE_ERROR, Rejection};
 
 /// The largest message body read, in bytes. It must hold a `didOpen` or full-text
-/// `didChange` of the largest file worth editing; JSON escapes a source file's text by
-/// a few percent. A longer message is skipped by its declared length, unread, so that
-/// the next message is found where the sender put it.
+/// `didChange` of the largest source `ilmrc` reads (`ilmr_files::MAX_SOURCE_BYTES`,
+/// 8 MiB), even if JSON escapes every byte as `\u00XX` (six times as long). A longer
+/// message is skipped by its declared length, unread, so that the next message is found
+/// where the sender put it.
 pub const MAX_MESSAGE_BYTES: usize = 64 * 1024 * 1024;
+
+const _: () = assert!(6 * ilmr_files::MAX_SOURCE_BYTES + 4096 < MAX_MESSAGE_BYTES as u64);
 
 /// The longest header section, in bytes. Real clients send one or two short lines; a
 /// stream without an empty line within this many bytes is garbage, not a header.

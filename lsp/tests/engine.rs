@@ -483,3 +483,20 @@ fn a_panic_no_single_file_causes_costs_every_file() {
     }
     assert_eq!(engine.take_log().len(), 3);
 }
+
+#[test]
+fn a_document_larger_than_ilmrc_reads_is_not_analysed() {
+    let (mut engine, good, _) = setup(&[(TASK, "followwall(lft)\n$0")]);
+    let big = uri("file:///ws/big.ilmr");
+    let text = "wait(1)\n".repeat(ilmr_files::MAX_SOURCE_BYTES as usize / 8 + 1);
+    engine.open(big.clone(), 1, text);
+    assert_eq!(codes(&engine, &big), [ilmr_lsp::diagnostics::TOO_LARGE]);
+    let message = engine.diagnostics(&big).remove(0).message;
+    assert!(message.contains("MAX_SOURCE_BYTES"), "{message}");
+    assert_eq!(
+        codes(&engine, &good),
+        ["E0304"],
+        "the other files are checked"
+    );
+    assert!(engine.semantic_tokens(&big).is_empty());
+}

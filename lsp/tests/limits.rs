@@ -196,28 +196,32 @@ fn the_readme_quotes_every_limit() {
     }
 }
 
-/// Files at the compiler's limits, with where their deepest point is, and the same one
-/// level past them and 1,000,000 levels deep.
+/// Files at the compiler's limits, with where their deepest point is, and the same
+/// `depth_past` levels past them. Files 1,000,000 levels past stay within the size
+/// `ilmrc` reads (8 MiB): `if`s are left unclosed, and `while`s, whose lines are
+/// longer, go one level past at most.
 fn deep_files(depth_past: usize) -> Vec<(&'static str, String, Position)> {
     let ops = MAX_LINE_OPERATORS + depth_past;
     let blocks = MAX_BLOCK_DEPTH + depth_past;
-    let parens = format!("x = {}1{}", "(".repeat(ops), ")".repeat(ops));
-    let sum = format!("x = 1{}", "+1".repeat(ops));
+    let parens = |ops: usize| format!("x = {}1{}", "(".repeat(ops), ")".repeat(ops));
+    let sum = |ops: usize| format!("x = 1{}", "+1".repeat(ops));
     let ifs = format!(
-        "x = 1\n{}{parens}\n{}",
+        "x = 1\n{}{}\n",
         "if(x)\n".repeat(blocks),
-        "endif\n".repeat(blocks)
+        parens(MAX_LINE_OPERATORS)
     );
+    let whiles = MAX_BLOCK_DEPTH + depth_past.min(1);
     let whiles = format!(
-        "x = 1\n{}{sum}\n{}",
-        "while(x < 2)\n".repeat(blocks),
-        "endwhile\n".repeat(blocks)
+        "x = 1\n{}{}\n{}",
+        "while(x < 2)\n".repeat(whiles),
+        sum(MAX_LINE_OPERATORS),
+        "endwhile\n".repeat(whiles)
     );
     let middle = |ops: usize| Position::new(0, (4 + ops) as u32);
-    let inner = Position::new(blocks as u32 + 1, (4 + ops) as u32);
+    let inner = Position::new(blocks as u32 + 1, (4 + MAX_LINE_OPERATORS) as u32);
     vec![
-        ("parens", format!("{parens}\nwait(x)\n"), middle(ops)),
-        ("sum", format!("{sum}\nwait(x)\n"), middle(ops)),
+        ("parens", format!("{}\nwait(x)\n", parens(ops)), middle(ops)),
+        ("sum", format!("{}\nwait(x)\n", sum(ops)), middle(ops)),
         ("ifs", ifs, inner),
         ("whiles", whiles, inner),
     ]
@@ -240,6 +244,7 @@ fn the_engine_stack_holds_the_deepest_files_with_a_margin() {
         .spawn(|| {
             for (past, accepted) in [(0, true), (1, false), (1_000_000, false)] {
                 for (name, text, deepest) in deep_files(past) {
+                    assert!(text.len() as u64 <= ilmr_files::MAX_SOURCE_BYTES, "{name}");
                     let (engine, uri) = engine_with(text);
                     assert_eq!(!too_deep(&engine, &uri), accepted, "{name} {past} past");
                     every_feature(&engine, &uri, deepest);
