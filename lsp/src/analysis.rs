@@ -2,9 +2,11 @@
 //! with the texts the analysis borrows from, and the lookups every feature shares (what
 //! is at an offset, which unit a position belongs to, every occurrence of a name).
 
+use std::panic::AssertUnwindSafe;
+
 use ilmr_compiler::Span;
 use ilmr_compiler::ast::{SourceFile, Stmt, StmtKind};
-use ilmr_compiler::check::{Analysis, Resolved, SkillId, Source, Unit, analyze};
+use ilmr_compiler::check::{Analysis, Resolved, SkillId, Source, Unit};
 use ilmr_compiler::diagnostic::FileId;
 use ilmr_model::RobotModel;
 use self_cell::self_cell;
@@ -17,11 +19,24 @@ self_cell!(
     }
 );
 
+/// How program files are analysed: the compiler's `check::analyze`, which tests may
+/// replace to prove that a failing analysis is isolated.
+pub type Analyzer = for<'s> fn(&'s [Source], &RobotModel) -> Analysis<'s>;
+
 /// The analysis of every program file of the workspace. File `i` of the analysis is
 /// `uris[i]`; the built-in skills come after them and have no URI.
 pub struct Program {
     cell: Cell,
     uris: Vec<String>,
+    /// Files the analysis failed on (a bug in the checker), left out of `cell`.
+    failed: Vec<Failure>,
+}
+
+/// A file whose analysis panicked, with the panic's message.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Failure {
+    pub uri: String,
+    pub panic: String,
 }
 
 /// A name's meaning across the whole program, by which its occurrences are gathered.
@@ -35,19 +50,64 @@ pub enum Symbol {
 }
 
 impl Program {
-    /// `files` are (URI, text) in a stable order.
-    pub fn check(files: Vec<(String, String)>, model: &RobotModel) -> Program {
-        let (uris, sources): (Vec<String>, Vec<Source>) = files
+    /// `files` are (URI, text) in a stable order. A panic inside the analysis costs the
+    /// files that cause it, not the server: when the whole program's analysis fails,
+    /// each file is analysed alone, and the program is analysed again without those
+    /// that fail alone (without any file, if none fails alone).
+    pub fn check(files: Vec<(String, String)>, model: &RobotModel, analyzer: Analyzer) -> Program {
+        let sources: Vec<Source> = files
             .into_iter()
-            .map(|(uri, text)| {
-                let source = Source::new(uri.clone(), text);
-                (uri, source)
+            .map(|(uri, text)| Source::new(uri, text))
+            .collect();
+        let (sources, panic) = match analyse(sources, model, analyzer) {
+            Ok(program) => return program,
+            Err(failed) => failed,
+        };
+        let mut failed: Vec<Failure> = sources
+            .iter()
+            .filter_map(|source| {
+                let alone = analyse(vec![source.clone()], model, analyzer).err()?;
+                Some(Failure {
+                    uri: source.path.clone(),
+                    panic: alone.1,
+                })
             })
-            .unzip();
-        Program {
-            cell: Cell::new(sources, |sources| analyze(sources, model)),
-            uris,
+            .collect();
+        if failed.is_empty() {
+            failed = sources
+                .iter()
+                .map(|s| Failure {
+                    uri: s.path.clone(),
+                    panic: panic.clone(),
+                })
+                .collect();
         }
+        let rest: Vec<Source> = sources
+            .into_iter()
+            .filter(|s| !failed.iter().any(|f| f.uri == s.path))
+            .collect();
+        let mut program = match analyse(rest, model, analyzer) {
+            Ok(program) => program,
+            Err((rest, panic)) => {
+                failed.extend(rest.iter().map(|s| Failure {
+                    uri: s.path.clone(),
+                    panic: panic.clone(),
+                }));
+                // The built-in skills alone: if even they fail, the panic reaches the
+                // engine's thread, which keeps the previous analysis.
+                match analyse(Vec::new(), model, analyzer) {
+                    Ok(program) => program,
+                    Err((_, panic)) => std::panic::resume_unwind(Box::new(panic)),
+                }
+            }
+        };
+        program.failed = failed;
+        program
+    }
+
+    /// The files the analysis failed on.
+    pub fn failures(&self) -> &[Failure] {
+        &self.failed
     }
 
     pub fn analysis(&self) -> &Analysis<'_> {
@@ -179,16 +239,22 @@ impl Program {
         let analysis = self.analysis();
         let mut out = Vec::new();
         for unit in &analysis.units {
+            // A set, not a search per binding: a name bound on every line of a long
+            // file would make that quadratic.
+            let mut via_skill: Option<std::collections::HashSet<Span>> = None;
             for (_, var) in unit.vars.iter() {
                 if var.spelling.to_lowercase() != name {
                     continue;
                 }
-                for &(file, span) in &var.defs {
-                    let via_skill = unit
-                        .refs
+                let via_skill = via_skill.get_or_insert_with(|| {
+                    unit.refs
                         .iter()
-                        .any(|(s, r)| *s == span && matches!(r, Resolved::Skill(_)));
-                    if !via_skill {
+                        .filter(|(_, r)| matches!(r, Resolved::Skill(_)))
+                        .map(|(s, _)| *s)
+                        .collect()
+                });
+                for &(file, span) in &var.defs {
+                    if !via_skill.contains(&span) {
                         out.push((file, span));
                     }
                 }
@@ -203,6 +269,33 @@ impl Program {
     pub fn stmt_at(&self, file: FileId, offset: usize) -> Option<&Stmt<'_>> {
         stmt_containing(self.tree(file), Span::empty(offset))
     }
+}
+
+/// The program's analysis, or the sources back with the panic's message.
+fn analyse(
+    sources: Vec<Source>,
+    model: &RobotModel,
+    analyzer: Analyzer,
+) -> Result<Program, (Vec<Source>, String)> {
+    let uris = sources.iter().map(|s| s.path.clone()).collect();
+    let cell = Cell::try_new_or_recover(sources, |sources| {
+        std::panic::catch_unwind(AssertUnwindSafe(|| analyzer(sources, model)))
+            .map_err(|payload| panic_message(payload.as_ref()))
+    })?;
+    Ok(Program {
+        cell,
+        uris,
+        failed: Vec::new(),
+    })
+}
+
+/// A panic's message, as `panic!` formatted it.
+pub fn panic_message(payload: &(dyn std::any::Any + Send)) -> String {
+    payload
+        .downcast_ref::<&str>()
+        .map(|s| s.to_string())
+        .or_else(|| payload.downcast_ref::<String>().cloned())
+        .unwrap_or_else(|| "a panic without a message".to_string())
 }
 
 /// The innermost statement whose own line holds all of `span`.

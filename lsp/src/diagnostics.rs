@@ -14,6 +14,46 @@ use crate::line_index::LineIndex;
 
 pub const SOURCE: &str = "ilmr";
 
+/// The language server's own code for a file whose analysis failed: a bug in the
+/// checker, isolated to the file. The compiler's codes are `E`/`W` and four digits.
+pub const ANALYSIS_FAILED: &str = "L0001";
+
+/// What a file the checker failed on shows instead of its diagnostics, at its start.
+pub const ANALYSIS_FAILED_MESSAGE: &str = "ilmr-lsp could not analyse this file: \
+    the checker failed on it (an internal error, reported in the server's log). \
+    The other files are analysed without it.";
+
+/// The language server's own code for an open document larger than `ilmrc` reads a
+/// task or skill file (`ilmr_files::MAX_SOURCE_BYTES`): it is not analysed, so the
+/// editor and `ilmrc check` agree, and a keystroke in it costs nothing.
+pub const TOO_LARGE: &str = "L0002";
+
+pub fn too_large() -> lsp::Diagnostic {
+    let why = ilmr_files::ReadError {
+        kind: ilmr_files::Kind::Source,
+        problem: ilmr_files::Problem::TooLarge,
+    };
+    lsp::Diagnostic {
+        range: Range::default(),
+        severity: Some(DiagnosticSeverity::ERROR),
+        code: Some(NumberOrString::String(TOO_LARGE.to_string())),
+        source: Some(SOURCE.to_string()),
+        message: format!("this file is not analysed: {why}"),
+        ..Default::default()
+    }
+}
+
+pub fn analysis_failed() -> lsp::Diagnostic {
+    lsp::Diagnostic {
+        range: Range::default(),
+        severity: Some(DiagnosticSeverity::ERROR),
+        code: Some(NumberOrString::String(ANALYSIS_FAILED.to_string())),
+        source: Some(SOURCE.to_string()),
+        message: ANALYSIS_FAILED_MESSAGE.to_string(),
+        ..Default::default()
+    }
+}
+
 /// Turns a file's span into a location; `None` for files no editor can open.
 pub trait Locate {
     fn locate(&self, file: FileId, span: Span) -> Option<(Uri, Range)>;

@@ -15,7 +15,7 @@ use tower_lsp_server::ls_types::{
     TextEdit, Uri, WorkspaceEdit,
 };
 
-use crate::analysis::Program;
+use crate::analysis::{Analyzer, Program};
 use crate::diagnostics::{self, Locate};
 use crate::navigation::{self, RenameError};
 use crate::robot::{self, Robot};
@@ -45,6 +45,9 @@ pub struct Engine {
     program: Program,
     /// Documents last sent a non-empty list, so that an emptied one is cleared.
     published: BTreeSet<String>,
+    analyzer: Analyzer,
+    /// Lines for the client's log (`window/logMessage`), taken after each job.
+    log: Vec<String>,
 }
 
 impl Default for Engine {
@@ -55,16 +58,29 @@ impl Default for Engine {
 
 impl Engine {
     pub fn new(roots: Vec<PathBuf>, settings: Settings) -> Engine {
+        Engine::with_analyzer(roots, settings, ilmr_compiler::check::analyze)
+    }
+
+    /// An engine analysing with `analyzer` in place of the compiler's own.
+    pub fn with_analyzer(roots: Vec<PathBuf>, settings: Settings, analyzer: Analyzer) -> Engine {
         let workspace = Workspace::new(roots);
         let robot = robot::choose(&workspace, settings.robot.as_deref());
-        let program = check(&workspace, &robot);
+        let mut log = Vec::new();
+        let program = check(&workspace, &robot, analyzer, &mut log);
         Engine {
             workspace,
             settings,
             robot,
             program,
             published: BTreeSet::new(),
+            analyzer,
+            log,
         }
+    }
+
+    /// What happened since the last call that the client's log should show.
+    pub fn take_log(&mut self) -> Vec<String> {
+        std::mem::take(&mut self.log)
     }
 
     pub fn robot(&self) -> &Robot {
@@ -136,7 +152,7 @@ impl Engine {
         if model_changed {
             self.robot = robot::choose(&self.workspace, self.settings.robot.as_deref());
         }
-        self.program = check(&self.workspace, &self.robot);
+        self.program = check(&self.workspace, &self.robot, self.analyzer, &mut self.log);
         self.publish()
     }
 
@@ -201,6 +217,17 @@ impl Engine {
     }
 
     pub fn diagnostics(&self, uri: &Uri) -> Vec<Diagnostic> {
+        if self.workspace.get(uri).is_some_and(too_large) {
+            return vec![diagnostics::too_large()];
+        }
+        if self
+            .program
+            .failures()
+            .iter()
+            .any(|f| f.uri == uri.as_str())
+        {
+            return vec![diagnostics::analysis_failed()];
+        }
         let (Some(doc), Some(file)) = (self.workspace.get(uri), self.program.file_id(uri.as_str()))
         else {
             return Vec::new();
@@ -386,10 +413,29 @@ impl Locate for Engine {
     }
 }
 
-fn check(workspace: &Workspace, robot: &Robot) -> Program {
+fn check(
+    workspace: &Workspace,
+    robot: &Robot,
+    analyzer: Analyzer,
+    log: &mut Vec<String>,
+) -> Program {
     let files = workspace
         .programs()
+        .filter(|d| !too_large(d))
         .map(|d| (d.uri.as_str().to_string(), d.text.clone()))
         .collect();
-    Program::check(files, &robot.model)
+    let program = Program::check(files, &robot.model, analyzer);
+    for f in program.failures() {
+        log.push(format!(
+            "ilmr-lsp: the analysis failed on {}: {}",
+            f.uri, f.panic
+        ));
+    }
+    program
+}
+
+/// A program file larger than `ilmrc` reads one: not analysed (the disk scan does not
+/// even read one; an editor may still open it).
+fn too_large(doc: &Document) -> bool {
+    doc.kind == FileKind::Program && doc.text.len() as u64 > ilmr_files::MAX_SOURCE_BYTES
 }

@@ -1,6 +1,7 @@
 //! The ILMR language server. An engine that works on the checked program and answers
 //! each LSP feature (`engine.rs` and the feature modules), and a thin protocol layer
-//! over stdio (`server.rs`, the only file that knows tower-lsp-server).
+//! over stdio (`server.rs`, with `transport.rs`, `framing.rs` and `message.rs` in front
+//! of tower-lsp-server to answer malformed messages).
 //!
 //! Invariants: the server checks with the compiler's own `check::analyze` and formats
 //! with its `format::format`, so the editor and `ilmrc` never disagree; byte offsets
@@ -12,14 +13,17 @@ pub mod context;
 pub mod diagnostics;
 pub mod docs;
 pub mod engine;
+pub mod framing;
 pub mod hover;
 pub mod line_index;
+pub mod message;
 pub mod navigation;
 pub mod outline;
 pub mod robot;
 pub mod semantic;
 pub mod server;
 pub mod signature;
+pub mod transport;
 pub mod workspace;
 
 pub use engine::{Engine, Publish, Settings};

@@ -1,6 +1,7 @@
 //! The one place byte offsets meet LSP positions. The compiler's spans are bytes; LSP
 //! counts lines and UTF-16 code units. Lines holding only ASCII (nearly all of them)
-//! convert by arithmetic; the rest walk their characters.
+//! convert by arithmetic; the rest walk their characters from the nearest checkpoint,
+//! so that a position on a megabyte-long line costs no more than one on a short one.
 
 use ilmr_compiler::Span;
 use tower_lsp_server::ls_types::{Position, Range};
@@ -11,8 +12,14 @@ pub struct LineIndex {
     starts: Vec<u32>,
     /// Whether each line is pure ASCII, where bytes and UTF-16 units coincide.
     ascii: Vec<bool>,
+    /// On lines that are not ASCII, every `CHECKPOINT` bytes or so: a byte offset (a
+    /// character boundary) and its UTF-16 column.
+    checkpoints: Vec<(u32, u32)>,
     len: u32,
 }
+
+/// How far apart checkpoints are, in bytes: the most one conversion walks.
+const CHECKPOINT: usize = 1024;
 
 impl LineIndex {
     pub fn new(text: &str) -> LineIndex {
@@ -29,10 +36,48 @@ impl LineIndex {
             }
         }
         ascii.push(line_ascii);
+        let mut checkpoints = Vec::new();
+        for (line, _) in ascii.iter().enumerate().filter(|(_, a)| !**a) {
+            let start = starts[line] as usize;
+            let end = starts.get(line + 1).map_or(text.len(), |&s| s as usize);
+            let (mut last, mut column) = (start, 0);
+            for (i, c) in text[start..end].char_indices() {
+                if i + start - last >= CHECKPOINT {
+                    last = i + start;
+                    checkpoints.push((last as u32, column));
+                }
+                column += c.len_utf16() as u32;
+            }
+        }
         LineIndex {
             starts,
             ascii,
+            checkpoints,
             len: text.len() as u32,
+        }
+    }
+
+    /// The checkpoint of a line nearest before `offset` (a byte offset, or a column
+    /// when `by_column`), else the line's start.
+    fn checkpoint(&self, line: usize, at: usize, by_column: bool) -> (usize, usize) {
+        let start = self.starts[line] as usize;
+        let end = self
+            .starts
+            .get(line + 1)
+            .map_or(self.len as usize + 1, |&s| s as usize);
+        let from = self.checkpoints.partition_point(|c| (c.0 as usize) < start);
+        let to = self.checkpoints.partition_point(|c| (c.0 as usize) < end);
+        let ours = &self.checkpoints[from..to];
+        let before = ours.partition_point(|&(b, c)| {
+            if by_column {
+                c as usize <= at
+            } else {
+                b as usize <= at
+            }
+        });
+        match before.checked_sub(1).map(|i| ours[i]) {
+            Some((b, c)) => (b as usize, c as usize),
+            None => (start, 0),
         }
     }
 
@@ -74,7 +119,8 @@ impl LineIndex {
             while !text.is_char_boundary(end) {
                 end -= 1;
             }
-            text[start..end].chars().map(char::len_utf16).sum()
+            let (from, column) = self.checkpoint(line, end, false);
+            column + text[from..end].chars().map(char::len_utf16).sum::<usize>()
         };
         Position::new(line as u32, character as u32)
     }
@@ -91,14 +137,27 @@ impl LineIndex {
         if self.ascii[line] {
             return (span.start as usize + wanted).min(span.end as usize);
         }
-        let mut units = 0;
-        for (i, c) in span.slice(text).char_indices() {
+        let (from, mut units) = self.checkpoint(line, wanted, true);
+        let from = from.min(span.end as usize);
+        for (i, c) in text[from..span.end as usize].char_indices() {
             if units >= wanted {
-                return span.start as usize + i;
+                return from + i;
             }
             units += c.len_utf16();
         }
         span.end as usize
+    }
+
+    /// Converts offsets given in increasing order, each line walked at most once:
+    /// semantic tokens ask for every token of a file.
+    pub fn walk<'a>(&'a self, text: &'a str) -> Walk<'a> {
+        Walk {
+            index: self,
+            text,
+            line: usize::MAX,
+            offset: 0,
+            column: 0,
+        }
     }
 
     pub fn range(&self, text: &str, span: Span) -> Range {
@@ -112,6 +171,39 @@ impl LineIndex {
         let start = self.offset(text, range.start);
         let end = self.offset(text, range.end).max(start);
         Span::new(start, end)
+    }
+}
+
+/// See [`LineIndex::walk`]: the last position converted, to walk on from.
+pub struct Walk<'a> {
+    index: &'a LineIndex,
+    text: &'a str,
+    line: usize,
+    offset: usize,
+    column: usize,
+}
+
+impl Walk<'_> {
+    pub fn position(&mut self, offset: usize) -> Position {
+        let (index, text) = (self.index, self.text);
+        let mut offset = offset.min(index.len as usize);
+        let line = index.line_of(offset);
+        if index.ascii[line] {
+            return Position::new(line as u32, (offset - index.starts[line] as usize) as u32);
+        }
+        while !text.is_char_boundary(offset) {
+            offset -= 1;
+        }
+        let (mut from, mut column) = index.checkpoint(line, offset, false);
+        if line == self.line && from <= self.offset && self.offset <= offset {
+            (from, column) = (self.offset, self.column);
+        }
+        column += text[from..offset]
+            .chars()
+            .map(char::len_utf16)
+            .sum::<usize>();
+        (self.line, self.offset, self.column) = (line, offset, column);
+        Position::new(line as u32, column as u32)
     }
 }
 
@@ -132,6 +224,29 @@ mod tests {
         assert_eq!(idx.offset(text, Position::new(2, 8)), end);
         // A column in the middle of a surrogate pair lands on the character after it.
         assert_eq!(idx.offset(text, Position::new(2, 7)), end);
+    }
+
+    /// Positions walked from the line's start, as the index did before checkpoints.
+    fn walked(text: &str, offset: usize) -> Position {
+        let line_start = text[..offset].rfind('\n').map_or(0, |i| i + 1);
+        let line = text[..offset].matches('\n').count() as u32;
+        let units: usize = text[line_start..offset].chars().map(char::len_utf16).sum();
+        Position::new(line, units as u32)
+    }
+
+    #[test]
+    fn long_lines_convert_through_checkpoints_as_walking_does() {
+        let line: String = (0..3_000).map(|i| ["ä", "a", "𝔸", "ab"][i % 4]).collect();
+        let text = format!("x\n{line}\nplain {}\n{line}", "b".repeat(5_000));
+        let idx = LineIndex::new(&text);
+        assert!(!idx.checkpoints.is_empty());
+        let mut walk = idx.walk(&text);
+        for (offset, _) in text.char_indices().chain([(text.len(), ' ')]) {
+            let p = walked(&text, offset);
+            assert_eq!(idx.position(&text, offset), p, "at byte {offset}");
+            assert_eq!(walk.position(offset), p, "walking, at byte {offset}");
+            assert_eq!(idx.offset(&text, p), offset, "at {p:?}");
+        }
     }
 
     #[test]

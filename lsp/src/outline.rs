@@ -1,5 +1,6 @@
 //! The shape of one file: document symbols (skills, `while`, `if` and `check` blocks,
-//! nested as written) and folding ranges (the same blocks and runs of comment lines).
+//! nested as written, to `MAX_OUTLINE_DEPTH`) and folding ranges (the same blocks and
+//! runs of comment lines).
 
 use ilmr_compiler::Span;
 use ilmr_compiler::ast::{Block, SourceFile, StmtKind};
@@ -7,8 +8,14 @@ use tower_lsp_server::ls_types::{DocumentSymbol, FoldingRange, FoldingRangeKind,
 
 use crate::line_index::LineIndex;
 
+/// How deep document symbols nest; deeper blocks are listed at this depth, after the
+/// block holding them. Each level is two levels of JSON, and clients built on serde
+/// refuse JSON nested deeper than 128 (the whole answer, not just the outline).
+pub const MAX_OUTLINE_DEPTH: usize = 32;
+
 pub fn symbols(tree: &SourceFile<'_>, text: &str, index: &LineIndex) -> Vec<DocumentSymbol> {
-    let mut out = blocks(&tree.blocks, text, index);
+    let mut out = Vec::new();
+    blocks(&tree.blocks, 1, &mut out, text, index);
     for skill in &tree.skills {
         let span = skill.header.to(skill.span);
         out.push(symbol(
@@ -17,7 +24,11 @@ pub fn symbols(tree: &SourceFile<'_>, text: &str, index: &LineIndex) -> Vec<Docu
             SymbolKind::FUNCTION,
             span,
             skill.name.span,
-            blocks(&skill.blocks, text, index),
+            {
+                let mut children = Vec::new();
+                blocks(&skill.blocks, 2, &mut children, text, index);
+                children
+            },
             text,
             index,
         ));
@@ -25,8 +36,15 @@ pub fn symbols(tree: &SourceFile<'_>, text: &str, index: &LineIndex) -> Vec<Docu
     out
 }
 
-fn blocks(blocks: &[Block<'_>], text: &str, index: &LineIndex) -> Vec<DocumentSymbol> {
-    let mut out = Vec::new();
+/// The symbols of `blocks`, at nesting `depth` (1 for the file's own), onto `out`.
+/// The recursion is bounded by the compiler's block depth limit.
+fn blocks(
+    blocks: &[Block<'_>],
+    depth: usize,
+    out: &mut Vec<DocumentSymbol>,
+    text: &str,
+    index: &LineIndex,
+) {
     for stmt in blocks.iter().flat_map(|b| &b.stmts) {
         let (kind, detail, body, end) = match &stmt.kind {
             StmtKind::If(c) => (SymbolKind::EVENT, "guard", &c.body, c.end),
@@ -37,18 +55,25 @@ fn blocks(blocks: &[Block<'_>], text: &str, index: &LineIndex) -> Vec<DocumentSy
         let last = end
             .or_else(|| body.last().map(|b| b.span))
             .unwrap_or(stmt.span);
+        let mut children = Vec::new();
+        let nested = depth < MAX_OUTLINE_DEPTH;
+        if nested {
+            self::blocks(body, depth + 1, &mut children, text, index);
+        }
         out.push(symbol(
             stmt.span.slice(text).trim().to_string(),
             Some(detail.to_string()),
             kind,
             stmt.span.to(last),
             stmt.span,
-            self::blocks(body, text, index),
+            children,
             text,
             index,
         ));
+        if !nested {
+            self::blocks(body, depth, out, text, index);
+        }
     }
-    out
 }
 
 #[allow(clippy::too_many_arguments, deprecated)]

@@ -2,7 +2,7 @@
 //! checker's resolutions tell commands, skills, variables, grammar keywords, model
 //! names and paths apart, which no TextMate grammar can.
 
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, HashSet};
 
 use ilmr_compiler::Span;
 use ilmr_compiler::check::Resolved;
@@ -104,13 +104,21 @@ pub fn tokens(program: &Program, file: FileId, index: &LineIndex) -> Vec<Semanti
         marks.insert(c.start, (*c, Kind::Comment, 0));
     }
     for unit in program.units_of(file) {
+        // A set, not a search per reference: a name bound on every line of a long file
+        // would make that quadratic.
+        let defs: HashSet<Span> = unit
+            .vars
+            .iter()
+            .flat_map(|(_, var)| var.defs.iter())
+            .filter(|(f, _)| *f == file)
+            .map(|(_, s)| *s)
+            .collect();
         for &(span, resolved) in &unit.refs {
             let (kind, mods) = match resolved {
                 Resolved::Command(_) => (Kind::Function, DEFAULT_LIBRARY),
                 Resolved::Skill(_) => (Kind::Method, 0),
-                Resolved::Variable(id) => {
-                    let var = unit.vars.get(id);
-                    let def = var.defs.iter().any(|&(f, s)| f == file && s == span);
+                Resolved::Variable(_) => {
+                    let def = defs.contains(&span);
                     (Kind::Variable, if def { DECLARATION } else { 0 })
                 }
                 Resolved::Keyword => (Kind::EnumMember, 0),
@@ -135,6 +143,7 @@ fn encode(
     let mut out = Vec::new();
     let (mut line, mut col) = (0, 0);
     let mut covered = 0;
+    let mut walk = index.walk(text);
     for (span, kind, mods) in marks {
         // Overlaps (a ref inside a comment cannot happen, but a pattern could be lexed
         // oddly) keep the first token.
@@ -142,8 +151,8 @@ fn encode(
             continue;
         }
         covered = span.end;
-        let start = index.position(text, span.start as usize);
-        let end = index.position(text, span.end as usize);
+        let start = walk.position(span.start as usize);
+        let end = walk.position(span.end as usize);
         if end.line != start.line {
             continue;
         }

@@ -58,10 +58,16 @@ impl Document {
 /// Directories never holding a project's own files, skipped by the scan.
 const SKIPPED_DIRS: &[&str] = &["node_modules", "target", ".git"];
 /// Deep enough for any project layout, shallow enough that a root of `/` stays cheap.
-const MAX_DEPTH: usize = 6;
+pub const MAX_DEPTH: usize = 6;
 /// A scan stops after this many files, so that opening a huge folder cannot stall the
 /// server; open documents are always known.
-const MAX_FILES: usize = 2_000;
+pub const MAX_FILES: usize = 2_000;
+/// A scan stops reading once the files read hold this many bytes: every change
+/// re-checks them all, and they stay in memory.
+pub const MAX_SCAN_BYTES: usize = 64 * 1024 * 1024;
+/// A scan stops after looking at this many directory entries, so that a root of `/`
+/// or a folder of millions of files costs a bounded time.
+pub const MAX_SCANNED_ENTRIES: usize = 100_000;
 
 #[derive(Debug, Default)]
 pub struct Workspace {
@@ -89,12 +95,21 @@ impl Workspace {
     pub fn scan(&mut self) {
         self.docs.retain(|_, d| d.is_open());
         let mut found = Vec::new();
+        let mut seen = 0;
         for root in &self.roots {
-            walk(root, 0, &mut found);
+            walk(root, 0, &mut found, &mut seen);
         }
         found.sort();
+        let mut held = 0;
         for path in found.into_iter().take(MAX_FILES) {
+            if held >= MAX_SCAN_BYTES {
+                break;
+            }
             self.read_from_disk(&path);
+            let uri = Uri::from_file_path(&path);
+            held += uri
+                .and_then(|u| self.docs.get(u.as_str()))
+                .map_or(0, |d| d.text.len());
         }
     }
 
@@ -223,16 +238,24 @@ impl Workspace {
     }
 }
 
-fn walk(dir: &Path, depth: usize, found: &mut Vec<PathBuf>) {
+/// `seen` counts the directory entries looked at, against `MAX_SCANNED_ENTRIES`.
+fn walk(dir: &Path, depth: usize, found: &mut Vec<PathBuf>, seen: &mut usize) {
     if depth > MAX_DEPTH || found.len() >= MAX_FILES {
         return;
     }
     let Ok(entries) = std::fs::read_dir(dir) else {
         return;
     };
-    let mut entries: Vec<_> = entries.filter_map(Result::ok).collect();
+    let mut entries: Vec<_> = entries
+        .filter_map(Result::ok)
+        .take(MAX_SCANNED_ENTRIES.saturating_sub(*seen))
+        .collect();
+    *seen += entries.len();
     entries.sort_by_key(|e| e.file_name());
     for entry in entries {
+        if *seen >= MAX_SCANNED_ENTRIES {
+            return;
+        }
         let path = entry.path();
         let name = entry.file_name();
         let name = name.to_string_lossy();
@@ -241,7 +264,7 @@ fn walk(dir: &Path, depth: usize, found: &mut Vec<PathBuf>) {
         };
         if kind.is_dir() {
             if !name.starts_with('.') && !SKIPPED_DIRS.contains(&name.as_ref()) {
-                walk(&path, depth + 1, found);
+                walk(&path, depth + 1, found, seen);
             }
         } else if FileKind::of(&name).is_some() {
             found.push(path);
@@ -263,6 +286,37 @@ mod tests {
         );
         assert_eq!(FileKind::of("/a/Robo.ini"), Some(FileKind::RobotModel));
         assert_eq!(FileKind::of("/a/other.ini"), None);
+    }
+
+    #[test]
+    fn a_scan_stops_reading_at_its_byte_budget() {
+        let root = std::env::temp_dir().join(format!("ilmr-lsp-scan-{}", std::process::id()));
+        std::fs::create_dir_all(&root).unwrap();
+        // Files as large as `ilmrc` reads one, more of them than the budget holds.
+        let size = ilmr_files::MAX_SOURCE_BYTES as usize;
+        let big = "x = 1\n".repeat(size / 6);
+        let fit = MAX_SCAN_BYTES.div_ceil(big.len());
+        for i in 0..fit + 2 {
+            std::fs::write(root.join(format!("{i:03}.ilmr")), &big).unwrap();
+        }
+        let read = Workspace::new(vec![root.clone()]).documents().count();
+        std::fs::remove_dir_all(&root).unwrap();
+        assert_eq!(read, fit);
+    }
+
+    #[test]
+    fn a_scan_stops_at_its_entry_budget() {
+        let root = std::env::temp_dir().join(format!("ilmr-lsp-entries-{}", std::process::id()));
+        let many = root.join("a-many");
+        std::fs::create_dir_all(&many).unwrap();
+        std::fs::write(root.join("b.ilmr"), "wait(1)\n").unwrap();
+        let before = Workspace::new(vec![root.clone()]).documents().count();
+        for i in 0..MAX_SCANNED_ENTRIES {
+            std::fs::write(many.join(i.to_string()), "").unwrap();
+        }
+        let after = Workspace::new(vec![root.clone()]).documents().count();
+        std::fs::remove_dir_all(&root).unwrap();
+        assert_eq!((before, after), (1, 0));
     }
 
     #[test]

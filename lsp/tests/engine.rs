@@ -370,3 +370,133 @@ fn semantic_tokens_tell_names_apart() {
         ]
     );
 }
+
+/// The compiler's analysis, but for a program holding `CHECKER_BUG`, where it fails as a
+/// bug in the checker would.
+fn fragile<'s>(
+    sources: &'s [ilmr_compiler::check::Source],
+    model: &ilmr_model::RobotModel,
+) -> ilmr_compiler::check::Analysis<'s> {
+    if sources.iter().any(|s| s.text.contains(CHECKER_BUG)) {
+        panic!("a bug in the checker");
+    }
+    if sources.iter().any(|s| s.text.contains(HALF_A_BUG))
+        && sources.iter().any(|s| s.text.contains(OTHER_HALF))
+    {
+        panic!("a bug between two files");
+    }
+    ilmr_compiler::check::analyze(sources, model)
+}
+
+const CHECKER_BUG: &str = "// the checker fails here";
+const HALF_A_BUG: &str = "// fails with the other half";
+const OTHER_HALF: &str = "// the other half";
+
+fn codes(engine: &Engine, u: &Uri) -> Vec<String> {
+    engine
+        .diagnostics(u)
+        .iter()
+        .map(|d| match &d.code {
+            Some(tower_lsp_server::ls_types::NumberOrString::String(c)) => c.clone(),
+            other => format!("{other:?}"),
+        })
+        .collect()
+}
+
+#[test]
+fn a_panic_in_the_analysis_costs_its_file_only() {
+    let mut engine = Engine::with_analyzer(
+        Vec::new(),
+        Settings {
+            robot: Some("moro".into()),
+            snippets: false,
+        },
+        fragile,
+    );
+    let good = uri(TASK);
+    let bad = uri(SKILLS);
+    engine.open(good.clone(), 1, "followwall(lft)\n".into());
+    let published = engine.open(bad.clone(), 1, format!("TURNS:\n{CHECKER_BUG}\nwait(1)\n"));
+    assert_eq!(
+        codes(&engine, &good),
+        ["E0304"],
+        "the good file is still checked"
+    );
+    assert_eq!(
+        codes(&engine, &bad),
+        [ilmr_lsp::diagnostics::ANALYSIS_FAILED]
+    );
+    let failed = engine.diagnostics(&bad).remove(0);
+    assert_eq!(
+        failed.message,
+        ilmr_lsp::diagnostics::ANALYSIS_FAILED_MESSAGE
+    );
+    assert!(
+        published
+            .iter()
+            .any(|p| p.uri == bad && p.diagnostics == [failed.clone()])
+    );
+    let log = engine.take_log();
+    assert_eq!(log.len(), 1, "{log:?}");
+    assert!(
+        log[0].contains(SKILLS) && log[0].contains("a bug in the checker"),
+        "{log:?}"
+    );
+
+    // Every feature answers on the file the analysis failed on.
+    let at = Position::new(1, 3);
+    assert!(engine.completion(&bad, at).is_empty());
+    assert!(engine.hover(&bad, at).is_none());
+    assert!(engine.document_symbols(&bad).is_empty());
+    assert!(engine.semantic_tokens(&bad).is_empty());
+    assert!(engine.definition(&bad, at).is_empty());
+
+    // Fixed, the file is checked again and the log stays quiet.
+    let change = TextDocumentContentChangeEvent {
+        range: None,
+        range_length: None,
+        text: "TURNS:\nwait(1)\n".into(),
+    };
+    engine.change(&bad, 2, vec![change]);
+    assert_eq!(codes(&engine, &bad), Vec::<String>::new());
+    assert!(engine.take_log().is_empty());
+}
+
+#[test]
+fn a_panic_no_single_file_causes_costs_every_file() {
+    let mut engine = Engine::with_analyzer(Vec::new(), Settings::default(), fragile);
+    let (a, b, c) = (
+        uri("file:///ws/a.ilmr"),
+        uri("file:///ws/b.ilms"),
+        uri("file:///ws/c.ilms"),
+    );
+    engine.open(a.clone(), 1, format!("{HALF_A_BUG}\nwait(1)\n"));
+    engine.open(c.clone(), 1, "C:\nwait(1)\n".into());
+    assert_eq!(codes(&engine, &a), Vec::<String>::new());
+    engine.open(b.clone(), 1, format!("B:\n{OTHER_HALF}\nwait(1)\n"));
+    for u in [&a, &b, &c] {
+        assert_eq!(
+            codes(&engine, u),
+            [ilmr_lsp::diagnostics::ANALYSIS_FAILED],
+            "{u:?}"
+        );
+    }
+    assert_eq!(engine.take_log().len(), 3);
+}
+
+#[test]
+fn a_document_larger_than_ilmrc_reads_is_not_analysed() {
+    let (mut engine, good, _) = setup(&[(TASK, "followwall(lft)\n$0")]);
+    let big = uri("file:///ws/big.ilmr");
+    let text = "wait(1)\n".repeat(ilmr_files::MAX_SOURCE_BYTES as usize / 8 + 1);
+    engine.open(big.clone(), 1, text);
+    assert_eq!(codes(&engine, &big), [ilmr_lsp::diagnostics::TOO_LARGE]);
+    let message = engine.diagnostics(&big).remove(0).message;
+    assert!(message.contains("MAX_SOURCE_BYTES"), "{message}");
+    assert_eq!(
+        codes(&engine, &good),
+        ["E0304"],
+        "the other files are checked"
+    );
+    assert!(engine.semantic_tokens(&big).is_empty());
+}

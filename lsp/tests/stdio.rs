@@ -8,6 +8,7 @@ use std::process::{Child, ChildStdin, Command, Stdio};
 use std::sync::mpsc::{Receiver, channel};
 use std::time::Duration;
 
+use ilmr_compiler::diagnostic::Code;
 use serde_json::{Value, json};
 
 const TIMEOUT: Duration = Duration::from_secs(20);
@@ -39,7 +40,9 @@ fn read_message(reader: &mut impl BufRead) -> Option<Value> {
     }
     let mut body = vec![0; length?];
     reader.read_exact(&mut body).ok()?;
-    serde_json::from_slice(&body).ok()
+    // serde_json's default depth limit, as clients built on serde have it.
+    let message = serde_json::from_slice(&body);
+    Some(message.unwrap_or_else(|e| panic!("the server's message does not parse: {e}")))
 }
 
 impl Server {
@@ -75,6 +78,50 @@ impl Server {
         let body = message.to_string();
         write!(self.stdin, "Content-Length: {}\r\n\r\n{body}", body.len()).expect("server reads");
         self.stdin.flush().expect("server reads");
+    }
+
+    /// Bytes as they are, headers and all.
+    fn send_raw(&mut self, bytes: &[u8]) {
+        self.stdin.write_all(bytes).expect("server reads");
+        self.stdin.flush().expect("server reads");
+    }
+
+    /// A body under a correct header, whatever it holds.
+    fn send_body(&mut self, body: &[u8]) {
+        let mut framed = format!("Content-Length: {}\r\n\r\n", body.len()).into_bytes();
+        framed.extend_from_slice(body);
+        self.send_raw(&framed);
+    }
+
+    /// The next error response that answers no request of the test's.
+    fn refusal(&mut self) -> Value {
+        loop {
+            let m = self.receive();
+            if m.get("error").is_some() && m.get("method").is_none() {
+                return m;
+            }
+        }
+    }
+
+    /// `initialize` with the folder as the workspace.
+    fn initialize(&mut self) -> Value {
+        let root = self.root_uri.trim_end_matches('/').to_string();
+        let init = self.request(
+            "initialize",
+            json!({"processId": null, "rootUri": root, "capabilities": {},
+                   "workspaceFolders": [{"uri": root, "name": "w"}],
+                   "initializationOptions": {"robot": "moro"}}),
+        );
+        self.notify("initialized", json!({}));
+        init
+    }
+
+    fn shut_down(mut self) {
+        let shutdown = self.request("shutdown", Value::Null);
+        assert_eq!(shutdown["result"], Value::Null, "{shutdown}");
+        self.notify("exit", Value::Null);
+        let status = self.child.wait().expect("the server exits");
+        assert!(status.success(), "{status}");
     }
 
     fn notify(&mut self, method: &str, params: Value) {
@@ -359,4 +406,183 @@ fn without_a_workspace_the_setting_names_the_robot() {
     s.request("shutdown", Value::Null);
     s.notify("exit", Value::Null);
     assert!(s.child.wait().expect("exits").success());
+}
+
+/// A request that needs the engine, answered normally.
+fn still_serves(s: &mut Server, after: &str) {
+    let task = uri(Path::new(&s.root_uri["file://".len()..]), "task.ilmr");
+    let answer = s.request(
+        "textDocument/documentSymbol",
+        json!({"textDocument": {"uri": task}}),
+    );
+    assert!(answer.get("error").is_none(), "after {after}: {answer}");
+    assert!(answer["result"].is_array(), "after {after}: {answer}");
+}
+
+#[test]
+fn malformed_messages_are_answered_and_the_server_goes_on() {
+    let root = workspace("malformed");
+    std::fs::write(root.join("task.ilmr"), "x = 1\nwait(1)\n").unwrap();
+    let mut s = Server::start(&root);
+
+    // Even before `initialize`, which every other request must wait for.
+    s.send_body(b"{\"jsonrpc\":");
+    let r = s.refusal();
+    assert_eq!(r["error"]["code"], -32700, "{r}");
+    assert_eq!(r["id"], Value::Null, "{r}");
+    s.initialize();
+    still_serves(&mut s, "a parse error before initialize");
+
+    let parse_errors: [(&str, Vec<u8>); 6] = [
+        (
+            "invalid UTF-8 in a string",
+            b"{\"jsonrpc\":\"2.0\",\"id\":90,\"method\":\"textDocument/hover\",\"params\":\"\xff\xfe\"}"
+                .to_vec(),
+        ),
+        (
+            "a lone surrogate",
+            br#"{"jsonrpc":"2.0","method":"textDocument/didOpen","params":{"textDocument":{"uri":"file:///x.ilmr","languageId":"ilmr","version":1,"text":"x = \udcff"}}}"#
+                .to_vec(),
+        ),
+        (
+            "invalid JSON",
+            br#"{"jsonrpc":"2.0","id":91,"method":"shutdown""#.to_vec(),
+        ),
+        ("an empty body", Vec::new()),
+        (
+            "JSON nested past serde's limit",
+            format!("{}{}", "[".repeat(100_000), "]".repeat(100_000)).into_bytes(),
+        ),
+        (
+            "trailing bytes after the JSON",
+            br#"{"jsonrpc":"2.0","method":"initialized","params":{}} {}"#.to_vec(),
+        ),
+    ];
+    for (what, body) in parse_errors {
+        s.send_body(&body);
+        let r = s.refusal();
+        assert_eq!(r["error"]["code"], -32700, "{what}: {r}");
+        assert_eq!(r["id"], Value::Null, "{what}: {r}");
+        still_serves(&mut s, what);
+    }
+
+    let bad_headers: [(&str, &[u8]); 4] = [
+        ("a length that is no number", b"Content-Length: twelve\r\n\r\n{\"a\":1}"),
+        ("no Content-Length", b"Content-Type: application/json\r\n\r\n{}"),
+        (
+            "a charset other than UTF-8",
+            b"Content-Length: 2\r\nContent-Type: application/vscode-jsonrpc; charset=latin1\r\n\r\n{}",
+        ),
+        ("a line that is no header", b"hello world\r\n\r\n"),
+    ];
+    for (what, bytes) in bad_headers {
+        s.send_raw(bytes);
+        let r = s.refusal();
+        assert_eq!(r["error"]["code"], -32700, "{what}: {r}");
+        assert_eq!(r["id"], Value::Null, "{what}: {r}");
+        still_serves(&mut s, what);
+    }
+
+    // A message past the limit is skipped by its length without being kept.
+    let limit = ilmr_lsp::framing::MAX_MESSAGE_BYTES;
+    s.send_raw(format!("Content-Length: {}\r\n\r\n", limit + 1).as_bytes());
+    let chunk = vec![b' '; 1 << 20];
+    let mut left = limit + 1;
+    while left > 0 {
+        let n = left.min(chunk.len());
+        s.send_raw(&chunk[..n]);
+        left -= n;
+    }
+    let r = s.refusal();
+    assert_eq!(r["error"]["code"], -32700, "{r}");
+    assert!(
+        r["error"]["message"]
+            .as_str()
+            .is_some_and(|m| m.contains("longer than the limit")),
+        "{r}"
+    );
+    still_serves(&mut s, "an oversized message");
+
+    // JSON that is not a JSON-RPC message: Invalid Request, with its id when it has one.
+    s.send_body(br#"{"jsonrpc":"1.0","id":92,"method":"shutdown"}"#);
+    let r = s.refusal();
+    assert_eq!(
+        (r["error"]["code"].clone(), r["id"].clone()),
+        (json!(-32600), json!(92)),
+        "{r}"
+    );
+    still_serves(&mut s, "an invalid request");
+
+    s.shut_down();
+}
+
+/// Files nested 1,000,000 deep: the compiler stops at its limits with a diagnostic, and
+/// the server neither overflows its stack on them nor walks them for long.
+fn deep_files() -> [(&'static str, String, &'static str); 3] {
+    const N: usize = 1_000_000;
+    let parens = format!("x = {}1{}\nwait(x)\n", "(".repeat(N), ")".repeat(N));
+    let sum = format!("x = 1{}\nwait(x)\n", "+1".repeat(N - 1));
+    // Unclosed, to stay within the size `ilmrc` reads (8 MiB).
+    let ifs = format!("{}wait(1)\n", "if(1)\n".repeat(N));
+    [
+        ("parens.ilmr", parens, Code::TooComplex.as_str()),
+        ("sum.ilmr", sum, Code::TooComplex.as_str()),
+        ("ifs.ilmr", ifs, Code::TooDeep.as_str()),
+    ]
+}
+
+#[test]
+fn a_workspace_of_deeply_nested_files_is_served() {
+    let root = workspace("deep");
+    let files = deep_files();
+    for (name, text, _) in &files {
+        std::fs::write(root.join(name), text).unwrap();
+    }
+    // The files are read and checked while the server starts, before any is opened.
+    let mut s = Server::start(&root);
+    s.initialize();
+    for (name, text, code) in files {
+        let file = uri(&root, name);
+        s.notify(
+            "textDocument/didOpen",
+            json!({"textDocument": {"uri": file, "languageId": "ilmr", "version": 1, "text": text}}),
+        );
+        let published = s.diagnostics(&file);
+        let codes: Vec<&Value> = published["diagnostics"]
+            .as_array()
+            .expect("a list")
+            .iter()
+            .map(|d| &d["code"])
+            .collect();
+        assert!(codes.contains(&&json!(code)), "{name}: {codes:?}");
+        let doc = json!({"textDocument": {"uri": file}});
+        let at = json!({"textDocument": {"uri": file}, "position": position(0, 3)});
+        let deep = json!({"textDocument": {"uri": file}, "position": position(0, 500_000)});
+        for (method, params) in [
+            ("textDocument/documentSymbol", doc.clone()),
+            ("textDocument/foldingRange", doc.clone()),
+            ("textDocument/semanticTokens/full", doc.clone()),
+            (
+                "textDocument/formatting",
+                json!({"textDocument": {"uri": file}, "options": {"tabSize": 4, "insertSpaces": true}}),
+            ),
+            ("textDocument/hover", at.clone()),
+            ("textDocument/completion", deep.clone()),
+            ("textDocument/signatureHelp", deep),
+            ("textDocument/definition", at.clone()),
+            (
+                "textDocument/references",
+                json!({"textDocument": {"uri": file}, "position": position(0, 0),
+                       "context": {"includeDeclaration": true}}),
+            ),
+        ] {
+            let answer = s.request(method, params);
+            assert!(answer.get("error").is_none(), "{name} {method}: {answer}");
+        }
+        s.notify(
+            "textDocument/didClose",
+            json!({"textDocument": {"uri": file}}),
+        );
+    }
+    s.shut_down();
 }
