@@ -37,7 +37,7 @@ pub fn operators_past_limit(line: &[(Token, Span)]) -> Option<Span> {
 }
 
 /// Whether a token counts towards [`MAX_LINE_OPERATORS`].
-pub fn counts_as_operator(token: Token) -> bool {
+fn counts_as_operator(token: Token) -> bool {
     matches!(
         token,
         Token::LParen

@@ -173,7 +173,7 @@ impl From<ReadError> for io::Error {
 
 /// `8 MiB`, or the exact bytes when the limit is not whole mebibytes.
 fn size(bytes: u64) -> String {
-    if bytes % MIB == 0 {
+    if bytes.is_multiple_of(MIB) {
         format!("{} MiB", bytes / MIB)
     } else {
         format!("{bytes} bytes")

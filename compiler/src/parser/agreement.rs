@@ -107,12 +107,7 @@ fn repository_programs() -> &'static [(String, String)] {
             .into_iter()
             .filter(|(_, text)| {
                 text.lines().all(|line| {
-                    let tokens = lexer::lex(line).tokens;
-                    !tokens
-                        .iter()
-                        .filter(|(t, _)| crate::limits::counts_as_operator(*t))
-                        .nth(crate::limits::MAX_LINE_OPERATORS)
-                        .is_some()
+                    crate::limits::operators_past_limit(&lexer::lex(line).tokens).is_none()
                 })
             })
             .collect()

@@ -66,13 +66,12 @@ pub fn parse<'s>(source: &'s str, file: FileId) -> Parsed<'s> {
         let too_complex = (line.len() > limits::MAX_LINE_OPERATORS)
             .then(|| limits::operators_past_limit(&line))
             .flatten();
-        match (line.first(), line.last()) {
-            (Some(_), Some(_)) if too_complex.is_some() => {
-                let at = too_complex.unwrap_or(span);
+        match (line.first(), line.last(), too_complex) {
+            (Some(_), Some(_), Some(at)) => {
                 syntax.push(too_complex_diagnostic(at, file));
                 emit(unparsed_line(&line, source));
             }
-            (Some(&(_, first)), Some(&(_, last))) => match fast::line(&line, source) {
+            (Some(&(_, first)), Some(&(_, last)), None) => match fast::line(&line, source) {
                 Some(parsed) => emit(ParsedLine {
                     line: parsed,
                     span: Span {
@@ -122,31 +121,33 @@ fn unparsed_line<'s>(line: &[(Token, Span)], source: &'s str) -> ParsedLine<'s> 
             .get(from)
             .map_or(Span::empty(last.end as usize), |&(_, s)| s.to(last)),
     };
-    let kinds: Vec<Token> = line.iter().take(3).map(|&(t, _)| t).collect();
-    let line = match kinds.as_slice() {
-        [Token::If, ..] => Line::IfHead {
+    let name = |span: Span| Name {
+        text: span.slice(source),
+        span,
+    };
+    let line = match line {
+        [(Token::If, _), ..] => Line::IfHead {
             keyword: first,
             cond: rest(1),
         },
-        [Token::While, ..] => Line::WhileHead {
+        [(Token::While, _), ..] => Line::WhileHead {
             bind: None,
             keyword: first,
             cond: rest(1),
         },
-        [Token::Ident, Token::Assign, Token::While] => Line::WhileHead {
-            bind: Some(Name {
-                text: first.slice(source),
-                span: first,
-            }),
-            keyword: line[2].1,
+        [
+            (Token::Ident, _),
+            (Token::Assign, _),
+            (Token::While, keyword),
+            ..,
+        ] => Line::WhileHead {
+            bind: Some(name(first)),
+            keyword: *keyword,
             cond: rest(3),
         },
         // The variable stays bound, so its later uses are not reported as well.
-        [Token::Ident, Token::Assign, ..] => Line::Stmt(StmtKind::Assign {
-            target: Name {
-                text: first.slice(source),
-                span: first,
-            },
+        [(Token::Ident, _), (Token::Assign, _), ..] => Line::Stmt(StmtKind::Assign {
+            target: name(first),
             value: rest(2),
         }),
         _ => Line::Stmt(StmtKind::Error),
