@@ -6,6 +6,7 @@ mod fmt;
 mod inputs;
 mod live;
 mod replay;
+mod ros2;
 mod run;
 mod serve;
 mod shell;
@@ -41,7 +42,7 @@ enum Cmd {
     /// List a module's instructions with their source lines.
     Disasm(build::DisasmArgs),
     /// Run a task on a robot backend and write its trace.
-    Run(run::RunArgs),
+    Run(Box<run::RunArgs>),
     /// Run a simulated robot in real time and take ILMR lines from clients over TCP.
     Serve(serve::ServeArgs),
     /// Run a simulated robot in real time and type ILMR lines into it.
@@ -73,7 +74,7 @@ fn main() -> ExitCode {
         Cmd::Fmt(args) => fmt::run(args),
         Cmd::Build(args) => build::build(args),
         Cmd::Disasm(args) => build::disasm(args),
-        Cmd::Run(args) => run::run(args),
+        Cmd::Run(args) => run::run(*args),
         Cmd::Replay(args) => replay::run(args),
         Cmd::Serve(args) => serve::run(args),
         Cmd::Shell(args) => shell::run(args),

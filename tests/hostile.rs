@@ -216,7 +216,7 @@ fn the_limits_table_quotes_the_constants() {
         let digits = n.to_string();
         let mut out = String::new();
         for (i, c) in digits.chars().enumerate() {
-            if i > 0 && (digits.len() - i) % 3 == 0 {
+            if i > 0 && (digits.len() - i).is_multiple_of(3) {
                 out.push(',');
             }
             out.push(c);
@@ -413,7 +413,7 @@ fn hostile_models_and_worlds_through_run() {
         let key = edit.split(' ').next().unwrap();
         let mut text: String = moro
             .lines()
-            .filter(|l| !l.split_whitespace().next().is_some_and(|k| k == key))
+            .filter(|l| l.split_whitespace().next().is_none_or(|k| k != key))
             .map(|l| format!("{l}\n"))
             .collect();
         // Parameters go in their section; a scanner line replaces the scanner's.

@@ -31,6 +31,11 @@ pub trait Robot: Hal {
     fn contacts(&self) -> u64 {
         0
     }
+
+    /// What went over the link to a ROS 2 robot.
+    fn link_stats(&self) -> Option<ilmr_ros2::LinkStats> {
+        None
+    }
 }
 
 /// A laser scan with its origin in the world frame (where the beams were cast from).
@@ -249,5 +254,69 @@ impl Robot for AnyRobot {
     }
     fn contacts(&self) -> u64 {
         self.0.contacts()
+    }
+    fn link_stats(&self) -> Option<ilmr_ros2::LinkStats> {
+        self.0.link_stats()
+    }
+}
+
+/// A ROS 2 robot. It has no ground truth: what the trace, the plot and the summary show
+/// of it is its own odometry, in the task's frame.
+pub struct Ros2 {
+    robot: ilmr_ros2::Ros2Robot,
+    /// When the last scan handed out arrived.
+    seen_scan: Option<f64>,
+}
+
+impl Ros2 {
+    pub fn new(robot: ilmr_ros2::Ros2Robot) -> Ros2 {
+        Ros2 {
+            robot,
+            seen_scan: None,
+        }
+    }
+}
+
+forward_hal!(Ros2, robot);
+
+/// Below this measured speed, m/s, and with no speed commanded, a ROS 2 robot is at
+/// rest: odometry of a standing robot jitters by millimetres per second.
+const ROS2_REST_SPEED: f64 = 0.005;
+
+impl Robot for Ros2 {
+    fn at_rest(&self) -> bool {
+        let commanded = self.robot.twist().linear.x;
+        let measured = self.robot.measured().map_or(0.0, |(v, _)| v);
+        commanded == 0.0 && measured.abs() < ROS2_REST_SPEED
+    }
+
+    fn true_pose(&self) -> Option<Pose> {
+        self.robot.pose()
+    }
+
+    fn true_motion(&self) -> Option<(f64, f64)> {
+        self.robot.measured()
+    }
+
+    fn new_scan(&mut self) -> Option<WorldScan> {
+        let (scan, max_range) = self.robot.scan()?;
+        if self.seen_scan == Some(scan.t) {
+            return None;
+        }
+        self.seen_scan = Some(scan.t);
+        // Placed at the robot's own pose: the scanner's mounting is not applied (docs/ros2.md).
+        let origin = self.robot.pose()?;
+        Some(WorldScan {
+            t: scan.t,
+            origin,
+            angle_min: scan.angle_min,
+            angle_step: scan.angle_step,
+            max_range,
+            ranges: scan.ranges.clone(),
+        })
+    }
+
+    fn link_stats(&self) -> Option<ilmr_ros2::LinkStats> {
+        Some(self.robot.stats())
     }
 }

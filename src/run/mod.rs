@@ -30,11 +30,13 @@ use summary::Outcome;
 #[derive(clap::Args)]
 pub struct RunArgs {
     /// The robot: `moro` or `workpartner` (simulated), a ROBO.INI path (simulated on
-    /// the body it describes), `scripted` (replays `--scenario`) or `none`.
+    /// the body it describes), `ros2` (a ROS 2 robot over DDS, checked against
+    /// `--model`), `scripted` (replays `--scenario`) or `none`.
     #[arg(long, default_value = "moro")]
     pub robot: String,
-    /// With `--robot none|scripted`: the model the task is checked against (`moro`,
-    /// `workpartner` or a ROBO.INI path; default moro).
+    /// With `--robot ros2|none|scripted`: the model the task is checked against and
+    /// whose limits bound the robot (`moro`, `workpartner` or a ROBO.INI path; default
+    /// moro).
     #[arg(long)]
     pub model: Option<String>,
     /// The simulated robot's world: `office`, `yard`, `empty` or a world file
@@ -63,9 +65,11 @@ pub struct RunArgs {
     /// Stop after this many seconds of logical time.
     #[arg(long, default_value_t = 600.0)]
     pub max_time: f64,
-    /// Keep to the wall clock: one tick every 10 ms.
+    /// Keep to the wall clock: one tick every 10 ms (always, with `--robot ros2`).
     #[arg(long)]
     pub realtime: bool,
+    #[command(flatten)]
+    pub ros2: crate::ros2::Ros2Args,
     /// Write every event as JSON Lines here.
     #[arg(long)]
     pub trace: Option<PathBuf>,
@@ -139,6 +143,7 @@ fn execute(args: &RunArgs, reached: &mut Reached) -> Result<Ran, String> {
         model: args.model.as_deref(),
         world: args.world.as_deref(),
         start: args.start.as_deref(),
+        ros2: &args.ros2,
     })?;
     if !args.faults.is_empty() {
         let Some(loaded) = setup.world.as_mut() else {
@@ -205,7 +210,8 @@ fn execute(args: &RunArgs, reached: &mut Reached) -> Result<Ran, String> {
         sink,
         mcap,
     };
-    if args.realtime {
+    // A real robot lives on the wall clock.
+    if args.realtime || setup.backend == Backend::Ros2 {
         let vm = Vm::new(module, robot, RealClock::new(), config).map_err(|e| e.to_string())?;
         reached.running = true;
         drive(vm, parts, args)

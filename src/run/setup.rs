@@ -5,8 +5,9 @@ use ilmr_hal::Limits;
 use ilmr_model::RobotModel;
 use ilmr_sim::{RobotKind, SimRobot, World};
 
-use super::backend::{AnyRobot, NoRobot, Simulated};
+use super::backend::{AnyRobot, NoRobot, Ros2, Simulated};
 use super::scenario::Scenario;
+use crate::ros2::Ros2Args;
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Backend {
@@ -16,6 +17,8 @@ pub enum Backend {
     Scripted,
     /// `ilmr-sim`'s robot with this body, in a world.
     Sim(RobotKind),
+    /// A ROS 2 robot over DDS (`ilmr-ros2`), bounded by the model's limits.
+    Ros2,
 }
 
 /// A world and the text it was read from (the trace carries the text, so that
@@ -35,6 +38,8 @@ pub struct Setup {
     pub model: RobotModel,
     /// Simulated robots only; its `start` is where the robot starts.
     pub world: Option<LoadedWorld>,
+    /// `--robot ros2` only: where the robot is on DDS.
+    pub ros2: Option<ilmr_ros2::Ros2Config>,
 }
 
 /// Starts used instead of a shipped world's own `start`: the office's is beside the lab
@@ -44,25 +49,35 @@ pub struct Setup {
 const RUN_STARTS: [(&str, f64, f64, f64); 1] = [("office", 8.0, 5.0, 0.0)];
 
 /// The names `--robot` takes besides a ROBO.INI path.
-pub const ROBOT_NAMES: &str = "moro, workpartner, none, scripted";
+pub const ROBOT_NAMES: &str = "moro, workpartner, ros2, none, scripted";
 
 pub struct Choice<'a> {
     pub robot: &'a str,
     pub model: Option<&'a str>,
     pub world: Option<&'a str>,
     pub start: Option<&'a str>,
+    pub ros2: &'a Ros2Args,
 }
 
 pub fn choose(c: &Choice<'_>) -> Result<Setup, String> {
     let backend = match c.robot.to_ascii_lowercase().as_str() {
         "none" => Backend::None,
         "scripted" => Backend::Scripted,
+        crate::ros2::ROBOT_NAME => Backend::Ros2,
         _ => Backend::Sim(RobotKind::Moro),
     };
+    if backend != Backend::Ros2
+        && let Some(flag) = c.ros2.given()
+    {
+        return Err(format!(
+            "{flag} is for --robot ros2; --robot {} is not a ROS 2 robot",
+            c.robot
+        ));
+    }
     if let Backend::Sim(_) = backend {
         if c.model.is_some() {
             return Err(format!(
-                "--model is for --robot none|scripted; the simulated robot `{}` is its own model",
+                "--model is for --robot ros2|none|scripted; the simulated robot `{}` is its own model",
                 c.robot
             ));
         }
@@ -100,6 +115,7 @@ pub fn choose(c: &Choice<'_>) -> Result<Setup, String> {
             model_spec: c.robot.to_string(),
             model: loaded.model,
             world: Some(world),
+            ros2: None,
         });
     }
     for (flag, given) in [("--world", c.world), ("--start", c.start)] {
@@ -112,11 +128,16 @@ pub fn choose(c: &Choice<'_>) -> Result<Setup, String> {
     }
     let model_spec = c.model.unwrap_or("moro").to_string();
     let model = crate::inputs::load_robot_model(&model_spec)?;
+    let ros2 = match backend {
+        Backend::Ros2 => Some(c.ros2.config(&model)?),
+        _ => None,
+    };
     Ok(Setup {
         backend,
         model_spec,
         model,
         world: None,
+        ros2,
     })
 }
 
@@ -235,6 +256,20 @@ pub fn open(setup: &Setup, scenario: &Scenario, seed: u64) -> Result<AnyRobot, S
             Ok(AnyRobot::new(NoRobot))
         }
         Backend::Scripted => Ok(AnyRobot::new(scenario.robot(limits(&setup.model))?)),
+        Backend::Ros2 => {
+            if scenario.scripts_the_world() {
+                return Err(
+                    "the scenario scripts what a robot senses, but --robot ros2 senses the \
+                     real world (a scenario's paths and lines are fine)"
+                        .into(),
+                );
+            }
+            let Some(config) = &setup.ros2 else {
+                return Err("--robot ros2 without its DDS settings".into());
+            };
+            let robot = ilmr_ros2::Ros2Robot::connect(config).map_err(|e| e.to_string())?;
+            Ok(AnyRobot::new(Ros2::new(robot)))
+        }
         Backend::Sim(kind) => {
             if scenario.scripts_the_world() {
                 return Err(

@@ -49,8 +49,20 @@ pub fn render<C: Clock>(
             fmt_num(p.h.to_degrees())
         ));
     }
-    s.push_str(&format!("  simulated time  {t} s ({} ticks)\n", vm.ticks()));
-    if world.is_some() {
+    let ros2 = setup
+        .ros2
+        .as_ref()
+        .filter(|_| setup.backend == Backend::Ros2);
+    if let Some(r) = ros2 {
+        s.push_str(&format!(
+            "  robot           ROS 2 in namespace {}, DDS domain {}, model {}\n",
+            r.namespace, r.domain_id, setup.model_spec
+        ));
+        s.push_str(&format!("  time            {t} s ({} ticks)\n", vm.ticks()));
+    } else {
+        s.push_str(&format!("  simulated time  {t} s ({} ticks)\n", vm.ticks()));
+    }
+    if world.is_some() || ros2.is_some() {
         let at = session
             .last_pose()
             .map(|p| {
@@ -78,6 +90,18 @@ pub fn render<C: Clock>(
     ));
     if world.is_some() {
         s.push_str(&format!("  contacts        {}\n", vm.hal().contacts()));
+    }
+    if let Some(l) = vm.hal().link_stats() {
+        s.push_str(&format!(
+            "  ros 2 link      {} cmd_vel sent; odom {} taken, {} dropped ({} not numbers); scan {} taken, {} dropped; battery {} taken\n",
+            l.twists_sent,
+            l.odometry.0,
+            l.odometry.1,
+            l.odometry_unusable,
+            l.scans.0,
+            l.scans.1,
+            l.battery.0
+        ));
     }
     if k.lines_accepted + k.lines_rejected > 0 {
         s.push_str(&format!(

@@ -53,19 +53,32 @@ impl std::fmt::Display for DecodeError {
 
 impl std::error::Error for DecodeError {}
 
+/// The byte order of a CDR body, from its encapsulation.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Order {
+    Little,
+    Big,
+}
+
 /// The sample DDS sends for `message`: little-endian CDR, as every ROS 2 RMW writes
 /// on x86 and ARM.
 pub fn encode<M: RosMessage>(message: &M) -> Vec<u8> {
     let mut out = Vec::with_capacity(64);
     out.extend_from_slice(&CDR_LE);
     out.extend_from_slice(&[0, 0]);
+    out.extend_from_slice(&encode_body(message));
+    out
+}
+
+/// The little-endian CDR body of `message`, without the encapsulation header (DDS
+/// writers put the header in themselves).
+pub fn encode_body<M: RosMessage>(message: &M) -> Vec<u8> {
     // Serialising a plain struct into a Vec cannot fail: the serializer errors only on
     // shapes these types do not have (maps, untagged enums).
     match cdr_encoding::to_vec::<M, LittleEndian>(message) {
-        Ok(body) => out.extend_from_slice(&body),
+        Ok(body) => body,
         Err(e) => unreachable!("{} has no CDR form: {e}", M::DDS_TYPE_NAME),
     }
-    out
 }
 
 /// The message in a sample, of either byte order.
@@ -76,11 +89,22 @@ pub fn decode<M: RosMessage>(sample: &[u8]) -> Result<M, DecodeError> {
         });
     }
     let (header, body) = sample.split_at_checked(4).ok_or(DecodeError::NoHeader)?;
-    let id = [header[0], header[1]];
-    let decoded = match id {
-        CDR_LE => cdr_encoding::from_bytes::<M, LittleEndian>(body),
-        CDR_BE => cdr_encoding::from_bytes::<M, BigEndian>(body),
+    let order = match [header[0], header[1]] {
+        CDR_LE => Order::Little,
+        CDR_BE => Order::Big,
         other => return Err(DecodeError::Encapsulation(other)),
+    };
+    decode_body(body, order)
+}
+
+/// The message in a CDR body whose encapsulation the caller has read.
+pub fn decode_body<M: RosMessage>(body: &[u8], order: Order) -> Result<M, DecodeError> {
+    if body.len() > MAX_MESSAGE_BYTES {
+        return Err(DecodeError::TooLarge { bytes: body.len() });
+    }
+    let decoded = match order {
+        Order::Little => cdr_encoding::from_bytes::<M, LittleEndian>(body),
+        Order::Big => cdr_encoding::from_bytes::<M, BigEndian>(body),
     };
     decoded
         .map(|(message, _)| message)

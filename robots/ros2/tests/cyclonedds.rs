@@ -138,7 +138,7 @@ fn request<M: RosMessage>(message: &M) -> Value {
 
 #[test]
 fn cyclone_dds_writes_and_reads_what_we_write_and_read() {
-    let script = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/cyclone_cdr.py");
+    let script = concat!(env!("CARGO_MANIFEST_DIR"), "/python/cyclone_cdr.py");
     let requests = [
         request(&twist()),
         request(&odometry()),

@@ -1,14 +1,9 @@
-"""The ROS 2 messages of ilmr-ros2, declared with Eclipse Cyclone DDS's Python IDL
-(`pip install cyclonedds`), which serialises them with Cyclone's own C library.
+"""The ROS 2 messages ilmr-ros2 speaks, declared with Eclipse Cyclone DDS's Python IDL
+(`pip install cyclonedds`), which serialises them with Cyclone's own C library. Type
+names are those ROS 2's RMWs register, so a Cyclone participant using these talks to
+ROS 2 nodes and to ILMR alike."""
 
-Reads JSON lines {"type": NAME, "value": {...}, "rust": HEX} on stdin and writes, for
-each, one JSON line: Cyclone's sample for the value ("cyclone": HEX) and what Cyclone
-reads from the Rust sample ("decoded": {...})."""
-
-import json
-import sys
-from dataclasses import asdict, dataclass, fields, is_dataclass
-import typing
+from dataclasses import dataclass
 
 from cyclonedds.idl import IdlStruct
 from cyclonedds.idl.types import array, float32, float64, int32, sequence, uint8, uint32
@@ -112,25 +107,3 @@ class BatteryState(IdlStruct, typename="sensor_msgs::msg::dds_::BatteryState_"):
     cell_temperature: sequence[float32]
     location: str
     serial_number: str
-
-
-TYPES = {t.__idl_typename__: t for t in [Twist, Odometry, LaserScan, BatteryState]}
-
-
-def build(cls, value):
-    """A dataclass instance from the JSON of its fields."""
-    hints = typing.get_type_hints(cls)
-    args = {}
-    for f in fields(cls):
-        v = value[f.name]
-        hint = hints[f.name]
-        args[f.name] = build(hint, v) if isinstance(hint, type) and is_dataclass(hint) else v
-    return cls(**args)
-
-
-for line in sys.stdin:
-    request = json.loads(line)
-    cls = TYPES[request["type"]]
-    sample = build(cls, request["value"]).serialize()
-    decoded = cls.deserialize(bytes.fromhex(request["rust"]))
-    print(json.dumps({"cyclone": sample.hex(), "decoded": asdict(decoded)}), flush=True)

@@ -1,0 +1,372 @@
+//! A ROS 2 robot behind the HAL: `cmd_vel` out, `odom`, `scan` and `battery_state` in.
+//!
+//! Safety over the network rests on three things here and one in the VM. Every twist
+//! sent is within the model's limits (`convert::cmd_vel`). The last twist is sent
+//! again every `keepalive` seconds, so a robot driver with a command timeout keeps
+//! moving only while ILMR is alive, and a halt (a zero twist) is repeated until
+//! commands resume. The time a sample *arrives* is what the VM's supervisor sees as the
+//! stream's age, so a robot whose odometry or scan stops is held by the same
+//! `odometry_lost`/`scanner_lost` faults as a simulated one; a robot clock that
+//! disagrees with ours cannot hide a dead stream.
+
+use std::time::{Duration, Instant};
+
+use ilmr_hal::{
+    AsyncOp, BodyPose, DeviceReading, Hal, HalError, OpId, OpStatus, Pose, Scan, Snapshot,
+};
+
+use crate::convert::{self, Limits, Motion};
+use crate::dds::{LinkError, Participant, Profile, Reach, Reader, Writer};
+use crate::frame::Frame;
+use crate::msg::{BatteryState, LaserScan, Odometry, Twist};
+use crate::names::TopicName;
+
+/// Samples taken from one topic in one tick at most: a peer that floods costs a
+/// bounded time per tick, and what it sent beyond is left to DDS's history (which keeps
+/// the last few) rather than read.
+pub const MAX_SAMPLES_PER_TICK: usize = 64;
+
+/// How often the last twist is sent again, s: within the command timeout of common
+/// drivers (TurtleBot 3: 0.5 s; Nav2's `velocity_smoother`: 1 s).
+pub const KEEPALIVE: f64 = 0.1;
+
+/// The topics, relative to the namespace unless absolute.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Topics {
+    pub cmd_vel: String,
+    pub odom: String,
+    pub scan: String,
+    pub battery: String,
+}
+
+impl Default for Topics {
+    fn default() -> Topics {
+        Topics {
+            cmd_vel: "cmd_vel".into(),
+            odom: "odom".into(),
+            scan: "scan".into(),
+            battery: "battery_state".into(),
+        }
+    }
+}
+
+#[derive(Debug, Clone, PartialEq)]
+pub struct Ros2Config {
+    pub domain_id: u16,
+    pub namespace: String,
+    pub topics: Topics,
+    pub reach: Reach,
+    /// The model's name for its scanner; `None` for a robot without one (then no scan
+    /// is waited for).
+    pub scanner: Option<String>,
+    pub limits: Limits,
+    /// How long [`Ros2Robot::connect`] waits for the robot's first odometry and scan.
+    pub wait: Duration,
+}
+
+/// Counts of what went over the link, for the run's summary.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct LinkStats {
+    pub twists_sent: u64,
+    pub odometry: (u64, u64),
+    pub scans: (u64, u64),
+    pub battery: (u64, u64),
+    /// Odometry samples that decoded but held NaN or infinity.
+    pub odometry_unusable: u64,
+}
+
+struct Endpoints {
+    // Dropped last: the readers and the writer belong to it.
+    cmd_vel: Writer<Twist>,
+    odom: Reader<Odometry>,
+    scan: Reader<LaserScan>,
+    battery: Reader<BatteryState>,
+    _participant: Participant,
+}
+
+pub struct Ros2Robot {
+    link: Endpoints,
+    scanner: Option<String>,
+    limits: Limits,
+    now: f64,
+    frame: Frame,
+    motion: Option<Motion>,
+    odometry_t: Option<f64>,
+    travelled: f64,
+    scan: Option<Scan>,
+    /// The latest scan's `range_max`, m: what a beam that found nothing reads.
+    scan_range: f64,
+    battery: Option<f64>,
+    twist: Twist,
+    sent_at: Option<f64>,
+    twists_sent: u64,
+    odometry_unusable: u64,
+    /// `init` operations started: they are done at once (the robot's streams are up,
+    /// or `connect` would have failed).
+    inits: u32,
+}
+
+impl Ros2Robot {
+    /// Joins the domain, opens the topics and waits for the robot's first odometry
+    /// sample (and scan, when the model has a scanner), so that a task does not start
+    /// on a robot that is not there.
+    pub fn connect(config: &Ros2Config) -> Result<Ros2Robot, LinkError> {
+        let topic = |name: &str| {
+            TopicName::new(&config.namespace, name).map_err(|e| LinkError(e.to_string()))
+        };
+        let participant = Participant::join(config.domain_id, config.reach)?;
+        let link = Endpoints {
+            cmd_vel: participant.writer(&topic(&config.topics.cmd_vel)?, Profile::Reliable)?,
+            odom: participant.reader(&topic(&config.topics.odom)?, Profile::SensorData)?,
+            scan: participant.reader(&topic(&config.topics.scan)?, Profile::SensorData)?,
+            battery: participant.reader(&topic(&config.topics.battery)?, Profile::SensorData)?,
+            _participant: participant,
+        };
+        let mut robot = Ros2Robot {
+            link,
+            scanner: config.scanner.clone(),
+            limits: config.limits,
+            now: 0.0,
+            frame: Frame::default(),
+            motion: None,
+            odometry_t: None,
+            travelled: 0.0,
+            scan: None,
+            scan_range: 0.0,
+            battery: None,
+            twist: Twist::default(),
+            sent_at: None,
+            twists_sent: 0,
+            odometry_unusable: 0,
+            inits: 0,
+        };
+        robot.wait_for_streams(config)?;
+        Ok(robot)
+    }
+
+    fn wait_for_streams(&mut self, config: &Ros2Config) -> Result<(), LinkError> {
+        let start = Instant::now();
+        loop {
+            self.receive(0.0);
+            let scan_ready = self.scanner.is_none() || self.scan.is_some();
+            if self.motion.is_some() && scan_ready {
+                // What arrived while waiting is not fresh at the first tick; the
+                // first tick's samples will be.
+                self.odometry_t = None;
+                return Ok(());
+            }
+            if start.elapsed() >= config.wait {
+                let (topic, what) = if self.motion.is_none() {
+                    (self.link.odom.topic(), "odometry (nav_msgs/Odometry)")
+                } else {
+                    (self.link.scan.topic(), "scan (sensor_msgs/LaserScan)")
+                };
+                return Err(LinkError(format!(
+                    "no {what} on {topic} within {:.0} s in DDS domain {}: is the robot up, \
+                     with ROS_DOMAIN_ID={} and namespace `{}`?",
+                    config.wait.as_secs_f64(),
+                    config.domain_id,
+                    config.domain_id,
+                    config.namespace,
+                )));
+            }
+            std::thread::sleep(Duration::from_millis(10));
+        }
+    }
+
+    /// Takes what arrived, stamping it with `now`.
+    fn receive(&mut self, now: f64) {
+        let mut latest = None;
+        let mut unusable = 0;
+        self.link.odom.drain(MAX_SAMPLES_PER_TICK, |m| {
+            match convert::motion(&m) {
+                Some(motion) => latest = Some(motion),
+                None => unusable += 1,
+            };
+        });
+        self.odometry_unusable += unusable;
+        if let Some(m) = latest {
+            if let Some(last) = self.motion {
+                let step = (m.pose.x - last.pose.x).hypot(m.pose.y - last.pose.y);
+                self.travelled += step;
+            }
+            self.motion = Some(m);
+            self.odometry_t = Some(now);
+        }
+        let mut scan = None;
+        self.link
+            .scan
+            .drain(MAX_SAMPLES_PER_TICK, |m| scan = Some(m));
+        if let (Some(m), Some(device)) = (scan, &self.scanner) {
+            let mut s = convert::scan(&m, device);
+            s.t = now;
+            self.scan = Some(s);
+            self.scan_range = f64::from(m.range_max).max(0.0);
+        }
+        let mut voltage = None;
+        self.link.battery.drain(MAX_SAMPLES_PER_TICK, |m| {
+            voltage = convert::battery_voltage(m.voltage);
+        });
+        if voltage.is_some() {
+            self.battery = voltage;
+        }
+    }
+
+    fn send(&mut self) -> Result<(), HalError> {
+        self.sent_at = Some(self.now);
+        self.twists_sent += 1;
+        self.link
+            .cmd_vel
+            .send(self.twist)
+            .map_err(|e| HalError::Link(e.0))
+    }
+
+    /// The robot's pose as the task sees it: odometry in the frame `locate` set.
+    pub fn pose(&self) -> Option<Pose> {
+        self.motion.map(|m| self.frame.apply(m.pose))
+    }
+
+    /// Measured speed and curvature, m/s and 1/m.
+    pub fn measured(&self) -> Option<(f64, f64)> {
+        self.motion.map(|m| (m.speed, m.curvature))
+    }
+
+    /// The last twist sent.
+    pub fn twist(&self) -> &Twist {
+        &self.twist
+    }
+
+    /// The latest scan, as the HAL has it, and its maximum range, m.
+    pub fn scan(&self) -> Option<(&Scan, f64)> {
+        self.scan.as_ref().map(|s| (s, self.scan_range))
+    }
+
+    pub fn stats(&self) -> LinkStats {
+        LinkStats {
+            twists_sent: self.twists_sent,
+            odometry: self.link.odom.counts(),
+            scans: self.link.scan.counts(),
+            battery: self.link.battery.counts(),
+            odometry_unusable: self.odometry_unusable,
+        }
+    }
+}
+
+impl Drop for Ros2Robot {
+    /// A run that ends while the robot moves (at `--max-time`) leaves it standing: the
+    /// zero twist is handed to DDS's thread before the participant closes.
+    fn drop(&mut self) {
+        if self.twist != Twist::default() {
+            self.twist = Twist::default();
+            let _ = self.send();
+            std::thread::sleep(Duration::from_millis(50));
+        }
+    }
+}
+
+fn unsupported(what: &str) -> HalError {
+    HalError::Unsupported(format!(
+        "{what}: a ROS 2 robot is driven through cmd_vel, odom, scan and battery_state only"
+    ))
+}
+
+impl Hal for Ros2Robot {
+    fn update(&mut self, t: f64) -> Result<(), HalError> {
+        if !t.is_finite() {
+            return Err(HalError::Link(format!("time {t} is not finite")));
+        }
+        self.now = t;
+        self.receive(t);
+        if self.sent_at.is_none_or(|at| t - at >= KEEPALIVE - 1e-9) {
+            self.send()?;
+        }
+        Ok(())
+    }
+
+    fn snapshot(&mut self, out: &mut Snapshot) -> Result<(), HalError> {
+        out.t = self.now;
+        out.true_pose = None;
+        out.odometry_t = self.odometry_t;
+        out.nav_t = None;
+        if let Some(m) = self.motion {
+            out.pose = self.frame.apply(m.pose);
+            out.speed = m.speed;
+            out.curvature = m.curvature;
+        }
+        match (&self.scan, &mut out.scan) {
+            (Some(s), Some(o)) => o.clone_from(s),
+            (Some(s), slot) => *slot = Some(s.clone()),
+            (None, slot) => *slot = None,
+        }
+        out.battery = self.battery;
+        out.detections.clear();
+        out.devices.clear();
+        let nearest = self
+            .scan
+            .as_ref()
+            .map(|s| s.ranges.iter().copied().fold(f64::INFINITY, f64::min) * 1000.0);
+        let heading = self.motion.map(|_| out.pose.h.to_degrees());
+        for (name, value) in [
+            ("battery", self.battery),
+            ("gyro", heading),
+            ("odometry", self.motion.map(|_| self.travelled)),
+            (self.scanner.as_deref().unwrap_or("scanner"), nearest),
+        ] {
+            out.devices.push(DeviceReading {
+                name: name.to_string(),
+                value,
+            });
+        }
+        Ok(())
+    }
+
+    fn set_motion(&mut self, speed: f64, curvature: f64) -> Result<(), HalError> {
+        let twist = convert::cmd_vel(speed, curvature, self.limits);
+        if twist != self.twist {
+            self.twist = twist;
+            self.send()?;
+        }
+        Ok(())
+    }
+
+    fn actuator(&mut self, id: &str, _value: f64) -> Result<(), HalError> {
+        Err(unsupported(id))
+    }
+
+    fn locmode(&mut self, mode: &str) -> Result<(), HalError> {
+        Err(unsupported(&format!("locmode({mode})")))
+    }
+
+    fn bodypose(&mut self, _pose: BodyPose) -> Result<(), HalError> {
+        Err(unsupported("bodypose"))
+    }
+
+    fn locate(&mut self, pose: Pose) -> Result<(), HalError> {
+        let Some(m) = self.motion else {
+            return Err(HalError::Refused(
+                "locate: no odometry has arrived to place".into(),
+            ));
+        };
+        self.frame = Frame::placing(m.pose, pose);
+        Ok(())
+    }
+
+    fn start(&mut self, op: &AsyncOp) -> Result<OpId, HalError> {
+        match op {
+            AsyncOp::Init(_) => {
+                self.inits += 1;
+                Ok(OpId(self.inits))
+            }
+            AsyncOp::Manipulate(_) => Err(unsupported("manipulate")),
+            AsyncOp::MoveMode(_) => Err(unsupported("movemode")),
+        }
+    }
+
+    fn poll(&mut self, op: OpId) -> Result<OpStatus, HalError> {
+        if (1..=self.inits).contains(&op.0) {
+            Ok(OpStatus::Done)
+        } else {
+            Err(HalError::UnknownOp(op))
+        }
+    }
+}

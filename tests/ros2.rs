@@ -1,0 +1,318 @@
+//! `ilmrc run --robot ros2` against a robot this project did not write: a ROS 2 base
+//! driver on Eclipse Cyclone DDS (robots/ros2/python/cyclone_robot.py, through
+//! Cyclone's Python binding), which obeys `cmd_vel`, stops on its own command timeout
+//! and publishes `odom`, `scan` and `battery_state` under ROS 2's type names.
+//!
+//! Each test runs the robot and `ilmrc` in a network namespace of its own
+//! (`unshare -n`, robots/ros2/python/netns_run.py), where loopback is the only
+//! interface: DDS discovery by multicast cannot leave the machine. CI installs
+//! `cyclonedds` (`.ci/run`); without it, or without the right to make a namespace,
+//! these tests fail rather than pass unchecked.
+//!
+//! What is asserted is what the robot saw and did, from its own report: where it ended
+//! (its true pose), and every twist it received.
+
+mod support;
+
+use std::path::PathBuf;
+use std::process::Command;
+
+use ilmr_model::RobotModel;
+use serde_json::Value;
+
+/// A twist the robot received: its time (s since the robot started), linear.x,
+/// angular.z.
+#[derive(Debug, Clone, Copy)]
+struct Received {
+    t: f64,
+    v: f64,
+    w: f64,
+}
+
+struct Driven {
+    code: Option<i64>,
+    summary: String,
+    stderr: String,
+    /// The robot's true pose at the end: x, y (m), heading (degrees).
+    pose: (f64, f64, f64),
+    speed: f64,
+    twists: Vec<Received>,
+    trace: Vec<Value>,
+}
+
+fn scratch(name: &str) -> PathBuf {
+    std::env::temp_dir().join(format!("ilmr-ros2-{}-{name}", std::process::id()))
+}
+
+/// Runs `task` with `ilmrc run --robot ros2` against the Cyclone robot started with
+/// `robot`, both in a namespace of their own.
+fn drive(name: &str, task: &str, robot: &[&str], run: &[&str]) -> Driven {
+    let root = support::root();
+    let task_path = scratch(&format!("{name}.ilmr"));
+    let trace_path = scratch(&format!("{name}.jsonl"));
+    std::fs::write(&task_path, task).unwrap();
+    let mut cmd = Command::new("unshare");
+    cmd.arg("-n")
+        .arg("python3")
+        .arg(root.join("robots/ros2/python/netns_run.py"))
+        .args(["--timeout", "60"]);
+    for a in robot {
+        cmd.arg(format!("--robot-arg={a}"));
+    }
+    cmd.arg("--")
+        .arg(env!("CARGO_BIN_EXE_ilmrc"))
+        .args([
+            "run",
+            "--robot",
+            "ros2",
+            "--ros-loopback",
+            "--ros-wait",
+            "20",
+        ])
+        .arg("--trace")
+        .arg(&trace_path)
+        .args(run)
+        .arg(&task_path)
+        .env("NO_COLOR", "1");
+    let out = cmd.output().expect("unshare and python3 run");
+    let report: Value = serde_json::from_slice(&out.stdout).unwrap_or_else(|e| {
+        panic!(
+            "netns_run.py printed no report ({e}); is `cyclonedds` installed (pip install \
+             cyclonedds) and may this user make a network namespace?\nstdout: {}\nstderr: {}",
+            String::from_utf8_lossy(&out.stdout),
+            String::from_utf8_lossy(&out.stderr)
+        )
+    });
+    let ilmrc = &report["ilmrc"];
+    let robot = &report["robot"];
+    assert!(
+        robot.get("pose").is_some(),
+        "the robot wrote no report: {robot}"
+    );
+    let num = |v: &Value| v.as_f64().unwrap();
+    let pose = &robot["pose"];
+    let trace = std::fs::read_to_string(&trace_path)
+        .unwrap_or_default()
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap())
+        .collect();
+    let _ = std::fs::remove_file(&task_path);
+    let _ = std::fs::remove_file(&trace_path);
+    Driven {
+        code: ilmrc["code"].as_i64(),
+        summary: ilmrc["stdout"].as_str().unwrap().to_string(),
+        stderr: ilmrc["stderr"].as_str().unwrap().to_string(),
+        pose: (num(&pose[0]), num(&pose[1]), num(&pose[2])),
+        speed: num(&robot["speed"]),
+        twists: robot["twists"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|t| Received {
+                t: num(&t[0]),
+                v: num(&t[1]),
+                w: num(&t[2]),
+            })
+            .collect(),
+        trace,
+    }
+}
+
+/// Every twist within MoRo's model: the speed within `max_speed`, the turn rate
+/// within what `max_curvature` allows at that speed.
+fn within_the_model(d: &Driven) {
+    let moro = RobotModel::builtin("moro").unwrap();
+    for t in &d.twists {
+        assert!(
+            t.v.abs() <= moro.max_speed() + 1e-9,
+            "cmd_vel {t:?} is faster than max_speed {}",
+            moro.max_speed()
+        );
+        assert!(
+            t.w.abs() <= t.v.abs() * moro.max_curvature() + 1e-9,
+            "cmd_vel {t:?} turns sharper than max_curvature {}",
+            moro.max_curvature()
+        );
+    }
+}
+
+fn faults(d: &Driven, event: &str) -> Vec<String> {
+    d.trace
+        .iter()
+        .filter(|e| e["event"] == event)
+        .map(|e| e["fault"].as_str().unwrap_or_default().to_string())
+        .collect()
+}
+
+/// The zero twists the robot received in `from..to` (its own clock), and whether any
+/// twist there was not zero.
+fn zeros_in(d: &Driven, from: f64, to: f64) -> (Vec<f64>, bool) {
+    let inside: Vec<&Received> = d
+        .twists
+        .iter()
+        .filter(|t| t.t >= from && t.t < to)
+        .collect();
+    let zeros = inside
+        .iter()
+        .filter(|t| t.v == 0.0 && t.w == 0.0)
+        .map(|t| t.t)
+        .collect();
+    (zeros, inside.iter().any(|t| t.v != 0.0 || t.w != 0.0))
+}
+
+/// Zero twists keep coming while the robot is halted, as often as a driver's command
+/// timeout needs: no gap longer than 0.25 s (the keepalive is 0.1 s).
+fn repeated(zeros: &[f64], from: f64, to: f64) {
+    assert!(!zeros.is_empty(), "no zero twist in {from:.2}..{to:.2} s");
+    let mut last = from;
+    for &t in zeros.iter().chain([to].iter()) {
+        assert!(
+            t - last <= 0.25,
+            "no twist between {last:.2} and {t:.2} s while halted: {zeros:?}"
+        );
+        last = t;
+    }
+}
+
+#[test]
+fn a_task_drives_a_cyclone_dds_robot_to_its_goal() {
+    let d = drive(
+        "goal",
+        "speed(0.4)\nm=gotoxy(2,1)\nwait(m)\n",
+        &["--duration=60"],
+        &["--max-time", "40"],
+    );
+    assert_eq!(d.code, Some(0), "{}\n{}", d.summary, d.stderr);
+    assert!(d.summary.contains("finished"), "{}", d.summary);
+    let (x, y, _) = d.pose;
+    let miss = (x - 2.0).hypot(y - 1.0);
+    assert!(
+        miss < 0.10,
+        "the robot ended at ({x:.3}, {y:.3}), {miss:.3} m from (2, 1)"
+    );
+    assert!(d.speed.abs() < 1e-9, "the robot still moves: {}", d.speed);
+    within_the_model(&d);
+    // The trace shows the run as a simulated one's does: poses, from the robot's own
+    // odometry, ending where the robot is.
+    let last = d
+        .trace
+        .iter()
+        .rev()
+        .find(|e| e["event"] == "pose")
+        .expect("the trace has poses");
+    let (tx, ty) = (last["x"].as_f64().unwrap(), last["y"].as_f64().unwrap());
+    assert!(
+        (tx - x).hypot(ty - y) < 0.02,
+        "the trace ends at ({tx}, {ty}), the robot at ({x}, {y})"
+    );
+    assert!(
+        d.trace.iter().any(|e| e["event"] == "end"),
+        "the trace has the commands' ends"
+    );
+}
+
+#[test]
+fn a_lost_odometry_stream_halts_the_robot_and_zero_velocity_is_repeated() {
+    let d = drive(
+        "odom",
+        "speed(0.3)\ngoahead(5)\n",
+        &["--duration=60", "--odom-stop-at=2.5"],
+        &["--max-time", "6"],
+    );
+    assert!(d.code.is_some(), "ilmrc did not end: {}", d.stderr);
+    assert!(
+        faults(&d, "fault").iter().any(|f| f == "odometry_lost"),
+        "no odometry_lost fault in the trace: {}",
+        d.summary
+    );
+    // The halt ramps down within max_deceleration (0.3 m/s at 0.8 m/s2: 0.4 s), after
+    // odometry_timeout (0.25 s): from 3.5 s on the robot hears only zeros, and keeps
+    // hearing them until ilmrc ends.
+    let end = d.twists.last().unwrap().t;
+    assert!(end > 4.5, "the run ended early, at {end} s");
+    let (zeros, moving) = zeros_in(&d, 3.5, end + 1e-9);
+    assert!(!moving, "a twist that moves after the odometry was lost");
+    repeated(&zeros, 3.5, end);
+    assert!(d.speed.abs() < 1e-9, "the robot still moves: {}", d.speed);
+    let (x, _, _) = d.pose;
+    assert!(
+        x < 1.5,
+        "the robot went on to x = {x:.2} m without odometry"
+    );
+    within_the_model(&d);
+}
+
+#[test]
+fn a_scan_gap_holds_the_robot_with_repeated_zeros_and_it_goes_on_when_scans_return() {
+    let d = drive(
+        "scan",
+        "speed(0.3)\nm=gotoxy(3,0)\nwait(m)\n",
+        &[
+            "--duration=60",
+            "--scan-stop-at=2.0",
+            "--scan-resume-at=5.0",
+        ],
+        &["--max-time", "40"],
+    );
+    assert_eq!(d.code, Some(0), "{}\n{}", d.summary, d.stderr);
+    assert!(
+        faults(&d, "fault").iter().any(|f| f == "scanner_lost"),
+        "no scanner_lost fault in the trace"
+    );
+    assert!(
+        faults(&d, "recovered").iter().any(|f| f == "scanner_lost"),
+        "the scanner_lost fault never cleared"
+    );
+    // Held from about 2.0 + scanner_timeout (1.0) + the ramp; scans return at 5.0.
+    let (zeros, moving) = zeros_in(&d, 3.8, 5.0);
+    assert!(!moving, "a twist that moves while the scanner was lost");
+    repeated(&zeros, 3.8, 5.0);
+    let (x, y, _) = d.pose;
+    assert!(
+        (x - 3.0).hypot(y) < 0.10,
+        "the robot ended at ({x:.3}, {y:.3}), not at (3, 0)"
+    );
+    within_the_model(&d);
+}
+
+#[test]
+fn without_a_robot_the_run_says_what_it_waited_for_and_exits_2() {
+    let out = Command::new("unshare")
+        .args(["-n", "sh", "-c"])
+        .arg(format!(
+            "ip link set lo up multicast on && ip route add 224.0.0.0/4 dev lo && \
+             exec {} run --robot ros2 --ros-loopback --ros-wait 1 --ros-namespace /nobody \
+             examples/short_task.ilmr",
+            env!("CARGO_BIN_EXE_ilmrc")
+        ))
+        .current_dir(support::root())
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{stderr}");
+    assert!(
+        stderr.contains("no odometry") && stderr.contains("/nobody/odom"),
+        "{stderr}"
+    );
+}
+
+#[test]
+fn ros_options_are_refused_for_other_robots_and_bad_names_are_explained() {
+    let (code, _, stderr) =
+        support::ilmrc(&["run", "--ros-namespace", "/r1", "examples/short_task.ilmr"]);
+    assert_eq!(code, 2);
+    assert!(
+        stderr.contains("--ros-namespace is for --robot ros2"),
+        "{stderr}"
+    );
+    let (code, _, stderr) = support::ilmrc(&[
+        "run",
+        "--robot",
+        "ros2",
+        "--ros-namespace",
+        "robot 1",
+        "examples/short_task.ilmr",
+    ]);
+    assert_eq!(code, 2);
+    assert!(stderr.contains("must start with `/`"), "{stderr}");
+}
