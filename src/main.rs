@@ -10,6 +10,7 @@ mod ros2;
 mod run;
 mod serve;
 mod shell;
+mod sim;
 
 use std::process::ExitCode;
 
@@ -47,6 +48,9 @@ enum Cmd {
     Serve(serve::ServeArgs),
     /// Run a simulated robot in real time and type ILMR lines into it.
     Shell(shell::ShellArgs),
+    /// Run a simulated robot in real time as a ROS 2 robot (`--ros2`), for any ROS 2
+    /// node or `run --robot ros2` to drive.
+    Sim(Box<sim::SimArgs>),
     /// Redraw a finished run from its trace, without running it.
     Replay(replay::ReplayArgs),
     /// Print the syntax tree of a file, one node per line.
@@ -75,6 +79,7 @@ fn main() -> ExitCode {
         Cmd::Build(args) => build::build(args),
         Cmd::Disasm(args) => build::disasm(args),
         Cmd::Run(args) => run::run(*args),
+        Cmd::Sim(args) => sim::run(*args),
         Cmd::Replay(args) => replay::run(args),
         Cmd::Serve(args) => serve::run(args),
         Cmd::Shell(args) => shell::run(args),

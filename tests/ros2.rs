@@ -275,6 +275,150 @@ fn a_scan_gap_holds_the_robot_with_repeated_zeros_and_it_goes_on_when_scans_retu
     within_the_model(&d);
 }
 
+/// Runs `command` beside `ilmrc sim --ros2 SIM...` in a namespace of their own, with
+/// DDS on loopback; returns the command's report and the simulator's stdout.
+fn beside_the_simulator(sim: &[&str], command: &[&str]) -> (Value, String) {
+    let root = support::root();
+    let ilmrc = env!("CARGO_BIN_EXE_ilmrc");
+    let background = format!("{ilmrc} sim --ros2 --ros-loopback {}", sim.join(" "));
+    let out = Command::new("unshare")
+        .arg("-n")
+        .arg("python3")
+        .arg(root.join("robots/ros2/python/netns_run.py"))
+        .args([
+            "--no-robot",
+            "--timeout",
+            "60",
+            "--background",
+            &background,
+            "--",
+        ])
+        .args(command)
+        .current_dir(&root)
+        .env("NO_COLOR", "1")
+        .output()
+        .expect("unshare and python3 run");
+    let report: Value = serde_json::from_slice(&out.stdout).unwrap_or_else(|e| {
+        panic!(
+            "netns_run.py printed no report ({e}):\nstdout: {}\nstderr: {}",
+            String::from_utf8_lossy(&out.stdout),
+            String::from_utf8_lossy(&out.stderr)
+        )
+    });
+    let sim_out = report["background"][0]["stdout"]
+        .as_str()
+        .unwrap()
+        .to_string();
+    (report["ilmrc"].clone(), sim_out)
+}
+
+#[test]
+fn the_simulator_is_a_ros_2_robot_that_cyclone_dds_sees_at_the_models_rates() {
+    let (listened, sim) = beside_the_simulator(
+        &["--ros-namespace", "/r1", "--clock", "--world", "office"],
+        &[
+            "python3",
+            "robots/ros2/python/cyclone_listener.py",
+            "--namespace",
+            "/r1",
+            "--seconds",
+            "3",
+        ],
+    );
+    assert_eq!(listened["code"], 0, "{listened}");
+    assert!(sim.starts_with("ilmrc sim: moro in office"), "{sim}");
+    let seen: Value = serde_json::from_str(listened["stdout"].as_str().unwrap()).unwrap();
+    let moro = RobotModel::builtin("moro").unwrap();
+    // Rates as Cyclone receives them, within 15 % of the model's (what a reader over
+    // loopback sees of a real-time loop on a loaded machine).
+    for (topic, rate) in [
+        ("odom", moro.odometry_rate()),
+        ("tf", moro.odometry_rate()),
+        ("ground_truth", moro.odometry_rate()),
+        ("scan", moro.scanner_rate()),
+        ("clock", 100.0),
+        ("battery_state", 1.0),
+    ] {
+        let got = seen[topic]["rate"].as_f64().unwrap();
+        assert!(
+            (got - rate).abs() <= 0.15 * rate,
+            "{topic}: {got:.2} Hz where the model says {rate} Hz; {}",
+            seen[topic]
+        );
+    }
+    let odom = &seen["odom"]["last"];
+    assert_eq!(
+        (odom["frame"].as_str(), odom["child"].as_str()),
+        (Some("odom"), Some("base_link"))
+    );
+    // The office run start is (8, 5, 0); a robot given no command stays there.
+    let (x, y) = (odom["x"].as_f64().unwrap(), odom["y"].as_f64().unwrap());
+    assert!((x - 8.0).abs() < 0.01 && (y - 5.0).abs() < 0.01, "{odom}");
+    let stamp = odom["stamp"].as_f64().unwrap();
+    let clock = seen["clock"]["last"]["clock"].as_f64().unwrap();
+    assert!(
+        stamp < 10.0 && (clock - stamp).abs() < 0.5,
+        "with --clock, messages carry simulated time: odom {stamp}, clock {clock}"
+    );
+    let scan = &seen["scan"]["last"];
+    assert_eq!(scan["beams"], 361, "MoRo's scanner: {scan}");
+    let pairs = &seen["tf"]["last"]["pairs"];
+    assert_eq!(
+        pairs,
+        &serde_json::json!([["odom", "base_link"], ["base_link", "laser"]])
+    );
+    let volts = seen["battery_state"]["last"]["voltage"].as_f64().unwrap();
+    assert!((volts - moro.battery_full()).abs() < 0.5, "{volts}");
+}
+
+#[test]
+fn ilmrc_run_drives_ilmrc_sim_in_another_process_over_dds() {
+    let task = scratch("sim_goal.ilmr");
+    let trace = scratch("sim_goal.jsonl");
+    std::fs::write(&task, "speed(0.4)\nm=gotoxy(2,1)\nwait(m)\n").unwrap();
+    let (ran, _) = beside_the_simulator(
+        &[
+            "--ros-namespace",
+            "/r2",
+            "--world",
+            "empty",
+            "--start",
+            "0,0,0",
+        ],
+        &[
+            env!("CARGO_BIN_EXE_ilmrc"),
+            "run",
+            "--robot",
+            "ros2",
+            "--ros-loopback",
+            "--ros-namespace",
+            "/r2",
+            "--max-time",
+            "40",
+            "--trace",
+            trace.to_str().unwrap(),
+            task.to_str().unwrap(),
+        ],
+    );
+    let summary = ran["stdout"].as_str().unwrap();
+    assert_eq!(ran["code"], 0, "{ran}");
+    assert!(summary.contains("finished: no command left"), "{summary}");
+    let text = std::fs::read_to_string(&trace).unwrap();
+    let _ = std::fs::remove_file(&task);
+    let _ = std::fs::remove_file(&trace);
+    let last: Value = text
+        .lines()
+        .map(|l| serde_json::from_str::<Value>(l).unwrap())
+        .filter(|e| e["event"] == "pose")
+        .last()
+        .expect("poses in the trace");
+    let (x, y) = (last["x"].as_f64().unwrap(), last["y"].as_f64().unwrap());
+    assert!(
+        (x - 2.0).hypot(y - 1.0) < 0.10,
+        "the simulated robot's odometry ends at ({x:.3}, {y:.3}), not at (2, 1)"
+    );
+}
+
 #[test]
 fn without_a_robot_the_run_says_what_it_waited_for_and_exits_2() {
     let out = Command::new("unshare")

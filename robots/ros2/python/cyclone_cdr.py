@@ -10,10 +10,10 @@ import sys
 import typing
 from dataclasses import asdict, fields, is_dataclass
 
-from ros2_msgs import BatteryState, LaserScan, Odometry, Twist
+from ros2_msgs import BatteryState, Clock, LaserScan, Odometry, TFMessage, TransformStamped, Twist
 
 
-TYPES = {t.__idl_typename__: t for t in [Twist, Odometry, LaserScan, BatteryState]}
+TYPES = {t.__idl_typename__: t for t in [Twist, Odometry, LaserScan, BatteryState, TFMessage, Clock]}
 
 
 def build(cls, value):
@@ -23,7 +23,11 @@ def build(cls, value):
     for f in fields(cls):
         v = value[f.name]
         hint = hints[f.name]
-        args[f.name] = build(hint, v) if isinstance(hint, type) and is_dataclass(hint) else v
+        if isinstance(hint, type) and is_dataclass(hint):
+            v = build(hint, v)
+        elif f.name == "transforms":
+            v = [build(TransformStamped, t) for t in v]
+        args[f.name] = v
     return cls(**args)
 
 

@@ -6,7 +6,10 @@
 use ilmr_hal::{Pose, Scan};
 use ilmr_model::RobotModel;
 
-use crate::msg::{LaserScan, Odometry, Twist, Vector3};
+use crate::msg::{
+    BatteryState, Header, LaserScan, Odometry, Point, Pose as RosPose, Quaternion, Time, Transform,
+    TransformStamped, Twist, Vector3,
+};
 
 /// What `cmd_vel` may ask of the robot: the model's limits, the one source of them.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -126,10 +129,134 @@ pub fn battery_voltage(voltage: f32) -> Option<f64> {
     v.is_finite().then_some(v)
 }
 
+/// What a robot driver makes of a `cmd_vel`: the speed setpoint (`linear.x`) and the
+/// curvature (`angular.z / linear.x`), within its model's limits. A twist that turns
+/// on the spot (no `linear.x`) has no curvature a car-like robot can drive: it stands.
+/// A value that is not a number stops the robot.
+pub fn setpoint(twist: &Twist, limits: Limits) -> (f64, f64) {
+    let (v, w) = (twist.linear.x, twist.angular.z);
+    if !v.is_finite() || !w.is_finite() {
+        return (0.0, 0.0);
+    }
+    let v = v.clamp(-limits.max_speed, limits.max_speed);
+    if v.abs() < AT_REST {
+        return (v, 0.0);
+    }
+    (
+        v,
+        (w / v).clamp(-limits.max_curvature, limits.max_curvature),
+    )
+}
+
+/// A robot's state as `nav_msgs/Odometry`: the pose in `frame` (`odom`), the speed and
+/// turn rate in `child` (`base_link`).
+pub fn odometry(
+    pose: Pose,
+    speed: f64,
+    curvature: f64,
+    stamp: Time,
+    frame: &str,
+    child: &str,
+) -> Odometry {
+    let mut o = Odometry {
+        header: Header {
+            stamp,
+            frame_id: frame.to_string(),
+        },
+        child_frame_id: child.to_string(),
+        ..Odometry::default()
+    };
+    o.pose.pose = RosPose {
+        position: Point {
+            x: pose.x,
+            y: pose.y,
+            z: 0.0,
+        },
+        orientation: Quaternion::from_yaw(pose.h),
+    };
+    o.twist.twist.linear.x = speed;
+    o.twist.twist.angular.z = speed * curvature;
+    o
+}
+
+/// `child` at `pose` in `parent`, for `tf`.
+pub fn transform(pose: Pose, stamp: Time, parent: &str, child: &str) -> TransformStamped {
+    TransformStamped {
+        header: Header {
+            stamp,
+            frame_id: parent.to_string(),
+        },
+        child_frame_id: child.to_string(),
+        transform: Transform {
+            translation: Vector3 {
+                x: pose.x,
+                y: pose.y,
+                z: 0.0,
+            },
+            rotation: Quaternion::from_yaw(pose.h),
+        },
+    }
+}
+
+/// A HAL-style scan (a beam that found nothing reads `max_range`) as REP 117 says it:
+/// such a beam is `+inf`.
+pub fn laser_scan(scan: &Scan, max_range: f64, period: f64, stamp: Time, frame: &str) -> LaserScan {
+    let n = scan.ranges.len();
+    LaserScan {
+        header: Header {
+            stamp,
+            frame_id: frame.to_string(),
+        },
+        angle_min: scan.angle_min as f32,
+        angle_max: (scan.angle_min + n.saturating_sub(1) as f64 * scan.angle_step) as f32,
+        angle_increment: scan.angle_step as f32,
+        time_increment: 0.0,
+        scan_time: period as f32,
+        range_min: 0.0,
+        range_max: max_range as f32,
+        ranges: scan
+            .ranges
+            .iter()
+            .map(|&r| {
+                if r >= max_range {
+                    f32::INFINITY
+                } else {
+                    r as f32
+                }
+            })
+            .collect(),
+        intensities: Vec::new(),
+    }
+}
+
+/// A battery of `voltage` volts, the rest not measured (NaN, as the message defines).
+pub fn battery_state(voltage: f64, percentage: f64, stamp: Time, frame: &str) -> BatteryState {
+    let nan = f32::NAN;
+    BatteryState {
+        header: Header {
+            stamp,
+            frame_id: frame.to_string(),
+        },
+        voltage: voltage as f32,
+        temperature: nan,
+        current: nan,
+        charge: nan,
+        capacity: nan,
+        design_capacity: nan,
+        percentage: percentage.clamp(0.0, 1.0) as f32,
+        // POWER_SUPPLY_STATUS_DISCHARGING, _HEALTH_UNKNOWN, _TECHNOLOGY_UNKNOWN
+        power_supply_status: 2,
+        power_supply_health: 0,
+        power_supply_technology: 0,
+        present: true,
+        ..BatteryState::default()
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::msg::{Header, Point, Pose as RosPose, PoseWithCovariance, Quaternion, Time};
+    use crate::msg::PoseWithCovariance;
 
     fn moro() -> Limits {
         Limits::of(&RobotModel::builtin("moro").unwrap())
@@ -241,5 +368,58 @@ mod tests {
         assert_eq!(s.device, "scanner");
         assert_eq!(battery_voltage(f32::NAN), None);
         assert_eq!(battery_voltage(24.5), Some(24.5));
+    }
+
+    #[test]
+    fn a_driver_reads_back_the_setpoint_it_was_sent() {
+        let limits = moro();
+        for (v, k) in [(0.4, -0.5), (-0.2, 1.0), (0.8, 1.333333), (0.0, 0.0)] {
+            let (v2, k2) = setpoint(&cmd_vel(v, k, limits), limits);
+            assert!(
+                (v2 - v).abs() < 1e-12 && (k2 - k).abs() < 1e-9,
+                "{v} {k}: {v2} {k2}"
+            );
+        }
+        let spin = Twist {
+            angular: Vector3 {
+                z: 1.0,
+                ..Vector3::default()
+            },
+            ..Twist::default()
+        };
+        assert_eq!(
+            setpoint(&spin, limits),
+            (0.0, 0.0),
+            "a car cannot spin in place"
+        );
+        let mut wild = spin;
+        wild.linear.x = f64::NAN;
+        assert_eq!(setpoint(&wild, limits), (0.0, 0.0));
+        wild.linear.x = 9.0;
+        wild.angular.z = 900.0;
+        let (v, k) = setpoint(&wild, limits);
+        assert_eq!((v, k), (limits.max_speed, limits.max_curvature));
+    }
+
+    #[test]
+    fn what_a_robot_publishes_reads_back_as_what_it_is() {
+        let pose = Pose::new(1.5, -2.0, 2.5);
+        let o = super::odometry(pose, 0.4, -0.5, Time::from_secs(3.25), "odom", "base_link");
+        let m = motion(&o).unwrap();
+        assert!((m.pose.x - 1.5).abs() < 1e-12 && (m.pose.h - 2.5).abs() < 1e-12);
+        assert!((m.speed - 0.4).abs() < 1e-12 && (m.curvature + 0.5).abs() < 1e-12);
+        assert_eq!(m.t, 3.25);
+        let hal = Scan {
+            device: "scanner".into(),
+            t: 0.0,
+            angle_min: -1.0,
+            angle_step: 0.5,
+            ranges: vec![1.0, 30.0, 2.5, 30.0, 0.25],
+        };
+        let ros = laser_scan(&hal, 30.0, 0.25, Time::default(), "laser");
+        assert_eq!(ros.ranges[1], f32::INFINITY, "REP 117: no return is +inf");
+        assert_eq!(ros.angle_max, 1.0);
+        let back = scan(&ros, "scanner");
+        assert_eq!(back.ranges, hal.ranges);
     }
 }

@@ -12,6 +12,7 @@
 //! Decoding never panics and never allocates more than the message's own bytes allow:
 //! a malformed, truncated or oversized message is an error value, logged and dropped.
 
+pub mod base;
 pub mod cdr;
 pub mod convert;
 pub mod dds;

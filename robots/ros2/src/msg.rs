@@ -257,3 +257,32 @@ mod tests {
         assert_eq!(Time::from_secs(1.999_999_999_9).nanosec, 999_999_999);
     }
 }
+
+/// `geometry_msgs/Transform`: where a child frame is in its parent.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+pub struct Transform {
+    pub translation: Vector3,
+    pub rotation: Quaternion,
+}
+
+/// `geometry_msgs/TransformStamped`: `child_frame_id` in `header.frame_id`.
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+pub struct TransformStamped {
+    pub header: Header,
+    pub child_frame_id: String,
+    pub transform: Transform,
+}
+
+/// `tf2_msgs/TFMessage`, on `tf` (and `tf_static`).
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+pub struct TFMessage {
+    pub transforms: Vec<TransformStamped>,
+}
+ros_message!(TFMessage, "tf2_msgs::msg::dds_::TFMessage_");
+
+/// `rosgraph_msgs/Clock`, on `/clock`: simulated time for nodes with `use_sim_time`.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+pub struct Clock {
+    pub clock: Time,
+}
+ros_message!(Clock, "rosgraph_msgs::msg::dds_::Clock_");

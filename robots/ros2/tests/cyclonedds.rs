@@ -99,6 +99,32 @@ fn battery() -> BatteryState {
     }
 }
 
+fn tf() -> TFMessage {
+    let at = |frame: &str, child: &str, x: f64, yaw: f64| TransformStamped {
+        header: header(5, frame),
+        child_frame_id: child.into(),
+        transform: Transform {
+            translation: Vector3 { x, y: -1.5, z: 0.0 },
+            rotation: Quaternion::from_yaw(yaw),
+        },
+    };
+    TFMessage {
+        transforms: vec![
+            at("odom", "base_link", 2.0, 0.3),
+            at("base_link", "laser", 0.45, 0.0),
+        ],
+    }
+}
+
+fn clock() -> Clock {
+    Clock {
+        clock: Time {
+            sec: 12,
+            nanosec: 340_000_000,
+        },
+    }
+}
+
 fn hex(bytes: &[u8]) -> String {
     bytes.iter().map(|b| format!("{b:02x}")).collect()
 }
@@ -144,6 +170,8 @@ fn cyclone_dds_writes_and_reads_what_we_write_and_read() {
         request(&odometry()),
         request(&scan()),
         request(&battery()),
+        request(&tf()),
+        request(&clock()),
     ];
     let mut child = Command::new("python3")
         .arg(script)
@@ -188,4 +216,6 @@ fn cyclone_dds_writes_and_reads_what_we_write_and_read() {
     assert_eq!(decode::<Odometry>(&ours(1)).unwrap(), odometry());
     assert_eq!(decode::<LaserScan>(&ours(2)).unwrap(), scan());
     assert_eq!(decode::<BatteryState>(&ours(3)).unwrap(), battery());
+    assert_eq!(decode::<TFMessage>(&ours(4)).unwrap(), tf());
+    assert_eq!(decode::<Clock>(&ours(5)).unwrap(), clock());
 }
