@@ -408,9 +408,9 @@ fn ilmrc_run_drives_ilmrc_sim_in_another_process_over_dds() {
     let _ = std::fs::remove_file(&trace);
     let last: Value = text
         .lines()
+        .rev()
         .map(|l| serde_json::from_str::<Value>(l).unwrap())
-        .filter(|e| e["event"] == "pose")
-        .last()
+        .find(|e| e["event"] == "pose")
         .expect("poses in the trace");
     let (x, y) = (last["x"].as_f64().unwrap(), last["y"].as_f64().unwrap());
     assert!(
