@@ -93,14 +93,15 @@ pub fn render<C: Clock>(
     }
     if let Some(l) = vm.hal().link_stats() {
         s.push_str(&format!(
-            "  ros 2 link      {} cmd_vel sent; odom {} taken, {} dropped ({} not numbers); scan {} taken, {} dropped; battery {} taken\n",
+            "  ros 2 link      {} cmd_vel sent; odom {} taken, {} dropped ({} not numbers); scan {} taken, {} dropped; battery {} taken; at most {} of a topic in a tick\n",
             l.twists_sent,
             l.odometry.0,
             l.odometry.1,
             l.odometry_unusable,
             l.scans.0,
             l.scans.1,
-            l.battery.0
+            l.battery.0,
+            l.most_in_one_tick
         ));
     }
     if k.lines_accepted + k.lines_rejected > 0 {

@@ -164,6 +164,7 @@ impl Participant {
             name: name.clone(),
             taken: 0,
             dropped: 0,
+            most: 0,
             last_error: None,
         })
     }
@@ -199,6 +200,8 @@ pub struct Reader<M: RosMessage> {
     name: TopicName,
     taken: u64,
     dropped: u64,
+    /// The most samples one drain handed out or dropped.
+    most: usize,
     last_error: Option<String>,
 }
 
@@ -222,6 +225,7 @@ impl<M: RosMessage + 'static> Reader<M> {
         }
         self.taken += seen.taken as u64;
         self.dropped += seen.dropped as u64;
+        self.most = self.most.max(seen.taken + seen.dropped);
         seen
     }
 
@@ -232,6 +236,11 @@ impl<M: RosMessage + 'static> Reader<M> {
     /// Samples taken and dropped since the reader was made.
     pub fn counts(&self) -> (u64, u64) {
         (self.taken, self.dropped)
+    }
+
+    /// The most samples one [`Reader::drain`] took or dropped.
+    pub fn most_in_one_drain(&self) -> usize {
+        self.most
     }
 
     /// Why the last dropped sample was dropped.

@@ -73,6 +73,9 @@ pub struct LinkStats {
     pub battery: (u64, u64),
     /// Odometry samples that decoded but held NaN or infinity.
     pub odometry_unusable: u64,
+    /// The most samples of one topic read in one tick (at most
+    /// [`MAX_SAMPLES_PER_TICK`]).
+    pub most_in_one_tick: usize,
 }
 
 struct Endpoints {
@@ -248,6 +251,14 @@ impl Ros2Robot {
             scans: self.link.scan.counts(),
             battery: self.link.battery.counts(),
             odometry_unusable: self.odometry_unusable,
+            most_in_one_tick: [
+                self.link.odom.most_in_one_drain(),
+                self.link.scan.most_in_one_drain(),
+                self.link.battery.most_in_one_drain(),
+            ]
+            .into_iter()
+            .max()
+            .unwrap_or(0),
         }
     }
 }
