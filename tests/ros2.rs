@@ -290,6 +290,53 @@ fn a_scan_gap_holds_the_robot_with_repeated_zeros_and_it_goes_on_when_scans_retu
     within_the_model(&d);
 }
 
+#[test]
+fn the_shell_drives_a_ros_2_robot_as_run_does() {
+    let root = support::root();
+    let task = scratch("shell.ilmr");
+    std::fs::write(&task, "speed(0.4)\ngotoxy(2,1)\n").unwrap();
+    // The shell takes its task, then `:status` and `:quit` from a pipe, after the
+    // robot has had time to get there.
+    let shell = format!(
+        "(sleep 10; echo :status; echo :quit) | {} shell --robot ros2 --ros-loopback \
+         --ros-namespace /s1 --task {}",
+        env!("CARGO_BIN_EXE_ilmrc"),
+        task.display()
+    );
+    let out = Command::new("unshare")
+        .arg("-n")
+        .arg("python3")
+        .arg(root.join("robots/ros2/python/netns_run.py"))
+        .args([
+            "--timeout",
+            "60",
+            "--robot-arg=--namespace=/s1",
+            "--",
+            "sh",
+            "-c",
+        ])
+        .arg(&shell)
+        .current_dir(&root)
+        .env("NO_COLOR", "1")
+        .output()
+        .unwrap();
+    let _ = std::fs::remove_file(&task);
+    let report: Value = serde_json::from_slice(&out.stdout)
+        .unwrap_or_else(|e| panic!("{e}: {}", String::from_utf8_lossy(&out.stderr)));
+    let shown = report["ilmrc"]["stdout"].as_str().unwrap();
+    assert_eq!(report["ilmrc"]["code"], 0, "{report}");
+    assert!(
+        shown.starts_with("ILMR shell: moro in ROS 2 namespace /s1"),
+        "{shown}"
+    );
+    let pose = &report["robot"]["pose"];
+    let (x, y) = (pose[0].as_f64().unwrap(), pose[1].as_f64().unwrap());
+    assert!(
+        (x - 2.0).hypot(y - 1.0) < 0.10,
+        "the robot ended at ({x:.3}, {y:.3})\n{shown}"
+    );
+}
+
 /// A Cyclone peer that publishes bad samples under the robot's namespace.
 fn hostile(mode: &str) -> String {
     let script = support::root().join("robots/ros2/python/cyclone_hostile.py");

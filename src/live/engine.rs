@@ -12,13 +12,13 @@ use ilmr_compiler::Diagnostic;
 use ilmr_compiler::lower::{LineOptions, lower_line_warned};
 use ilmr_hal::Pose;
 use ilmr_model::RobotModel;
-use ilmr_sim::SimRobot;
 use ilmr_stdlib::VarKind;
 use ilmr_vm::bytecode::BlockId;
 use ilmr_vm::runtime::trace::fmt_num;
 use ilmr_vm::{Activity, LineError, ModuleBuilder, SimClock, VarRecord, Vm};
 
 use super::guard;
+use crate::run::backend::{AnyRobot, Robot};
 
 /// What a front end asks of the VM thread.
 pub enum Job {
@@ -90,7 +90,8 @@ pub struct LiveCommand {
 pub struct Status {
     pub t: f64,
     pub ticks: u64,
-    /// Ground truth, world frame.
+    /// Ground truth in the world frame for a simulated robot; a ROS 2 robot's own
+    /// odometry in the task's frame.
     pub pose: Pose,
     pub speed: f64,
     pub curvature: f64,
@@ -106,13 +107,13 @@ pub struct Status {
 pub struct Engine {
     /// The VM's clock is logical; the engine keeps it to the wall clock itself, so that
     /// it can wait for jobs and ticks at once (`RealClock` would sleep in `tick`).
-    vm: Vm<SimRobot, SimClock>,
+    vm: Vm<AnyRobot, SimClock>,
     model: RobotModel,
     subscribers: Vec<(u64, SyncSender<String>)>,
 }
 
 impl Engine {
-    pub fn new(vm: Vm<SimRobot, SimClock>, model: RobotModel) -> Engine {
+    pub fn new(vm: Vm<AnyRobot, SimClock>, model: RobotModel) -> Engine {
         Engine {
             vm,
             model,
@@ -259,7 +260,6 @@ impl Engine {
     }
 
     fn status(&self) -> Status {
-        let sim = self.vm.hal().sim();
         let module = self.vm.module();
         let live = self
             .vm
@@ -293,12 +293,13 @@ impl Engine {
             .filter(|u| u.skill)
             .map(|u| u.name.clone())
             .collect();
+        let motion = self.vm.hal().true_motion().unwrap_or_default();
         Status {
             t: self.vm.time(),
             ticks: self.vm.ticks(),
-            pose: self.vm.hal().true_pose(),
-            speed: sim.true_speed(),
-            curvature: sim.true_curvature(),
+            pose: self.vm.hal().true_pose().unwrap_or_default(),
+            speed: motion.0,
+            curvature: motion.1,
             activity: self.vm.activity(),
             finished: self.vm.finished(),
             live,
@@ -355,8 +356,17 @@ mod tests {
 
     /// MoRo in the empty world with no task, as `serve` starts without `--task`.
     fn engine() -> Engine {
-        let opened =
-            super::super::robot::open("moro", Some("empty"), 0).unwrap_or_else(|e| panic!("{e}"));
+        let args = super::super::RobotArgs {
+            robot: "moro".into(),
+            model: None,
+            world: Some("empty".into()),
+            start: None,
+            seed: 0,
+            skills: None,
+            task: None,
+            ros2: crate::ros2::Ros2Args::default(),
+        };
+        let opened = super::super::robot::open(&args).unwrap_or_else(|e| panic!("{e}"));
         let Ok(Compiled::Module(module)) = super::super::no_task(&opened.spec, None) else {
             panic!("the empty task compiles");
         };

@@ -1,4 +1,4 @@
-//! A simulated robot running in real time on its own thread, driven by jobs: what
+//! A robot (simulated or ROS 2) running in real time on its own thread, driven by jobs: what
 //! `ilmrc serve` (for planners over TCP) and `ilmrc shell` (for a person at a prompt)
 //! both put in front of the dissertation's language process.
 
@@ -20,13 +20,22 @@ use engine::{Engine, Job};
 /// The robot and task options `serve` and `shell` share.
 #[derive(clap::Args)]
 pub struct RobotArgs {
-    /// The simulated robot: `moro`, `workpartner` or a ROBO.INI path.
+    /// The robot: `moro`, `workpartner` or a ROBO.INI path (simulated), or `ros2` (a
+    /// ROS 2 robot over DDS, checked against `--model`).
     #[arg(long, default_value = "moro")]
     pub robot: String,
-    /// The robot's world: `office`, `yard`, `empty` or a world file (default: office
-    /// for MoRo, yard for Workpartner).
+    /// With `--robot ros2`: the model the lines are checked against and whose limits
+    /// bound the robot (default moro).
+    #[arg(long)]
+    pub model: Option<String>,
+    /// The simulated robot's world: `office`, `yard`, `empty` or a world file (default:
+    /// office for MoRo, yard for Workpartner).
     #[arg(long)]
     pub world: Option<String>,
+    /// Where the simulated robot starts, `X,Y,HEADING` in metres and degrees (default:
+    /// as `ilmrc run`).
+    #[arg(long, allow_hyphen_values = true)]
+    pub start: Option<String>,
     /// Seed of the simulated robot's noise.
     #[arg(long, default_value_t = 0)]
     pub seed: u64,
@@ -37,6 +46,8 @@ pub struct RobotArgs {
     /// waits for lines.
     #[arg(long)]
     pub task: Option<PathBuf>,
+    #[command(flatten)]
+    pub ros2: crate::ros2::Ros2Args,
 }
 
 /// The longest line `serve` takes as one request and `shell` as one typed line, bytes;
@@ -56,7 +67,7 @@ pub struct Live {
 /// Opens the robot, compiles the task (or an empty one) and starts the VM's thread;
 /// `None` when the task has errors (they were printed).
 pub fn start(args: &RobotArgs) -> Result<Option<Live>, String> {
-    let opened = robot::open(&args.robot, args.world.as_deref(), args.seed)?;
+    let opened = robot::open(args)?;
     let module = guard::on_compiler_stack("compiling the task", || match &args.task {
         Some(task) => compile(task, &opened.spec, args.skills.as_deref(), |_| Vec::new()),
         None => no_task(&opened.spec, args.skills.as_deref()),

@@ -1,12 +1,14 @@
-//! The simulated robot `ilmrc serve` and `ilmrc shell` drive: `--robot`, `--world` and
-//! `--seed` to a model, a `SimRobot` in its world, and the VM's `Config`, by `run`'s
-//! own setup.
+//! The robot `ilmrc serve` and `ilmrc shell` drive, chosen as `ilmrc run` chooses it
+//! (`run`'s own setup: the same robots, models, worlds, start poses and `--start`): a
+//! simulated robot in its world, or a ROS 2 robot over DDS. Both run in real time.
 
 use ilmr_model::RobotModel;
-use ilmr_sim::SimRobot;
 use ilmr_vm::{Config, TraceLevel};
 
-use crate::run::setup::{body_of, check_faults, default_world, load_world, vm_config};
+use super::RobotArgs;
+use crate::run::backend::AnyRobot;
+use crate::run::scenario::Scenario;
+use crate::run::setup::{self, Backend, Choice, check_faults, vm_config};
 
 /// Ticks between pose samples in the event stream: 10 Hz.
 const POSE_EVERY: u32 = 10;
@@ -15,48 +17,56 @@ pub struct Opened {
     /// `moro`, `workpartner` or the ROBO.INI path: what the task is checked against.
     pub spec: String,
     pub model: RobotModel,
-    pub robot: SimRobot,
+    pub robot: AnyRobot,
     pub config: Config,
-    /// The world's name or file.
+    /// Where the robot is: the world's name or file, or its ROS 2 namespace.
     pub world: String,
 }
 
-pub fn open(spec: &str, world: Option<&str>, seed: u64) -> Result<Opened, String> {
+pub fn open(args: &RobotArgs) -> Result<Opened, String> {
+    let spec = args.robot.as_str();
     if ["none", "scripted"]
         .iter()
         .any(|n| n.eq_ignore_ascii_case(spec))
     {
         return Err(format!(
-            "--robot {spec}: a live robot is a simulated one; use moro, workpartner or a \
-             path to a ROBO.INI file"
+            "--robot {spec}: a live robot is a simulated one or a ROS 2 one; use moro, \
+             workpartner, ros2 or a path to a ROBO.INI file"
         ));
     }
-    let model = crate::inputs::load_robot_model(spec)?;
-    let kind = body_of(spec, &model);
-    let world_spec = world.unwrap_or(default_world(kind));
-    let loaded = load_world(world_spec)?;
-    check_faults(&loaded, &model, kind, None, 0)?;
-    let loaded = loaded.world;
-    let body = ilmr_sim::config_from_model(&model, kind);
-    let start = loaded.start;
-    let robot = SimRobot::new(model.clone(), kind, loaded, seed).map_err(|e| {
-        format!(
-            "the robot cannot start at ({:.2}, {:.2}, {:.0} deg) in `{world_spec}`: {e}",
-            start.x,
-            start.y,
-            start.h.to_degrees()
-        )
+    let setup = setup::choose(&Choice {
+        robot: spec,
+        model: args.model.as_deref(),
+        world: args.world.as_deref(),
+        start: args.start.as_deref(),
+        ros2: &args.ros2,
     })?;
+    let (world, body) = match (setup.backend, &setup.world, &setup.ros2) {
+        (Backend::Sim(kind), Some(loaded), _) => {
+            check_faults(loaded, &setup.model, kind, None, 0)?;
+            let body = ilmr_sim::config_from_model(&setup.model, kind);
+            (loaded.name.clone(), Some(body))
+        }
+        (Backend::Ros2, _, Some(ros)) => (
+            format!(
+                "ROS 2 namespace {}, DDS domain {}",
+                ros.namespace, ros.domain_id
+            ),
+            None,
+        ),
+        _ => return Err(format!("--robot {spec} is not a live robot")),
+    };
+    let robot = setup::open(&setup, &Scenario::default(), args.seed)?;
     let config = Config {
         trace: TraceLevel::Full,
         pose_every: POSE_EVERY,
-        ..vm_config(&model, Some(&body))
+        ..vm_config(&setup.model, body.as_ref())
     };
     Ok(Opened {
-        spec: spec.to_string(),
-        model,
+        spec: setup.model_spec,
+        model: setup.model,
         robot,
         config,
-        world: world_spec.to_string(),
+        world,
     })
 }

@@ -228,13 +228,14 @@ impl Robot for NoRobot {
     }
 }
 
-/// A backend chosen at run time, behind one type for the VM.
-pub struct AnyRobot(Box<dyn Robot>);
+/// A backend chosen at run time, behind one type for the VM; `Send`, since `serve` and
+/// `shell` run it on the VM's own thread.
+pub struct AnyRobot(Box<dyn Robot + Send>);
 
 forward_hal!(AnyRobot, 0);
 
 impl AnyRobot {
-    pub fn new(robot: impl Robot + 'static) -> AnyRobot {
+    pub fn new(robot: impl Robot + Send + 'static) -> AnyRobot {
         AnyRobot(Box::new(robot))
     }
 }

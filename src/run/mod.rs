@@ -4,11 +4,11 @@
 //! A run ends when no command is left, or when nothing is left but `if` guards that
 //! wait and the robot is at rest, or at `--max-time`; the summary says which.
 
-mod backend;
+pub(crate) mod backend;
 mod mcap;
 mod progress;
 mod record;
-mod scenario;
+pub(crate) mod scenario;
 mod session;
 pub(crate) mod setup;
 mod summary;
