@@ -2,6 +2,7 @@
 
 mod build;
 mod check;
+mod fleet;
 mod fmt;
 mod inputs;
 mod live;
@@ -51,6 +52,8 @@ enum Cmd {
     /// Run a simulated robot in real time as a ROS 2 robot (`--ros2`), for any ROS 2
     /// node or `run --robot ros2` to drive.
     Sim(Box<sim::SimArgs>),
+    /// Start a fleet of robots (a fleet file) and show each robot's state.
+    Fleet(fleet::FleetArgs),
     /// Redraw a finished run from its trace, without running it.
     Replay(replay::ReplayArgs),
     /// Print the syntax tree of a file, one node per line.
@@ -80,6 +83,7 @@ fn main() -> ExitCode {
         Cmd::Disasm(args) => build::disasm(args),
         Cmd::Run(args) => run::run(*args),
         Cmd::Sim(args) => sim::run(*args),
+        Cmd::Fleet(args) => fleet::run(args),
         Cmd::Replay(args) => replay::run(args),
         Cmd::Serve(args) => serve::run(args),
         Cmd::Shell(args) => shell::run(args),

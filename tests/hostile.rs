@@ -254,6 +254,15 @@ fn the_limits_table_quotes_the_constants() {
         ("MAX_MODULE_BYTES", mib(ilmr_files::MAX_MODULE_BYTES)),
         ("MAX_TRACE_BYTES", mib(ilmr_files::MAX_TRACE_BYTES)),
         ("MAX_HISTORY_BYTES", mib(ilmr_files::MAX_HISTORY_BYTES)),
+        ("MAX_FLEET_BYTES", mib(ilmr_files::MAX_FLEET_BYTES)),
+        (
+            "MAX_MESSAGE_BYTES",
+            mib(ilmr_ros2::MAX_MESSAGE_BYTES as u64),
+        ),
+        (
+            "MAX_SAMPLES_PER_TICK",
+            format!("{} samples", ilmr_ros2::robot::MAX_SAMPLES_PER_TICK),
+        ),
         (
             "MAX_SECTION_ENTRIES",
             count(ilmr_model::MAX_SECTION_ENTRIES),

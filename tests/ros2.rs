@@ -593,6 +593,53 @@ fn ilmrc_run_drives_ilmrc_sim_in_another_process_over_dds() {
 }
 
 #[test]
+fn a_fleet_of_a_simulated_robot_and_a_launched_ros_2_one_runs_both_tasks_to_the_end() {
+    let dir = scratch("fleet");
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(dir.join("go.ilmr"), "speed(0.4)\nm=gotoxy(2,1)\nwait(m)\n").unwrap();
+    std::fs::write(
+        dir.join("fleet.toml"),
+        "[[robot]]\nname = \"here\"\nrobot = \"moro\"\nworld = \"empty\"\n\
+         start = \"0,0,0\"\ntask = \"go.ilmr\"\n\n\
+         [[robot]]\nname = \"there\"\nrobot = \"ros2\"\nmodel = \"moro\"\nloopback = true\n\
+         launch = true\nworld = \"empty\"\nstart = \"0,0,0\"\ntask = \"go.ilmr\"\n",
+    )
+    .unwrap();
+    let out = Command::new("unshare")
+        .args(["-n", "sh", "-c"])
+        .arg(format!(
+            "ip link set lo up multicast on && ip route add 224.0.0.0/4 dev lo && \
+             exec timeout 90 {} fleet {} --every 1 --max-time 60",
+            env!("CARGO_BIN_EXE_ilmrc"),
+            dir.join("fleet.toml").display()
+        ))
+        .output()
+        .unwrap();
+    let _ = std::fs::remove_dir_all(&dir);
+    let shown = String::from_utf8_lossy(&out.stdout);
+    assert_eq!(
+        out.status.code(),
+        Some(0),
+        "{shown}{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(
+        shown.ends_with("fleet: every task has finished\n"),
+        "{shown}"
+    );
+    // The last table: both robots at the goal, finished.
+    let last: Vec<&str> = shown.lines().rev().skip(1).take(2).collect();
+    for row in last {
+        let cells: Vec<&str> = row.split_whitespace().collect();
+        let (x, y): (f64, f64) = (cells[2].parse().unwrap(), cells[3].parse().unwrap());
+        assert!(
+            (x - 2.0).hypot(y - 1.0) < 0.10 && row.ends_with("finished"),
+            "{row}\n{shown}"
+        );
+    }
+}
+
+#[test]
 fn without_a_robot_the_run_says_what_it_waited_for_and_exits_2() {
     let out = Command::new("unshare")
         .args(["-n", "sh", "-c"])

@@ -529,3 +529,104 @@ fn a_task_nested_past_the_limits_is_a_clear_error_before_listening() {
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// A fleet file of two simulated robots in the empty world, in a scratch directory.
+fn two_robot_fleet(test: &str) -> std::path::PathBuf {
+    let fleet = std::env::temp_dir().join(format!(
+        "ilmr-serve-fleet-{}-{test}.toml",
+        std::process::id()
+    ));
+    std::fs::write(
+        &fleet,
+        "[[robot]]\nname = \"a\"\nrobot = \"moro\"\nworld = \"empty\"\nstart = \"0,0,0\"\n\n\
+         [[robot]]\nname = \"b\"\nrobot = \"moro\"\nworld = \"empty\"\nstart = \"0,5,0\"\n",
+    )
+    .unwrap();
+    fleet
+}
+
+#[test]
+fn a_fleet_server_routes_each_request_to_the_robot_it_names() {
+    let fleet = two_robot_fleet("route");
+    let server = Server::start(&["--fleet", fleet.to_str().unwrap()]);
+    let mut c = server.connect();
+    let to_b = c.ask(r#"{"robot": "b", "ilmr": "goahead(1)", "id": 1}"#);
+    assert_eq!(to_b["ok"], json!(true), "{to_b}");
+    assert_eq!((&to_b["robot"], &to_b["id"]), (&json!("b"), &json!(1)));
+    // Only b moves.
+    let deadline = Instant::now() + PATIENCE;
+    loop {
+        let all = c.ask(r#"{"status": true}"#);
+        let (a, b) = (&all["robots"]["a"], &all["robots"]["b"]);
+        assert!(a["ok"] == json!(true) && b["ok"] == json!(true), "{all}");
+        if b["speed"].as_f64().unwrap() > 0.05 {
+            assert_eq!(a["speed"].as_f64().unwrap(), 0.0, "{all}");
+            break;
+        }
+        assert!(Instant::now() < deadline, "b never moved: {all}");
+        std::thread::sleep(Duration::from_millis(100));
+    }
+    let one = c.ask(r#"{"robot": "a", "status": true}"#);
+    assert_eq!(one["robot"], json!("a"));
+    assert!(one["pose"].is_object(), "{one}");
+    for (request, says) in [
+        (r#"{"ilmr": "goahead(1)"}"#, "name the robot"),
+        (r#"{"robot": "c", "ilmr": "goahead(1)"}"#, "no robot `c`"),
+        (r#"{"robot": 7, "status": true}"#, "robot's name"),
+    ] {
+        let e = c.ask(request);
+        assert_eq!(e["ok"], json!(false), "{request}: {e}");
+        assert!(
+            e["error"].as_str().unwrap().contains(says),
+            "{request}: {e}"
+        );
+    }
+    let _ = std::fs::remove_file(&fleet);
+}
+
+#[test]
+fn a_fleet_subscriber_gets_every_robots_events_each_named() {
+    let fleet = two_robot_fleet("subscribe");
+    let server = Server::start(&["--fleet", fleet.to_str().unwrap()]);
+    let mut c = server.connect();
+    let sub = c.ask(r#"{"subscribe": "events"}"#);
+    assert_eq!(sub["robots"], json!(["a", "b"]), "{sub}");
+    let mut planner = server.connect();
+    for robot in ["a", "b"] {
+        let ok = planner.ask(&format!(
+            r#"{{"robot": "{robot}", "ilmr": "goahead(0.5)"}}"#
+        ));
+        assert_eq!(ok["ok"], json!(true), "{ok}");
+    }
+    for robot in ["a", "b"] {
+        let started = c.event_where(|e| e["event"] == "start" && e["robot"] == robot);
+        assert!(
+            started.is_some(),
+            "no start event of {robot}: {:?}",
+            c.events
+        );
+    }
+    let _ = std::fs::remove_file(&fleet);
+}
+
+#[test]
+fn a_single_robot_server_refuses_a_robots_name_and_fleet_with_robot_options() {
+    let server = Server::start(&[]);
+    let mut c = server.connect();
+    let e = c.ask(r#"{"robot": "a", "status": true}"#);
+    assert!(e["error"].as_str().unwrap().contains("one robot"), "{e}");
+    let out = Command::new(env!("CARGO_BIN_EXE_ilmrc"))
+        .args([
+            "serve",
+            "--listen",
+            "127.0.0.1:0",
+            "--fleet",
+            "x.toml",
+            "--robot",
+            "moro",
+        ])
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("cannot be used with"));
+}

@@ -1,5 +1,6 @@
 //! The one way the ILMR tools read a file they are given: task and skill sources,
-//! robot models, worlds, compiled modules, traces, scenarios and the shell's history.
+//! robot models, worlds, compiled modules, traces, scenarios, the shell's history and
+//! fleet files.
 //!
 //! A tool that reads `/dev/zero`, a FIFO or a file that keeps growing must not grow
 //! with it, and a directory or a device must get a clear message rather than an OS
@@ -39,6 +40,8 @@ pub const MAX_TRACE_BYTES: u64 = 256 * MIB;
 pub const MAX_SCENARIO_BYTES: u64 = 16 * MIB;
 /// The shell's `--history` file: rustyline keeps the last 100 lines.
 pub const MAX_HISTORY_BYTES: u64 = MIB;
+/// A fleet file (TOML): a few lines per robot, for at most a few dozen robots.
+pub const MAX_FLEET_BYTES: u64 = MIB;
 
 /// What a file holds, which sets its size limit and names it in messages.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -50,10 +53,11 @@ pub enum Kind {
     Trace,
     Scenario,
     History,
+    Fleet,
 }
 
 impl Kind {
-    pub const ALL: [Kind; 7] = [
+    pub const ALL: [Kind; 8] = [
         Kind::Source,
         Kind::RobotModel,
         Kind::World,
@@ -61,6 +65,7 @@ impl Kind {
         Kind::Trace,
         Kind::Scenario,
         Kind::History,
+        Kind::Fleet,
     ];
 
     /// The largest file of this kind, bytes.
@@ -73,6 +78,7 @@ impl Kind {
             Kind::Trace => MAX_TRACE_BYTES,
             Kind::Scenario => MAX_SCENARIO_BYTES,
             Kind::History => MAX_HISTORY_BYTES,
+            Kind::Fleet => MAX_FLEET_BYTES,
         }
     }
 
@@ -86,6 +92,7 @@ impl Kind {
             Kind::Trace => "MAX_TRACE_BYTES",
             Kind::Scenario => "MAX_SCENARIO_BYTES",
             Kind::History => "MAX_HISTORY_BYTES",
+            Kind::Fleet => "MAX_FLEET_BYTES",
         }
     }
 
@@ -99,6 +106,7 @@ impl Kind {
             Kind::Trace => "trace",
             Kind::Scenario => "scenario",
             Kind::History => "shell history",
+            Kind::Fleet => "fleet file",
         }
     }
 }

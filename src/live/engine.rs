@@ -36,13 +36,13 @@ pub enum Job {
     Status {
         reply: Sender<Status>,
     },
-    /// Send every event from now on to `out`, as trace lines. `first` makes the line
-    /// queued before the first event (the subscription's answer) from the VM's time;
-    /// then the engine acknowledges on `done`.
+    /// Send every event from now on to `out`, as trace lines. `first`, when given,
+    /// makes the line queued before the first event (the subscription's answer) from
+    /// the VM's time; then the engine acknowledges on `done`.
     Subscribe {
         conn: u64,
         out: SyncSender<String>,
-        first: Box<dyn FnOnce(f64) -> String + Send>,
+        first: Option<Box<dyn FnOnce(f64) -> String + Send>>,
         done: Sender<()>,
     },
     /// The front end has gone: stop sending to it.
@@ -110,6 +110,8 @@ pub struct Engine {
     vm: Vm<AnyRobot, SimClock>,
     model: RobotModel,
     subscribers: Vec<(u64, SyncSender<String>)>,
+    /// `"robot":"NAME",`, put first in every event of a robot of a fleet.
+    tag: Option<String>,
 }
 
 impl Engine {
@@ -118,7 +120,15 @@ impl Engine {
             vm,
             model,
             subscribers: Vec::new(),
+            tag: None,
         }
+    }
+
+    /// Names the robot in every event it sends, for subscribers of a fleet.
+    pub fn tagged(mut self, name: &str) -> Engine {
+        let name = serde_json::to_string(name).unwrap_or_else(|_| "\"\"".into());
+        self.tag = Some(format!("\"robot\":{name},"));
+        self
     }
 
     /// Runs until every sender of `jobs` is gone. Tick `n` is due `n` periods after the
@@ -185,9 +195,11 @@ impl Engine {
                 first,
                 done,
             } => {
-                if out.try_send(first(self.vm.time())).is_ok()
-                    && !self.subscribers.iter().any(|(c, _)| *c == conn)
-                {
+                let acknowledged = match first {
+                    Some(first) => out.try_send(first(self.vm.time())).is_ok(),
+                    None => true,
+                };
+                if acknowledged && !self.subscribers.iter().any(|(c, _)| *c == conn) {
                     self.subscribers.push((conn, out));
                 }
                 let _ = done.send(());
@@ -311,6 +323,14 @@ impl Engine {
     /// Sends a line to every subscriber. One that has gone, or has let its queue fill
     /// (it stopped reading), is dropped: the robot never waits for a front end.
     fn publish(&mut self, line: &str) {
+        let tagged;
+        let line = match (&self.tag, line.strip_prefix('{')) {
+            (Some(tag), Some(rest)) => {
+                tagged = format!("{{{tag}{rest}");
+                tagged.as_str()
+            }
+            _ => line,
+        };
         self.subscribers
             .retain(|(_, out)| match out.try_send(line.to_string()) {
                 Ok(()) => true,

@@ -18,7 +18,7 @@ use crate::build::{Compiled, compile, render_diagnostics};
 use engine::{Engine, Job};
 
 /// The robot and task options `serve` and `shell` share.
-#[derive(clap::Args)]
+#[derive(clap::Args, Debug)]
 pub struct RobotArgs {
     /// The robot: `moro`, `workpartner` or a ROBO.INI path (simulated), or `ros2` (a
     /// ROS 2 robot over DDS, checked against `--model`).
@@ -67,6 +67,11 @@ pub struct Live {
 /// Opens the robot, compiles the task (or an empty one) and starts the VM's thread;
 /// `None` when the task has errors (they were printed).
 pub fn start(args: &RobotArgs) -> Result<Option<Live>, String> {
+    start_named(args, None)
+}
+
+/// As [`start`], for a robot of a fleet: `name` is put in every event it sends.
+pub fn start_named(args: &RobotArgs, name: Option<&str>) -> Result<Option<Live>, String> {
     let opened = robot::open(args)?;
     let module = guard::on_compiler_stack("compiling the task", || match &args.task {
         Some(task) => compile(task, &opened.spec, args.skills.as_deref(), |_| Vec::new()),
@@ -79,6 +84,10 @@ pub fn start(args: &RobotArgs) -> Result<Option<Live>, String> {
     let vm = Vm::new(module, opened.robot, SimClock, opened.config).map_err(|e| e.to_string())?;
     let (jobs, queue) = mpsc::channel();
     let engine = Engine::new(vm, opened.model.clone());
+    let engine = match name {
+        Some(n) => engine.tagged(n),
+        None => engine,
+    };
     std::thread::Builder::new()
         .name("ilmr-vm".into())
         .stack_size(ilmr_compiler::limits::COMPILER_STACK)
@@ -105,5 +114,69 @@ fn no_task(robot: &str, skills: Option<&Path>) -> Result<Compiled, String> {
             print!("{}", render_diagnostics(&analysis, &problems));
             Ok(Compiled::Rejected)
         }
+    }
+}
+
+/// The robots a server drives, by name: one, or the robots of a fleet.
+pub struct Robots {
+    members: Vec<(String, Live)>,
+    /// A fleet's robots are addressed by name and name themselves in what they send.
+    fleet: bool,
+}
+
+impl Robots {
+    pub fn one(live: Live) -> Robots {
+        Robots {
+            members: vec![(String::new(), live)],
+            fleet: false,
+        }
+    }
+
+    pub fn fleet(members: Vec<(String, Live)>) -> Robots {
+        Robots {
+            members,
+            fleet: true,
+        }
+    }
+
+    pub fn is_fleet(&self) -> bool {
+        self.fleet
+    }
+
+    pub fn names(&self) -> impl Iterator<Item = &str> {
+        self.members.iter().map(|(n, _)| n.as_str())
+    }
+
+    pub fn all(&self) -> impl Iterator<Item = (&str, &Live)> {
+        self.members.iter().map(|(n, l)| (n.as_str(), l))
+    }
+
+    /// The robot a request is for: the one named, or the only one.
+    pub fn route(&self, name: Option<&str>) -> Result<&Live, String> {
+        match (name, &self.members[..]) {
+            (None, [(_, only)]) if !self.fleet => Ok(only),
+            (Some(_), [_]) if !self.fleet => {
+                Err("this server drives one robot: send requests without \"robot\"".into())
+            }
+            (None, _) => Err(format!(
+                "this server drives a fleet: name the robot with \"robot\" ({})",
+                self.listed()
+            )),
+            (Some(n), members) => members
+                .iter()
+                .find(|(m, _)| m == n)
+                .map(|(_, l)| l)
+                .ok_or_else(|| {
+                    format!(
+                        "no robot `{}` in this fleet ({})",
+                        n.chars().take(64).collect::<String>(),
+                        self.listed()
+                    )
+                }),
+        }
+    }
+
+    fn listed(&self) -> String {
+        self.names().collect::<Vec<_>>().join(", ")
     }
 }

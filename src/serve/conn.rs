@@ -4,6 +4,7 @@
 
 use std::io::{BufRead, BufReader, Read, Write};
 use std::net::TcpStream;
+use std::sync::Arc;
 use std::sync::mpsc::{self, Sender, SyncSender};
 use std::time::Duration;
 
@@ -11,6 +12,7 @@ use serde_json::{Map, Value};
 
 use super::protocol::{self, Parsed, Request};
 use super::reply;
+use crate::live::Robots;
 use crate::live::engine::Job;
 use crate::live::guard::guarded;
 
@@ -24,16 +26,18 @@ const OUT_QUEUE: usize = 4096;
 const ANSWER_WAIT: Duration = Duration::from_secs(10);
 
 /// Serves one client until it closes the connection, sends a line that is too long,
-/// or the socket fails. Never touches the robot except through `jobs`.
-pub fn serve(stream: TcpStream, conn: u64, jobs: Sender<Job>) {
+/// or the socket fails. Never touches a robot except through its jobs.
+pub fn serve(stream: TcpStream, conn: u64, robots: Arc<Robots>) {
     let _ = stream.set_nodelay(true);
     let Ok(send_side) = stream.try_clone() else {
         return;
     };
     let (out, queued) = mpsc::sync_channel::<String>(OUT_QUEUE);
     let writer = std::thread::spawn(move || write_lines(send_side, queued));
-    read_requests(stream, conn, &jobs, &out);
-    let _ = jobs.send(Job::Unsubscribe { conn });
+    read_requests(stream, conn, &robots, &out);
+    for (_, live) in robots.all() {
+        let _ = live.jobs.send(Job::Unsubscribe { conn });
+    }
     // The writer ends once every sender is gone: this one, and the engine's clone
     // (dropped on `Unsubscribe`), after flushing what was queued.
     drop(out);
@@ -51,7 +55,7 @@ fn write_lines(mut stream: TcpStream, queued: mpsc::Receiver<String>) {
     }
 }
 
-fn read_requests(stream: TcpStream, conn: u64, jobs: &Sender<Job>, out: &SyncSender<String>) {
+fn read_requests(stream: TcpStream, conn: u64, robots: &Robots, out: &SyncSender<String>) {
     let mut reader = BufReader::new(stream);
     let mut buf = Vec::new();
     loop {
@@ -94,7 +98,12 @@ fn read_requests(stream: TcpStream, conn: u64, jobs: &Sender<Job>, out: &SyncSen
         // there is this request's error, not the end of the connection.
         let answered = guarded("answering the request", || {
             let parsed = protocol::parse(line);
-            ask(&parsed, conn, jobs, out).map(|a| protocol::answer(a, parsed.id.as_ref()))
+            ask(&parsed, conn, robots, out).map(|mut a| {
+                if let (true, Some(name)) = (robots.is_fleet(), &parsed.robot) {
+                    a.insert("robot".into(), Value::String(name.clone()));
+                }
+                protocol::answer(a, parsed.id.as_ref())
+            })
         });
         let answer = match answered {
             Ok(Some(answer)) => answer,
@@ -112,9 +121,24 @@ fn read_requests(stream: TcpStream, conn: u64, jobs: &Sender<Job>, out: &SyncSen
 fn ask(
     parsed: &Parsed,
     conn: u64,
-    jobs: &Sender<Job>,
+    robots: &Robots,
     out: &SyncSender<String>,
 ) -> Option<Map<String, Value>> {
+    if let Request::Invalid(why) = &parsed.request {
+        return Some(protocol::error(why));
+    }
+    // A fleet's status and events without a robot's name are the whole fleet's.
+    if robots.is_fleet() && parsed.robot.is_none() {
+        match &parsed.request {
+            Request::Status => return Some(fleet_status(robots)),
+            Request::Subscribe => return Some(subscribe_all(conn, robots, out)),
+            _ => {}
+        }
+    }
+    let jobs = match robots.route(parsed.robot.as_deref()) {
+        Ok(live) => &live.jobs,
+        Err(why) => return Some(protocol::error(&why)),
+    };
     match &parsed.request {
         Request::Invalid(why) => Some(protocol::error(why)),
         Request::Ilmr(text) => {
@@ -161,7 +185,9 @@ fn subscribe(
     let job = Job::Subscribe {
         conn,
         out: out.clone(),
-        first: Box::new(move |t| protocol::answer(reply::subscribed(t), id.as_ref())),
+        first: Some(Box::new(move |t| {
+            protocol::answer(reply::subscribed(t), id.as_ref())
+        })),
         done,
     };
     if jobs.send(job).is_err() {
@@ -171,4 +197,62 @@ fn subscribe(
         Ok(()) => None,
         Err(_) => Some(protocol::error("the robot did not answer")),
     }
+}
+
+/// `{"ok": true, "robots": {NAME: status, ...}}`: every robot's, asked at once.
+fn fleet_status(robots: &Robots) -> Map<String, Value> {
+    let asked: Vec<(&str, Result<mpsc::Receiver<_>, ()>)> = robots
+        .all()
+        .map(|(name, live)| {
+            let (reply, answer) = mpsc::channel();
+            let sent = live.jobs.send(Job::Status { reply }).map(|_| answer);
+            (name, sent.map_err(|_| ()))
+        })
+        .collect();
+    let mut each = Map::new();
+    for (name, answer) in asked {
+        let status = match answer.map(|a| a.recv_timeout(ANSWER_WAIT)) {
+            Ok(Ok(s)) => reply::status(&s),
+            Ok(Err(_)) => protocol::error("the robot did not answer"),
+            Err(()) => protocol::error("the robot has stopped"),
+        };
+        each.insert(name.to_string(), Value::Object(status));
+    }
+    let mut m = Map::new();
+    m.insert("ok".into(), Value::Bool(true));
+    m.insert("robots".into(), Value::Object(each));
+    m
+}
+
+/// Subscribes this connection to every robot of the fleet. Each robot's events name
+/// it; they may come before this answer, which is sent once every robot has taken the
+/// subscription.
+fn subscribe_all(conn: u64, robots: &Robots, out: &SyncSender<String>) -> Map<String, Value> {
+    let mut waiting = Vec::new();
+    for (name, live) in robots.all() {
+        let (done, acknowledged) = mpsc::channel();
+        let job = Job::Subscribe {
+            conn,
+            out: out.clone(),
+            first: None,
+            done,
+        };
+        if live.jobs.send(job).is_err() {
+            return protocol::error(&format!("robot `{name}` has stopped"));
+        }
+        waiting.push((name, acknowledged));
+    }
+    for (name, acknowledged) in waiting {
+        if acknowledged.recv_timeout(ANSWER_WAIT).is_err() {
+            return protocol::error(&format!("robot `{name}` did not answer"));
+        }
+    }
+    let mut m = Map::new();
+    m.insert("ok".into(), Value::Bool(true));
+    m.insert("subscribed".into(), Value::String("events".into()));
+    m.insert(
+        "robots".into(),
+        Value::Array(robots.names().map(|n| Value::String(n.into())).collect()),
+    );
+    m
 }

@@ -12,11 +12,9 @@ use std::net::{SocketAddr, TcpListener};
 use std::process::ExitCode;
 use std::sync::Arc;
 use std::sync::atomic::{AtomicUsize, Ordering};
-use std::sync::mpsc;
 use std::time::Duration;
 
-use crate::live::RobotArgs;
-use crate::live::engine::Job;
+use crate::live::{RobotArgs, Robots};
 
 /// Connections served at once; one more is told so and closed.
 const MAX_CLIENTS: usize = 64;
@@ -25,6 +23,10 @@ const MAX_CLIENTS: usize = 64;
 pub struct ServeArgs {
     #[command(flatten)]
     pub live: RobotArgs,
+    /// Drive the robots of a fleet file instead of one (docs/fleet.md); requests name
+    /// the robot with "robot".
+    #[arg(long, conflicts_with_all = ["robot", "model", "world", "start", "task", "skills"])]
+    pub fleet: Option<std::path::PathBuf>,
     /// Where to listen: a loopback address and port, e.g. 127.0.0.1:7878 (port 0 picks
     /// a free one; the address is printed on stdout).
     #[arg(long)]
@@ -44,6 +46,19 @@ pub fn run(args: ServeArgs) -> ExitCode {
 fn execute(args: &ServeArgs) -> Result<ExitCode, String> {
     // The address first: a port in use should fail before the task is compiled.
     let listener = listen(&args.listen)?;
+    if let Some(path) = &args.fleet {
+        let Some(fleet) = crate::fleet::open(path)? else {
+            return Ok(ExitCode::from(crate::EXIT_ERRORS));
+        };
+        let local = listener
+            .local_addr()
+            .map_err(|e| format!("cannot read the bound address: {e}"))?;
+        let names: Vec<&str> = fleet.robots.names().collect();
+        println!("listening on {local} (fleet: {})", names.join(", "));
+        let _ = std::io::stdout().flush();
+        accept(&listener, &fleet.robots);
+        return Ok(ExitCode::SUCCESS);
+    }
     let Some(live) = crate::live::start(&args.live)? else {
         return Ok(ExitCode::from(crate::EXIT_ERRORS));
     };
@@ -56,13 +71,13 @@ fn execute(args: &ServeArgs) -> Result<ExitCode, String> {
         args.live.robot, live.world
     );
     let _ = std::io::stdout().flush();
-    accept(&listener, &live.jobs);
+    accept(&listener, &Arc::new(Robots::one(live)));
     Ok(ExitCode::SUCCESS)
 }
 
 /// Binds a loopback address. The protocol has no authentication: whoever connects
 /// drives the robot, so the server does not listen beyond this machine.
-fn listen(text: &str) -> Result<TcpListener, String> {
+pub fn listen(text: &str) -> Result<TcpListener, String> {
     let addr: SocketAddr = text.parse().map_err(|_| {
         format!("--listen `{text}`: expected a loopback address and port, e.g. 127.0.0.1:7878")
     })?;
@@ -79,7 +94,7 @@ fn listen(text: &str) -> Result<TcpListener, String> {
 }
 
 /// Serves connections, each on its own thread, for as long as the process runs.
-fn accept(listener: &TcpListener, jobs: &mpsc::Sender<Job>) {
+pub fn accept(listener: &TcpListener, robots: &Arc<Robots>) {
     let clients = Arc::new(AtomicUsize::new(0));
     let mut next_conn: u64 = 0;
     for stream in listener.incoming() {
@@ -102,13 +117,13 @@ fn accept(listener: &TcpListener, jobs: &mpsc::Sender<Job>) {
         }
         next_conn += 1;
         let conn = next_conn;
-        let jobs = jobs.clone();
+        let robots = Arc::clone(robots);
         let count = Arc::clone(&clients);
         count.fetch_add(1, Ordering::SeqCst);
         let spawned = std::thread::Builder::new()
             .name(format!("ilmr-client-{conn}"))
             .spawn(move || {
-                conn::serve(stream, conn, jobs);
+                conn::serve(stream, conn, robots);
                 count.fetch_sub(1, Ordering::SeqCst);
             });
         if let Err(e) = spawned {

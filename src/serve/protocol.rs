@@ -16,11 +16,13 @@ pub enum Request {
     Invalid(String),
 }
 
-/// A request line and the `id` the client gave it (echoed in the answer).
+/// A request line, the `id` the client gave it (echoed in the answer) and the robot
+/// it is for (`"robot"`, on a server of a fleet).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Parsed {
     pub request: Request,
     pub id: Option<Value>,
+    pub robot: Option<String>,
 }
 
 pub fn parse(line: &str) -> Parsed {
@@ -30,6 +32,7 @@ pub fn parse(line: &str) -> Parsed {
             return Parsed {
                 request: Request::Invalid(format!("not JSON: {e}")),
                 id: None,
+                robot: None,
             };
         }
     };
@@ -37,13 +40,19 @@ pub fn parse(line: &str) -> Parsed {
         return Parsed {
             request: Request::Invalid("expected a JSON object".into()),
             id: None,
+            robot: None,
         };
     };
     let id = object.remove("id");
-    Parsed {
-        request: request_of(&object),
-        id,
-    }
+    let (robot, request) = match object.remove("robot") {
+        None => (None, request_of(&object)),
+        Some(Value::String(name)) => (Some(name), request_of(&object)),
+        Some(_) => (
+            None,
+            Request::Invalid("\"robot\" takes a robot's name, a string".into()),
+        ),
+    };
+    Parsed { request, id, robot }
 }
 
 fn request_of(object: &Map<String, Value>) -> Request {
@@ -51,7 +60,7 @@ fn request_of(object: &Map<String, Value>) -> Request {
     let [key] = keys[..] else {
         return Request::Invalid(format!(
             "expected exactly one of \"ilmr\", \"status\", \"stop\", \"cont\", \"subscribe\" \
-             (besides \"id\"), got {}",
+             (besides \"id\" and \"robot\"), got {}",
             if keys.is_empty() {
                 "none".to_string()
             } else {
@@ -109,7 +118,8 @@ mod tests {
             parse(r#"{"cont": true, "id": 7}"#),
             Parsed {
                 request: Request::Ilmr("cont".into()),
-                id: Some(json!(7))
+                id: Some(json!(7)),
+                robot: None,
             }
         );
         assert_eq!(parse(r#"{"status": true}"#).request, Request::Status);
@@ -117,6 +127,9 @@ mod tests {
             parse(r#"{"subscribe": "events"}"#).request,
             Request::Subscribe
         );
+        let to_r2 = parse(r#"{"robot": "r2", "ilmr": "goahead(1)"}"#);
+        assert_eq!(to_r2.robot.as_deref(), Some("r2"));
+        assert_eq!(to_r2.request, Request::Ilmr("goahead(1)".into()));
     }
 
     #[test]
@@ -133,6 +146,7 @@ mod tests {
         assert!(invalid(r#"{"status": false}"#).contains("true"));
         assert!(invalid(r#"{"subscribe": "poses"}"#).contains("events"));
         assert!(invalid(r#"{"fly": true}"#).contains("unknown request \"fly\""));
+        assert!(invalid(r#"{"robot": 3, "status": true}"#).contains("robot's name"));
     }
 
     #[test]

@@ -255,8 +255,8 @@ fn notices(
     let job = Job::Subscribe {
         conn: SHELL_SUBSCRIBER,
         out,
-        // Nothing to say before the first event; the notice thread skips it.
-        first: Box::new(|_| String::new()),
+        // Nothing to say before the first event.
+        first: None,
         done,
     };
     wait(jobs, job, &acknowledged)?;
