@@ -51,6 +51,11 @@ pub struct SimArgs {
     /// Stop after this many seconds (default: run until interrupted).
     #[arg(long)]
     pub duration: Option<f64>,
+    /// Stop when standard input closes: a launcher's lifeline (`ilmrc fleet` starts
+    /// its simulators so), so that a simulator never outlives what started it, however
+    /// that ended.
+    #[arg(long)]
+    pub stdin_lifeline: bool,
     #[command(flatten)]
     pub ros: Ros2Args,
 }
@@ -123,6 +128,9 @@ fn execute(args: &SimArgs) -> Result<(), String> {
         if args.clock { ", /clock" } else { "" },
     );
     let _ = std::io::stdout().flush();
+    if args.stdin_lifeline {
+        watch_lifeline();
+    }
     let lags = serve(&mut robot, &mut base, args, &setup.model)?;
     let s = base.stats();
     println!(
@@ -221,6 +229,16 @@ fn serve(
             base.battery(v, v / full, stamp).map_err(link)?;
         }
     }
+}
+
+/// Ends the process when standard input reaches its end (the launcher is gone).
+fn watch_lifeline() {
+    std::thread::spawn(|| {
+        let mut sink = [0u8; 256];
+        let mut stdin = std::io::stdin().lock();
+        while matches!(std::io::Read::read(&mut stdin, &mut sink), Ok(n) if n > 0) {}
+        std::process::exit(0);
+    });
 }
 
 fn wall_clock() -> Time {

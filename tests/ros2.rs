@@ -639,6 +639,78 @@ fn a_fleet_of_a_simulated_robot_and_a_launched_ros_2_one_runs_both_tasks_to_the_
     }
 }
 
+/// Processes whose command line holds `needle`: pid and command line.
+fn processes_with(needle: &str) -> Vec<(String, String)> {
+    std::fs::read_dir("/proc")
+        .unwrap()
+        .filter_map(|e| {
+            let path = e.ok()?.path();
+            let cmdline = std::fs::read(path.join("cmdline")).ok()?;
+            let pid = path.file_name()?.to_str()?.to_string();
+            Some((pid, String::from_utf8_lossy(&cmdline).replace('\0', " ")))
+        })
+        .filter(|(_, c)| c.contains(needle) && !c.contains("unshare"))
+        .collect()
+}
+
+/// Kills what is left of the processes marked `0` when a test ends, failed or not: an
+/// orphan would hold the test's output open and hang the run.
+struct Reaper(String);
+
+impl Drop for Reaper {
+    fn drop(&mut self) {
+        for (pid, _) in processes_with(&self.0) {
+            let _ = Command::new("kill").args(["-9", &pid]).status();
+        }
+    }
+}
+
+#[test]
+fn a_fleet_killed_outright_leaves_no_simulator_running() {
+    use std::io::{BufRead, BufReader};
+    let dir = scratch("lifeline");
+    std::fs::create_dir_all(&dir).unwrap();
+    let marker = format!("/lifeline{}", std::process::id());
+    let _reaper = Reaper(marker.clone());
+    std::fs::write(
+        dir.join("fleet.toml"),
+        format!(
+            "[[robot]]\nname = \"a\"\nrobot = \"ros2\"\nnamespace = \"{marker}\"\n\
+             loopback = true\nlaunch = true\nworld = \"empty\"\n"
+        ),
+    )
+    .unwrap();
+    let mut fleet = Command::new("unshare")
+        .args(["-n", "sh", "-c"])
+        .arg(format!(
+            "ip link set lo up multicast on && ip route add 224.0.0.0/4 dev lo && \
+             exec {} fleet {} --stay --every 0.5",
+            env!("CARGO_BIN_EXE_ilmrc"),
+            dir.join("fleet.toml").display()
+        ))
+        .stdout(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    // The first table: the simulator is up and the robot connected.
+    let mut lines = BufReader::new(fleet.stdout.take().unwrap()).lines();
+    let first = lines.next().and_then(Result::ok).unwrap_or_default();
+    assert!(first.starts_with("robot"), "{first}");
+    assert_eq!(processes_with(&marker).len(), 1, "one simulator runs");
+    // SIGKILL: no destructor, no handler runs in the fleet.
+    fleet.kill().unwrap();
+    fleet.wait().unwrap();
+    let deadline = std::time::Instant::now() + std::time::Duration::from_secs(10);
+    while !processes_with(&marker).is_empty() {
+        assert!(
+            std::time::Instant::now() < deadline,
+            "the simulator outlived its fleet: {:?}",
+            processes_with(&marker)
+        );
+        std::thread::sleep(std::time::Duration::from_millis(50));
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
 #[test]
 fn without_a_robot_the_run_says_what_it_waited_for_and_exits_2() {
     let out = Command::new("unshare")

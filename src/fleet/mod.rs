@@ -184,7 +184,7 @@ fn launch(members: &[Member]) -> Result<Launched, String> {
         let Some(l) = &m.launch else { continue };
         let a = &m.args;
         let mut cmd = Command::new(&exe);
-        cmd.args(["sim", "--ros2", "--robot"])
+        cmd.args(["sim", "--ros2", "--stdin-lifeline", "--robot"])
             .arg(a.model.as_deref().unwrap_or("moro"))
             .args(["--seed", &a.seed.to_string()])
             .args(["--ros-namespace", &a.ros2.ros_namespace]);
@@ -201,7 +201,9 @@ fn launch(members: &[Member]) -> Result<Launched, String> {
             cmd.arg("--ros-loopback");
         }
         let mut child = cmd
-            .stdin(Stdio::null())
+            // The simulator's lifeline: it stops when this end closes, with this
+            // process, however this process ends.
+            .stdin(Stdio::piped())
             .stdout(Stdio::piped())
             .spawn()
             .map_err(|e| format!("robot `{}`: cannot start its simulator: {e}", m.name))?;
