@@ -18,7 +18,7 @@ use std::path::PathBuf;
 use std::process::Command;
 
 use ilmr_model::RobotModel;
-use serde_json::Value;
+use serde_json::{Value, json};
 
 /// A twist the robot received: its time (s since the robot started), linear.x,
 /// angular.z.
@@ -191,11 +191,12 @@ fn repeated(zeros: &[f64], from: f64, to: f64) {
 
 #[test]
 fn a_task_drives_a_cyclone_dds_robot_to_its_goal() {
+    let mcap = scratch("goal.mcap");
     let d = drive(
         "goal",
         "speed(0.4)\nm=gotoxy(2,1)\nwait(m)\n",
         &["--duration=60"],
-        &["--max-time", "40"],
+        &["--max-time", "40", "--mcap", mcap.to_str().unwrap()],
     );
     assert_eq!(d.code, Some(0), "{}\n{}", d.summary, d.stderr);
     assert!(d.summary.contains("finished"), "{}", d.summary);
@@ -223,6 +224,53 @@ fn a_task_drives_a_cyclone_dds_robot_to_its_goal() {
     assert!(
         d.trace.iter().any(|e| e["event"] == "end"),
         "the trace has the commands' ends"
+    );
+    recorded_as_a_bag(&mcap, (x, y));
+}
+
+/// The MCAP file of the run, read by Foxglove's own libraries (`mcap`,
+/// `mcap-ros2-support`): the robot's topics with ROS 2's schemas, every message
+/// decoded, the last odometry where the robot ended.
+fn recorded_as_a_bag(mcap: &std::path::Path, (x, y): (f64, f64)) {
+    let out = Command::new("python3")
+        .arg(support::root().join("robots/ros2/python/read_mcap.py"))
+        .arg(mcap)
+        .output()
+        .unwrap();
+    let _ = std::fs::remove_file(mcap);
+    let topics: Value = serde_json::from_slice(&out.stdout).unwrap_or_else(|e| {
+        panic!(
+            "read_mcap.py failed ({e}); CI installs `mcap` and `mcap-ros2-support`:\n{}",
+            String::from_utf8_lossy(&out.stderr)
+        )
+    });
+    for (topic, schema) in [
+        ("/cmd_vel", "geometry_msgs/msg/Twist"),
+        ("/odom", "nav_msgs/msg/Odometry"),
+        ("/scan", "sensor_msgs/msg/LaserScan"),
+        ("/battery_state", "sensor_msgs/msg/BatteryState"),
+    ] {
+        let t = &topics[topic];
+        assert_eq!(t["schema"], schema, "{topic}: {t}");
+        assert_eq!(
+            (&t["schema_encoding"], &t["message_encoding"]),
+            (&json!("ros2msg"), &json!("cdr"))
+        );
+        assert!(
+            t["count"].as_u64().unwrap() > 0 && t["decoded"] == t["count"],
+            "{topic}: {t}"
+        );
+    }
+    let last = &topics["/odom"]["last"];
+    let (ox, oy) = (last["x"].as_f64().unwrap(), last["y"].as_f64().unwrap());
+    assert!((ox - x).hypot(oy - y) < 0.02, "{last} vs ({x}, {y})");
+    assert_eq!(topics["/scan"]["beams"], 181);
+    assert!(topics["/cmd_vel"]["max_linear_x"].as_f64().unwrap() <= 0.4 + 1e-9);
+    // ILMR's own channels stay, but for the scan, which the robot's topic records.
+    assert_eq!(topics["/pose"]["schema"], "foxglove.PoseInFrame");
+    assert_eq!(
+        topics["/scan"]["schema_encoding"], "ros2msg",
+        "one /scan, the robot's"
     );
 }
 

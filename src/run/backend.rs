@@ -36,6 +36,14 @@ pub trait Robot: Hal {
     fn link_stats(&self) -> Option<ilmr_ros2::LinkStats> {
         None
     }
+
+    /// Keep the ROS 2 messages that go over the link, for [`Robot::take_ros2_messages`].
+    fn record_ros2_messages(&mut self) {}
+
+    /// The ROS 2 messages taken and sent since the last call, when recording.
+    fn take_ros2_messages(&mut self) -> Vec<ilmr_ros2::robot::Recorded> {
+        Vec::new()
+    }
 }
 
 /// A laser scan with its origin in the world frame (where the beams were cast from).
@@ -259,6 +267,12 @@ impl Robot for AnyRobot {
     fn link_stats(&self) -> Option<ilmr_ros2::LinkStats> {
         self.0.link_stats()
     }
+    fn record_ros2_messages(&mut self) {
+        self.0.record_ros2_messages()
+    }
+    fn take_ros2_messages(&mut self) -> Vec<ilmr_ros2::robot::Recorded> {
+        self.0.take_ros2_messages()
+    }
 }
 
 /// A ROS 2 robot. It has no ground truth: what the trace, the plot and the summary show
@@ -319,5 +333,13 @@ impl Robot for Ros2 {
 
     fn link_stats(&self) -> Option<ilmr_ros2::LinkStats> {
         Some(self.robot.stats())
+    }
+
+    fn record_ros2_messages(&mut self) {
+        self.robot.record_messages();
+    }
+
+    fn take_ros2_messages(&mut self) -> Vec<ilmr_ros2::robot::Recorded> {
+        self.robot.take_recorded()
     }
 }

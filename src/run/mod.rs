@@ -166,7 +166,12 @@ fn execute(args: &RunArgs, reached: &mut Reached) -> Result<Ran, String> {
     // at once rather than after minutes of simulation.
     let mut sink = Sink::open(args.trace.as_deref(), args.plot.as_deref())?;
     let mcap = match &args.mcap {
-        Some(p) => Some(mcap::McapOut::create(p, setup.world.as_ref(), &args.task)?),
+        Some(p) => Some(mcap::McapOut::create(
+            p,
+            setup.world.as_ref(),
+            &args.task,
+            setup.backend == Backend::Ros2,
+        )?),
         None => None,
     };
     let robotless = setup.backend == Backend::None;
@@ -181,7 +186,10 @@ fn execute(args: &RunArgs, reached: &mut Reached) -> Result<Ran, String> {
         Compiled::Module(m) => *m,
         Compiled::Rejected => return Ok(Ran::Rejected),
     };
-    let robot = setup::open(&setup, &scenario, args.seed)?;
+    let mut robot = setup::open(&setup, &scenario, args.seed)?;
+    if mcap.is_some() {
+        robot.record_ros2_messages();
+    }
     let body = match setup.backend {
         Backend::Sim(kind) => Some(ilmr_sim::config_from_model(&setup.model, kind)),
         _ => None,
@@ -276,6 +284,7 @@ fn drive<C: Clock>(
         }
         if let Some(m) = parts.mcap.as_mut() {
             m.tick(vm.module(), &events, scan.as_ref())?;
+            m.ros2(vm.hal_mut().take_ros2_messages())?;
         }
         progress.show(&vm, &session);
         let more_lines = next_line < scenario.lines.len();

@@ -16,6 +16,7 @@ pub mod base;
 pub mod cdr;
 pub mod convert;
 pub mod dds;
+pub mod definition;
 mod frame;
 pub mod msg;
 pub mod names;

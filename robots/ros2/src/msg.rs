@@ -4,16 +4,24 @@
 
 use serde::{Deserialize, Serialize};
 
+use crate::definition;
+
 /// A message type and the name DDS knows it by (`pkg::msg::dds_::Name_`, as rosidl
 /// generates it).
 pub trait RosMessage: Serialize + for<'de> Deserialize<'de> {
     const DDS_TYPE_NAME: &'static str;
+    /// The type as ROS 2 names it (`nav_msgs/msg/Odometry`).
+    const ROS_TYPE: &'static str;
+    /// Its `.msg` definition with those it uses (`definition.rs`).
+    const DEFINITION: &'static str;
 }
 
 macro_rules! ros_message {
-    ($ty:ident, $dds:literal) => {
+    ($ty:ident, $pkg:literal, $name:literal, $definition:expr) => {
         impl RosMessage for $ty {
-            const DDS_TYPE_NAME: &'static str = $dds;
+            const DDS_TYPE_NAME: &'static str = concat!($pkg, "::msg::dds_::", $name, "_");
+            const ROS_TYPE: &'static str = concat!($pkg, "/msg/", $name);
+            const DEFINITION: &'static str = $definition;
         }
     };
 }
@@ -51,7 +59,7 @@ pub struct Header {
     pub stamp: Time,
     pub frame_id: String,
 }
-ros_message!(Header, "std_msgs::msg::dds_::Header_");
+ros_message!(Header, "std_msgs", "Header", definition::HEADER);
 
 /// `geometry_msgs/Vector3`.
 #[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
@@ -67,7 +75,7 @@ pub struct Twist {
     pub linear: Vector3,
     pub angular: Vector3,
 }
-ros_message!(Twist, "geometry_msgs::msg::dds_::Twist_");
+ros_message!(Twist, "geometry_msgs", "Twist", definition::TWIST);
 
 /// `geometry_msgs/Point`.
 #[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
@@ -189,7 +197,7 @@ pub struct Odometry {
     pub pose: PoseWithCovariance,
     pub twist: TwistWithCovariance,
 }
-ros_message!(Odometry, "nav_msgs::msg::dds_::Odometry_");
+ros_message!(Odometry, "nav_msgs", "Odometry", definition::ODOMETRY);
 
 /// `sensor_msgs/LaserScan`: angles in radians counter-clockwise from the scanner's x
 /// axis, ranges in metres (outside `range_min..range_max`: no return).
@@ -206,7 +214,12 @@ pub struct LaserScan {
     pub ranges: Vec<f32>,
     pub intensities: Vec<f32>,
 }
-ros_message!(LaserScan, "sensor_msgs::msg::dds_::LaserScan_");
+ros_message!(
+    LaserScan,
+    "sensor_msgs",
+    "LaserScan",
+    definition::LASER_SCAN
+);
 
 /// `sensor_msgs/BatteryState` (NaN where unmeasured, as the message defines).
 #[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
@@ -228,7 +241,12 @@ pub struct BatteryState {
     pub location: String,
     pub serial_number: String,
 }
-ros_message!(BatteryState, "sensor_msgs::msg::dds_::BatteryState_");
+ros_message!(
+    BatteryState,
+    "sensor_msgs",
+    "BatteryState",
+    definition::BATTERY_STATE
+);
 
 #[cfg(test)]
 mod tests {
@@ -278,11 +296,11 @@ pub struct TransformStamped {
 pub struct TFMessage {
     pub transforms: Vec<TransformStamped>,
 }
-ros_message!(TFMessage, "tf2_msgs::msg::dds_::TFMessage_");
+ros_message!(TFMessage, "tf2_msgs", "TFMessage", definition::TF_MESSAGE);
 
 /// `rosgraph_msgs/Clock`, on `/clock`: simulated time for nodes with `use_sim_time`.
 #[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
 pub struct Clock {
     pub clock: Time,
 }
-ros_message!(Clock, "rosgraph_msgs::msg::dds_::Clock_");
+ros_message!(Clock, "rosgraph_msgs", "Clock", definition::CLOCK);

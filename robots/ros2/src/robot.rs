@@ -15,10 +15,11 @@ use ilmr_hal::{
     AsyncOp, BodyPose, DeviceReading, Hal, HalError, OpId, OpStatus, Pose, Scan, Snapshot,
 };
 
+use crate::cdr;
 use crate::convert::{self, Limits, Motion};
 use crate::dds::{LinkError, Participant, Profile, Reach, Reader, Writer};
 use crate::frame::Frame;
-use crate::msg::{BatteryState, LaserScan, Odometry, Twist};
+use crate::msg::{BatteryState, LaserScan, Odometry, RosMessage, Twist};
 use crate::names::TopicName;
 
 /// Samples taken from one topic in one tick at most: a peer that floods costs a
@@ -78,6 +79,30 @@ pub struct LinkStats {
     pub most_in_one_tick: usize,
 }
 
+/// A message as it went over the link, for a recording (an MCAP file's `ros2msg`
+/// channels): its sample as DDS carries it, and when, on the VM's clock.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Recorded {
+    pub t: f64,
+    /// `/robot1/odom`
+    pub topic: String,
+    pub ros_type: &'static str,
+    pub definition: &'static str,
+    pub sample: Vec<u8>,
+}
+
+impl Recorded {
+    fn of<M: RosMessage>(t: f64, topic: &TopicName, message: &M) -> Recorded {
+        Recorded {
+            t,
+            topic: topic.ros().to_string(),
+            ros_type: M::ROS_TYPE,
+            definition: M::DEFINITION,
+            sample: cdr::encode(message),
+        }
+    }
+}
+
 struct Endpoints {
     // Dropped last: the readers and the writer belong to it.
     cmd_vel: Writer<Twist>,
@@ -107,6 +132,9 @@ pub struct Ros2Robot {
     /// `init` operations started: they are done at once (the robot's streams are up,
     /// or `connect` would have failed).
     inits: u32,
+    /// What went over the link since the last [`Ros2Robot::take_recorded`], when
+    /// recording (`None` otherwise).
+    recorded: Option<Vec<Recorded>>,
 }
 
 impl Ros2Robot {
@@ -142,6 +170,7 @@ impl Ros2Robot {
             twists_sent: 0,
             odometry_unusable: 0,
             inits: 0,
+            recorded: None,
         };
         robot.wait_for_streams(config)?;
         Ok(robot)
@@ -177,11 +206,33 @@ impl Ros2Robot {
         }
     }
 
+    /// Keeps every message taken and sent from now on, for [`Ros2Robot::take_recorded`]
+    /// (which must then be called every tick).
+    pub fn record_messages(&mut self) {
+        self.recorded.get_or_insert_with(Vec::new);
+    }
+
+    /// The messages taken and sent since the last call.
+    pub fn take_recorded(&mut self) -> Vec<Recorded> {
+        self.recorded
+            .as_mut()
+            .map(std::mem::take)
+            .unwrap_or_default()
+    }
+
     /// Takes what arrived, stamping it with `now`.
     fn receive(&mut self, now: f64) {
         let mut latest = None;
         let mut unusable = 0;
+        let mut recorded = self.recorded.take();
+        let keep = |rec: &mut Option<Vec<Recorded>>, r: &dyn Fn() -> Recorded| {
+            if let Some(list) = rec.as_mut() {
+                list.push(r());
+            }
+        };
+        let topic = self.link.odom.topic().clone();
         self.link.odom.drain(MAX_SAMPLES_PER_TICK, |m| {
+            keep(&mut recorded, &|| Recorded::of(now, &topic, &m));
             match convert::motion(&m) {
                 Some(motion) => latest = Some(motion),
                 None => unusable += 1,
@@ -197,9 +248,11 @@ impl Ros2Robot {
             self.odometry_t = Some(now);
         }
         let mut scan = None;
-        self.link
-            .scan
-            .drain(MAX_SAMPLES_PER_TICK, |m| scan = Some(m));
+        let topic = self.link.scan.topic().clone();
+        self.link.scan.drain(MAX_SAMPLES_PER_TICK, |m| {
+            keep(&mut recorded, &|| Recorded::of(now, &topic, &m));
+            scan = Some(m);
+        });
         if let (Some(m), Some(device)) = (scan, &self.scanner) {
             let mut s = convert::scan(&m, device);
             s.t = now;
@@ -207,17 +260,27 @@ impl Ros2Robot {
             self.scan_range = f64::from(m.range_max).max(0.0);
         }
         let mut voltage = None;
+        let topic = self.link.battery.topic().clone();
         self.link.battery.drain(MAX_SAMPLES_PER_TICK, |m| {
+            keep(&mut recorded, &|| Recorded::of(now, &topic, &m));
             voltage = convert::battery_voltage(m.voltage);
         });
         if voltage.is_some() {
             self.battery = voltage;
         }
+        self.recorded = recorded;
     }
 
     fn send(&mut self) -> Result<(), HalError> {
         self.sent_at = Some(self.now);
         self.twists_sent += 1;
+        if let Some(list) = self.recorded.as_mut() {
+            list.push(Recorded::of(
+                self.now,
+                self.link.cmd_vel.topic(),
+                &self.twist,
+            ));
+        }
         self.link
             .cmd_vel
             .send(self.twist)

@@ -12,6 +12,10 @@
 //!
 //! Everything is in frame `world`; log time is the run's logical time, so the file is
 //! the same for the same task, robot, world and seed.
+//!
+//! A run on a ROS 2 robot also records the robot's topics as they went over the link
+//! (`odom`, `scan`, `battery_state` taken, `cmd_vel` sent), with ROS 2's schemas
+//! (`ros2msg`) and samples (`cdr`), as rosbag2 does; its `scan` stands for `/scan`.
 
 use std::collections::BTreeMap;
 use std::fs::File;
@@ -74,7 +78,13 @@ enum Topic {
 pub struct McapOut {
     path: PathBuf,
     writer: mcap::Writer<BufWriter<File>>,
-    channels: Vec<u16>,
+    /// By [`Topic`]; `None` for the scan of a ROS 2 robot, which its own `scan` topic
+    /// records.
+    channels: Vec<Option<u16>>,
+    /// The channels of a ROS 2 robot's topics, by topic, made as their first message
+    /// comes; and their schemas, by type.
+    ros2_channels: BTreeMap<String, u16>,
+    ros2_schemas: BTreeMap<&'static str, u16>,
     sequence: u32,
     task: String,
     /// Reference paths written so far: the next one's entity id.
@@ -98,10 +108,12 @@ fn pose(x: f64, y: f64, h: f64) -> Value {
 }
 
 impl McapOut {
+    /// `ros2`: the robot is a ROS 2 one, whose topics [`McapOut::ros2`] records.
     pub fn create(
         path: &Path,
         world: Option<&LoadedWorld>,
         task: &Path,
+        ros2: bool,
     ) -> Result<McapOut, String> {
         let file = File::create(path)
             .map_err(|e| format!("cannot write MCAP `{}`: {e}", path.display()))?;
@@ -110,18 +122,24 @@ impl McapOut {
             .map_err(|e| format!("cannot write MCAP `{}`: {e}", path.display()))?;
         let mut channels = Vec::new();
         for (topic, name, schema) in CHANNELS {
+            if ros2 && topic == CHANNELS[Topic::Scan as usize].0 {
+                channels.push(None);
+                continue;
+            }
             let schema_id = writer
                 .add_schema(name, "jsonschema", schema.trim_end().as_bytes())
                 .map_err(|e| e.to_string())?;
             let channel = writer
                 .add_channel(schema_id, topic, "json", &BTreeMap::new())
                 .map_err(|e| e.to_string())?;
-            channels.push(channel);
+            channels.push(Some(channel));
         }
         let mut out = McapOut {
             path: path.to_path_buf(),
             writer,
             channels,
+            ros2_channels: BTreeMap::new(),
+            ros2_schemas: BTreeMap::new(),
             sequence: 0,
             task: task.display().to_string(),
             paths: 0,
@@ -133,9 +151,12 @@ impl McapOut {
     }
 
     fn write(&mut self, topic: Topic, t: f64, message: &Value) -> Result<(), String> {
+        let Some(channel_id) = self.channels[topic as usize] else {
+            return Ok(());
+        };
         self.sequence += 1;
         let header = MessageHeader {
-            channel_id: self.channels[topic as usize],
+            channel_id,
             sequence: self.sequence,
             log_time: nanos(t),
             publish_time: nanos(t),
@@ -246,6 +267,47 @@ impl McapOut {
             "file": file,
             "line": stmt.map_or(0, |s| s.line),
         })
+    }
+
+    /// A ROS 2 robot's messages as they went over the link, on channels named by their
+    /// topics, with ROS 2's schemas (`ros2msg`) and samples (`cdr`): as rosbag2 records
+    /// them, so Foxglove and rosbag2 readers decode them as a bag's.
+    pub fn ros2(&mut self, records: Vec<ilmr_ros2::robot::Recorded>) -> Result<(), String> {
+        for r in records {
+            let channel = match self.ros2_channels.get(&r.topic) {
+                Some(&c) => c,
+                None => {
+                    let schema = match self.ros2_schemas.get(r.ros_type) {
+                        Some(&s) => s,
+                        None => {
+                            let s = self
+                                .writer
+                                .add_schema(r.ros_type, "ros2msg", r.definition.as_bytes())
+                                .map_err(|e| e.to_string())?;
+                            self.ros2_schemas.insert(r.ros_type, s);
+                            s
+                        }
+                    };
+                    let c = self
+                        .writer
+                        .add_channel(schema, &r.topic, "cdr", &BTreeMap::new())
+                        .map_err(|e| e.to_string())?;
+                    self.ros2_channels.insert(r.topic.clone(), c);
+                    c
+                }
+            };
+            self.sequence += 1;
+            let header = MessageHeader {
+                channel_id: channel,
+                sequence: self.sequence,
+                log_time: nanos(r.t),
+                publish_time: nanos(r.t),
+            };
+            self.writer
+                .write_to_known_channel(&header, &r.sample)
+                .map_err(|e| format!("cannot write MCAP `{}`: {e}", self.path.display()))?;
+        }
+        Ok(())
     }
 
     pub fn finish(mut self) -> Result<(), String> {
@@ -369,7 +431,7 @@ mod tests {
         let path =
             std::env::temp_dir().join(format!("ilmr-mcap-paths-{}.mcap", std::process::id()));
         let module = empty_module();
-        let mut out = McapOut::create(&path, None, Path::new("t.ilmr")).expect("create");
+        let mut out = McapOut::create(&path, None, Path::new("t.ilmr"), false).expect("create");
         let event = |t: f64, points: Vec<(f64, f64)>| Event {
             tick: (t * 100.0) as u64,
             t,
