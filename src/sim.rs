@@ -9,7 +9,7 @@ use std::process::ExitCode;
 use std::time::{Duration, Instant, SystemTime, UNIX_EPOCH};
 
 use ilmr_hal::{Hal, Pose};
-use ilmr_ros2::base::{Base, BaseConfig, Frames};
+use ilmr_ros2::base::{Base, BaseConfig};
 use ilmr_ros2::convert::Limits;
 use ilmr_ros2::msg::Time;
 use ilmr_sim::SimRobot;
@@ -105,7 +105,8 @@ fn execute(args: &SimArgs) -> Result<(), String> {
         domain_id: ros.domain_id,
         namespace: ros.namespace.clone(),
         reach: ros.reach,
-        frames: Frames::default(),
+        topics: ros.topics.clone(),
+        frames: ros.frames.clone(),
         limits: Limits::of(&setup.model),
         cmd_timeout: args.cmd_timeout,
         clock: args.clock,

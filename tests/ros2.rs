@@ -759,6 +759,60 @@ fn a_fleet_killed_outright_leaves_no_simulator_running() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
+/// A robot model whose `[ROS2]` section renames what the simulator publishes and the
+/// run reads: both sides take their names from the one model.
+#[test]
+fn the_models_ros2_section_names_the_topics_on_both_sides() {
+    let dir = scratch("model");
+    std::fs::create_dir_all(&dir).unwrap();
+    let moro =
+        std::fs::read_to_string(support::root().join("robots/model/models/moro.ini")).unwrap();
+    let renamed = moro.replace(
+        "[END]",
+        "[ROS2]\nnamespace /tb\ncmd_vel cmd_vel_nav\nodom wheel/odom\nscan base_scan\n[END]",
+    );
+    let model = dir.join("renamed.ini");
+    std::fs::write(&model, renamed).unwrap();
+    let task = dir.join("go.ilmr");
+    std::fs::write(&task, "speed(0.4)\nm=gotoxy(2,1)\nwait(m)\n").unwrap();
+    let model = model.to_str().unwrap();
+    let (ran, sim) = beside_the_simulator(
+        &["--robot", model, "--world", "empty", "--start", "0,0,0"],
+        &[
+            env!("CARGO_BIN_EXE_ilmrc"),
+            "run",
+            "--robot",
+            "ros2",
+            "--model",
+            model,
+            "--ros-loopback",
+            "--max-time",
+            "40",
+            task.to_str().unwrap(),
+        ],
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+    assert!(sim.contains("namespace /tb"), "{sim}");
+    let summary = ran["stdout"].as_str().unwrap();
+    assert_eq!(ran["code"], 0, "{ran}");
+    assert!(summary.contains("ROS 2 in namespace /tb"), "{summary}");
+    let at: Vec<f64> = summary
+        .split("ended at (")
+        .nth(1)
+        .and_then(|r| r.split(')').next())
+        .map(|r| {
+            r.split(", ")
+                .take(2)
+                .filter_map(|v| v.parse().ok())
+                .collect()
+        })
+        .unwrap_or_default();
+    assert!(
+        at.len() == 2 && (at[0] - 2.0).hypot(at[1] - 1.0) < 0.10,
+        "{summary}"
+    );
+}
+
 #[test]
 fn without_a_robot_the_run_says_what_it_waited_for_and_exits_2() {
     let out = Command::new("unshare")

@@ -111,8 +111,8 @@ fn parse(text: &str, base: &Path) -> Result<Vec<Member>, String> {
         });
         let placed = |v: Option<String>| v.filter(|_| launch.is_none());
         let namespace = match ros2 {
-            true => e.namespace.unwrap_or_else(|| format!("/{}", e.name)),
-            false => "/".to_string(),
+            true => Some(e.namespace.unwrap_or_else(|| format!("/{}", e.name))),
+            false => None,
         };
         members.push(Member {
             args: RobotArgs {
@@ -181,7 +181,8 @@ seed = 3
         assert_eq!(m.len(), 2);
         assert_eq!(m[0].name, "r1");
         assert_eq!(
-            m[0].args.ros2.ros_namespace, "/r1",
+            m[0].args.ros2.ros_namespace.as_deref(),
+            Some("/r1"),
             "the name is the namespace"
         );
         assert!(m[0].args.ros2.ros_loopback);
@@ -201,7 +202,7 @@ seed = 3
             "the launched simulator has the world"
         );
         assert_eq!(m[1].args.world.as_deref(), Some("yard"));
-        assert_eq!(m[1].args.ros2.ros_namespace, "/");
+        assert_eq!(m[1].args.ros2.ros_namespace, None);
         assert_eq!(m[1].args.seed, 3);
         assert!(m[1].launch.is_none());
     }

@@ -187,7 +187,10 @@ fn launch(members: &[Member]) -> Result<Launched, String> {
         cmd.args(["sim", "--ros2", "--stdin-lifeline", "--robot"])
             .arg(a.model.as_deref().unwrap_or("moro"))
             .args(["--seed", &a.seed.to_string()])
-            .args(["--ros-namespace", &a.ros2.ros_namespace]);
+            .args([
+                "--ros-namespace",
+                a.ros2.ros_namespace.as_deref().unwrap_or("/"),
+            ]);
         if let Some(w) = &l.world {
             cmd.args(["--world", w]);
         }

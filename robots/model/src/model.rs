@@ -27,6 +27,9 @@ pub struct RobotModel {
     pub identifiers: Vec<NamedValue>,
     /// `[PARAMETERS]`.
     pub parameters: Vec<NamedValue>,
+    /// `[ROS2]`: how the robot is reached over ROS 2, where it speaks it.
+    #[serde(default)]
+    pub ros2: Vec<crate::Ros2Setting>,
     /// The file the model was read from; `None` for parsed text, the
     /// built-in models and the defaults.
     pub source: Option<PathBuf>,

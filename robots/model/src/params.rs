@@ -547,6 +547,7 @@ mod tests {
             colors: vec![],
             identifiers: vec![],
             parameters: vec![],
+            ros2: vec![],
             source: None,
         }
     }

@@ -20,7 +20,11 @@ use crate::params::{
     BATTERY_FULL, DEFAULT_SPEED, LOW_BATTERY, MAX_SPEED, NAV_RATE, NAV_TIMEOUT, ODOMETRY_RATE,
     ODOMETRY_TIMEOUT, ParamDefault, ParamSpec, SCANNER_RATE, SCANNER_TIMEOUT, parameter_spec,
 };
+use crate::ros2::{ROS2_SETTINGS, Ros2Setting, ros2_setting};
 use crate::write::{device_line, object_line, value_line};
+
+/// The tag of the `[ROS2]` section.
+const ROS2_TAG: &str = "ROS2";
 
 /// Whether entries of the defaults model may stand in for corrupt lines.
 /// Only the defaults model itself is parsed without.
@@ -54,6 +58,8 @@ pub(crate) fn parse_text(
 enum State {
     BeforeFirstTag,
     In(Section),
+    /// `[ROS2]`: words, not numbers, so not one of the numeric [`Section`]s.
+    Ros2,
     Unknown,
     Ended,
 }
@@ -114,6 +120,7 @@ impl Parser {
                 colors: Vec::new(),
                 identifiers: Vec::new(),
                 parameters: Vec::new(),
+                ros2: Vec::new(),
                 source: None,
             },
             warnings: Vec::new(),
@@ -159,6 +166,10 @@ impl Parser {
                 let fields: Vec<&str> = text.split_whitespace().collect();
                 self.entry(section, &fields, line);
             }
+            State::Ros2 => {
+                let fields: Vec<&str> = text.split_whitespace().collect();
+                self.ros2_entry(&fields, line);
+            }
             State::Ended => {}
         }
     }
@@ -187,6 +198,11 @@ impl Parser {
             self.state = State::Ended;
             return;
         }
+        if inner.eq_ignore_ascii_case(ROS2_TAG) {
+            self.found_tag = true;
+            self.state = State::Ros2;
+            return;
+        }
         if let Some(section) = Section::ALL
             .into_iter()
             .find(|s| inner.eq_ignore_ascii_case(s.tag()))
@@ -203,7 +219,7 @@ impl Parser {
             line,
             message: format!(
                 "unknown section [{inner}]{hint}; the sections are [SENSORSANDACTUATORS], \
-                 [OBJECTS], [COLORS], [IDENTIFIERS], [PARAMETERS] and [END]"
+                 [OBJECTS], [COLORS], [IDENTIFIERS], [PARAMETERS], [ROS2] and [END]"
             ),
             lines: 0,
         });
@@ -221,6 +237,49 @@ impl Parser {
     }
 
     // ---- entries ------------------------------------------------------
+
+    /// `name value` in `[ROS2]`: a known setting, once; anything else is a warning
+    /// and the line is skipped (there is no default to stand in: the backend has its
+    /// own).
+    fn ros2_entry(&mut self, fields: &[&str], line: u32) {
+        let [name, value] = fields[..] else {
+            let shown_line = cut(&fields.join(" "));
+            self.warn(
+                line,
+                format!(
+                    "[{ROS2_TAG}] entry `{shown_line}` should have 2 fields (name value); the line is ignored"
+                ),
+            );
+            return;
+        };
+        let Some(known) = ros2_setting(name) else {
+            let hint = closest(name, ROS2_SETTINGS.iter().map(|(n, _)| *n))
+                .map(|n| format!(" (did you mean `{n}`?)"))
+                .unwrap_or_default();
+            self.warn(
+                line,
+                format!(
+                    "unknown [{ROS2_TAG}] setting `{}`{hint}; the line is ignored",
+                    cut(name)
+                ),
+            );
+            return;
+        };
+        if self.model.ros2.iter().any(|s| s.name == known) {
+            self.warn(
+                line,
+                format!("duplicate [{ROS2_TAG}] setting `{known}`; the line is ignored"),
+            );
+            return;
+        }
+        if self.model.ros2.len() >= MAX_SECTION_ENTRIES {
+            return;
+        }
+        self.model.ros2.push(Ros2Setting {
+            name: known.to_string(),
+            value: value.to_string(),
+        });
+    }
 
     fn entry(&mut self, section: Section, fields: &[&str], line: u32) {
         if self.entries(section) >= MAX_SECTION_ENTRIES {
@@ -659,6 +718,17 @@ impl Parser {
     }
 }
 
+/// Text as a warning quotes it: at most 60 characters, so a hostile line does not
+/// fill the message.
+fn cut(text: &str) -> String {
+    const SHOWN: usize = 60;
+    if text.chars().count() > SHOWN {
+        format!("{}...", text.chars().take(SHOWN).collect::<String>())
+    } else {
+        text.to_string()
+    }
+}
+
 fn lines(n: u32) -> String {
     if n == 1 {
         "1 line".to_string()
@@ -668,7 +738,10 @@ fn lines(n: u32) -> String {
 }
 
 fn closest_tag(inner: &str) -> Option<&'static str> {
-    let known = Section::ALL.iter().map(|s| s.tag()).chain(["END"]);
+    let known = Section::ALL
+        .iter()
+        .map(|s| s.tag())
+        .chain([ROS2_TAG, "END"]);
     closest(inner, known)
 }
 

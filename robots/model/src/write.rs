@@ -50,6 +50,16 @@ impl RobotModel {
             "PARAMETERS",
             self.parameters.iter().map(value_line).collect(),
         );
+        // Only a model that has one: the section is not the dissertation's.
+        if !self.ros2.is_empty() {
+            section(
+                "ROS2",
+                self.ros2
+                    .iter()
+                    .map(|s| format!("{} {}", s.name, s.value))
+                    .collect(),
+            );
+        }
         out.push_str("[END]\n");
         out
     }

@@ -92,8 +92,8 @@ curinc 0.7
 [Parameters]
 max_speed 0.4
 [END]",
-        "line 1: unknown section [PARAMETER] (did you mean [PARAMETERS]?); the sections are [SENSORSANDACTUATORS], [OBJECTS], [COLORS], [IDENTIFIERS], [PARAMETERS] and [END]; its 2 lines are ignored
-         line 4: unknown section [COLOURS] (did you mean [COLORS]?); the sections are [SENSORSANDACTUATORS], [OBJECTS], [COLORS], [IDENTIFIERS], [PARAMETERS] and [END]; it holds no entries",
+        "line 1: unknown section [PARAMETER] (did you mean [PARAMETERS]?); the sections are [SENSORSANDACTUATORS], [OBJECTS], [COLORS], [IDENTIFIERS], [PARAMETERS], [ROS2] and [END]; its 2 lines are ignored
+         line 4: unknown section [COLOURS] (did you mean [COLORS]?); the sections are [SENSORSANDACTUATORS], [OBJECTS], [COLORS], [IDENTIFIERS], [PARAMETERS], [ROS2] and [END]; it holds no entries",
     );
     assert_eq!(m.parameters.len(), 1);
     assert_eq!(m.max_speed(), 0.4);
@@ -269,10 +269,10 @@ fn text_without_any_section_gives_the_defaults() {
         vec![
             "no known section tag such as [PARAMETERS] in 3 lines; the built-in defaults are used",
             "line 1: unknown section [PARAMETRES] (did you mean [PARAMETERS]?); the sections are \
-             [SENSORSANDACTUATORS], [OBJECTS], [COLORS], [IDENTIFIERS], [PARAMETERS] and [END]; \
+             [SENSORSANDACTUATORS], [OBJECTS], [COLORS], [IDENTIFIERS], [PARAMETERS], [ROS2] and [END]; \
              its 1 line is ignored",
             "line 3: unknown section [ned] (did you mean [END]?); the sections are \
-             [SENSORSANDACTUATORS], [OBJECTS], [COLORS], [IDENTIFIERS], [PARAMETERS] and [END]; \
+             [SENSORSANDACTUATORS], [OBJECTS], [COLORS], [IDENTIFIERS], [PARAMETERS], [ROS2] and [END]; \
              it holds no entries",
         ]
     );
@@ -302,4 +302,51 @@ pyörät 5
         "",
     );
     assert_eq!(m.identifier("PYÖRÄT"), Some(5.0));
+}
+
+#[test]
+fn a_ros2_section_keeps_known_settings_and_warns_about_the_rest() {
+    let (m, warnings) = RobotModel::parse(
+        "[PARAMETERS]\nmax_speed 0.5\n[ROS2]\nnamespace /tb3\nCMD_VEL cmd_vel_nav\n\
+         odm odom2\ncmd_vel again\nscan\nsensor_qos reliable\n[END]\n",
+        "tb3",
+    );
+    let settings: Vec<(&str, &str)> = m
+        .ros2
+        .iter()
+        .map(|s| (s.name.as_str(), s.value.as_str()))
+        .collect();
+    assert_eq!(
+        settings,
+        [
+            ("namespace", "/tb3"),
+            ("cmd_vel", "cmd_vel_nav"),
+            ("sensor_qos", "reliable")
+        ]
+    );
+    let said: Vec<String> = warnings.iter().map(|w| w.to_string()).collect();
+    assert!(
+        said[0].contains("line 6: unknown [ROS2] setting `odm` (did you mean `odom`?)"),
+        "{said:?}"
+    );
+    assert!(
+        said[1].contains("line 7: duplicate [ROS2] setting `cmd_vel`"),
+        "{said:?}"
+    );
+    assert!(
+        said[2].contains("line 8: [ROS2] entry `scan` should have 2 fields"),
+        "{said:?}"
+    );
+    assert_eq!(said.len(), 3, "{said:?}");
+    // Written out and read back, the section is the same.
+    let (back, none) = RobotModel::parse(&m.to_ini(), "tb3");
+    assert!(none.is_empty(), "{none:?}");
+    assert_eq!(back.ros2, m.ros2);
+    // A model without the section writes none.
+    assert!(
+        !RobotModel::builtin("moro")
+            .unwrap()
+            .to_ini()
+            .contains("[ROS2]")
+    );
 }

@@ -11,7 +11,7 @@ use crate::convert::{self, Limits};
 use crate::dds::{LinkError, Participant, Profile, Reach, Reader, Writer};
 use crate::msg::{BatteryState, Clock, LaserScan, Odometry, TFMessage, Time, Twist};
 use crate::names::TopicName;
-use crate::robot::MAX_SAMPLES_PER_TICK;
+use crate::robot::{MAX_SAMPLES_PER_TICK, Topics};
 
 /// The frames of REP 105.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -38,6 +38,8 @@ pub struct BaseConfig {
     pub domain_id: u16,
     pub namespace: String,
     pub reach: Reach,
+    /// `cmd_vel`, `odom`, `scan` and `battery_state`'s names.
+    pub topics: Topics,
     pub frames: Frames,
     /// What the base accepts: a faster or sharper `cmd_vel` is clamped.
     pub limits: Limits,
@@ -81,12 +83,12 @@ impl Base {
         // effort, which matches teleop nodes of either kind too.
         let reliable = Profile::Reliable;
         Ok(Base {
-            cmd_vel: participant.reader(&topic("cmd_vel")?, Profile::SensorData)?,
-            odom: participant.writer(&topic("odom")?, reliable)?,
+            cmd_vel: participant.reader(&topic(&config.topics.cmd_vel)?, Profile::SensorData)?,
+            odom: participant.writer(&topic(&config.topics.odom)?, reliable)?,
             ground_truth: participant.writer(&topic("ground_truth")?, reliable)?,
             tf: participant.writer(&topic("tf")?, reliable)?,
-            scan: participant.writer(&topic("scan")?, reliable)?,
-            battery: participant.writer(&topic("battery_state")?, reliable)?,
+            scan: participant.writer(&topic(&config.topics.scan)?, reliable)?,
+            battery: participant.writer(&topic(&config.topics.battery)?, reliable)?,
             clock: match config.clock {
                 true => Some(participant.writer(&topic("/clock")?, reliable)?),
                 false => None,

@@ -57,6 +57,10 @@ pub struct Ros2Config {
     pub namespace: String,
     pub topics: Topics,
     pub reach: Reach,
+    /// The frames `ilmrc sim` publishes the robot in.
+    pub frames: crate::base::Frames,
+    /// How odometry, scan and battery are read.
+    pub sensor_profile: Profile,
     /// The model's name for its scanner; `None` for a robot without one (then no scan
     /// is waited for).
     pub scanner: Option<String>,
@@ -148,9 +152,9 @@ impl Ros2Robot {
         let participant = Participant::join(config.domain_id, config.reach)?;
         let link = Endpoints {
             cmd_vel: participant.writer(&topic(&config.topics.cmd_vel)?, Profile::Reliable)?,
-            odom: participant.reader(&topic(&config.topics.odom)?, Profile::SensorData)?,
-            scan: participant.reader(&topic(&config.topics.scan)?, Profile::SensorData)?,
-            battery: participant.reader(&topic(&config.topics.battery)?, Profile::SensorData)?,
+            odom: participant.reader(&topic(&config.topics.odom)?, config.sensor_profile)?,
+            scan: participant.reader(&topic(&config.topics.scan)?, config.sensor_profile)?,
+            battery: participant.reader(&topic(&config.topics.battery)?, config.sensor_profile)?,
             _participant: participant,
         };
         let mut robot = Ros2Robot {
