@@ -40,6 +40,14 @@ struct Driven {
     trace: Vec<Value>,
 }
 
+/// The DDS tests run one at a time: each drives a robot in real time, and what they
+/// assert of timing (zeros repeated, rates) must not depend on how many others share
+/// the cores.
+fn one_at_a_time() -> std::sync::MutexGuard<'static, ()> {
+    static SERIAL: std::sync::Mutex<()> = std::sync::Mutex::new(());
+    SERIAL.lock().unwrap_or_else(|e| e.into_inner())
+}
+
 fn scratch(name: &str) -> PathBuf {
     std::env::temp_dir().join(format!("ilmr-ros2-{}-{name}", std::process::id()))
 }
@@ -191,6 +199,7 @@ fn repeated(zeros: &[f64], from: f64, to: f64) {
 
 #[test]
 fn a_task_drives_a_cyclone_dds_robot_to_its_goal() {
+    let _serial = one_at_a_time();
     let mcap = scratch("goal.mcap");
     let d = drive(
         "goal",
@@ -276,6 +285,7 @@ fn recorded_as_a_bag(mcap: &std::path::Path, (x, y): (f64, f64)) {
 
 #[test]
 fn a_lost_odometry_stream_halts_the_robot_and_zero_velocity_is_repeated() {
+    let _serial = one_at_a_time();
     let d = drive(
         "odom",
         "speed(0.3)\ngoahead(5)\n",
@@ -307,6 +317,7 @@ fn a_lost_odometry_stream_halts_the_robot_and_zero_velocity_is_repeated() {
 
 #[test]
 fn a_scan_gap_holds_the_robot_with_repeated_zeros_and_it_goes_on_when_scans_return() {
+    let _serial = one_at_a_time();
     let d = drive(
         "scan",
         "speed(0.3)\nm=gotoxy(3,0)\nwait(m)\n",
@@ -340,6 +351,7 @@ fn a_scan_gap_holds_the_robot_with_repeated_zeros_and_it_goes_on_when_scans_retu
 
 #[test]
 fn the_shell_drives_a_ros_2_robot_as_run_does() {
+    let _serial = one_at_a_time();
     let root = support::root();
     let task = scratch("shell.ilmr");
     std::fs::write(&task, "speed(0.4)\ngotoxy(2,1)\n").unwrap();
@@ -400,6 +412,7 @@ fn link_counts(summary: &str) -> &str {
 
 #[test]
 fn malformed_odometry_from_another_peer_is_dropped_and_the_task_reaches_its_goal() {
+    let _serial = one_at_a_time();
     let d = drive_beside(
         "malformed",
         "speed(0.4)\nm=gotoxy(2,1)\nwait(m)\n",
@@ -430,6 +443,7 @@ fn malformed_odometry_from_another_peer_is_dropped_and_the_task_reaches_its_goal
 /// VM takes at most 64 samples a tick.
 #[test]
 fn a_flood_of_nan_odometry_is_bounded_per_tick_and_never_the_robots_pose() {
+    let _serial = one_at_a_time();
     let d = drive_beside(
         "flood",
         "speed(0.4)\nm=gotoxy(2,1)\nwait(m)\n",
@@ -475,6 +489,7 @@ fn a_flood_of_nan_odometry_is_bounded_per_tick_and_never_the_robots_pose() {
 
 #[test]
 fn an_oversized_scan_never_becomes_the_robots_and_it_drives_on_the_real_scans() {
+    let _serial = one_at_a_time();
     let d = drive_beside(
         "oversize",
         "speed(0.4)\nm=gotoxy(2,1)\nwait(m)\n",
@@ -535,6 +550,7 @@ fn beside_the_simulator(sim: &[&str], command: &[&str]) -> (Value, String) {
 
 #[test]
 fn the_simulator_is_a_ros_2_robot_that_cyclone_dds_sees_at_the_models_rates() {
+    let _serial = one_at_a_time();
     let (listened, sim) = beside_the_simulator(
         &["--ros-namespace", "/r1", "--clock", "--world", "office"],
         &[
@@ -594,6 +610,7 @@ fn the_simulator_is_a_ros_2_robot_that_cyclone_dds_sees_at_the_models_rates() {
 
 #[test]
 fn ilmrc_run_drives_ilmrc_sim_in_another_process_over_dds() {
+    let _serial = one_at_a_time();
     let task = scratch("sim_goal.ilmr");
     let trace = scratch("sim_goal.jsonl");
     std::fs::write(&task, "speed(0.4)\nm=gotoxy(2,1)\nwait(m)\n").unwrap();
@@ -642,6 +659,7 @@ fn ilmrc_run_drives_ilmrc_sim_in_another_process_over_dds() {
 
 #[test]
 fn a_fleet_of_a_simulated_robot_and_a_launched_ros_2_one_runs_both_tasks_to_the_end() {
+    let _serial = one_at_a_time();
     let dir = scratch("fleet");
     std::fs::create_dir_all(&dir).unwrap();
     std::fs::write(dir.join("go.ilmr"), "speed(0.4)\nm=gotoxy(2,1)\nwait(m)\n").unwrap();
@@ -715,6 +733,7 @@ impl Drop for Reaper {
 
 #[test]
 fn a_fleet_killed_outright_leaves_no_simulator_running() {
+    let _serial = one_at_a_time();
     use std::io::{BufRead, BufReader};
     let dir = scratch("lifeline");
     std::fs::create_dir_all(&dir).unwrap();
@@ -763,6 +782,7 @@ fn a_fleet_killed_outright_leaves_no_simulator_running() {
 /// run reads: both sides take their names from the one model.
 #[test]
 fn the_models_ros2_section_names_the_topics_on_both_sides() {
+    let _serial = one_at_a_time();
     let dir = scratch("model");
     std::fs::create_dir_all(&dir).unwrap();
     let moro =
@@ -815,6 +835,7 @@ fn the_models_ros2_section_names_the_topics_on_both_sides() {
 
 #[test]
 fn without_a_robot_the_run_says_what_it_waited_for_and_exits_2() {
+    let _serial = one_at_a_time();
     let out = Command::new("unshare")
         .args(["-n", "sh", "-c"])
         .arg(format!(
