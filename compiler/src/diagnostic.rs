@@ -103,7 +103,7 @@ codes! {
     BeyondCapability = "W0405", Warning, "value beyond what the robot can do",
         "The robot can run the command but not as written: a curvature beyond its `max_curvature` is clipped by the position controller, so the path will be wider than asked.";
     SuspectUnit = "W0409", Warning, "number that looks like another unit",
-        "A literal number is implausible in the argument's unit but plausible in another: `turn(d=1.57,c=1)` turns 1.57 degrees, which looks like radians (90 degrees), and `goahead(120)` drives 120 m, which looks like centimetres. The thresholds are in the units section of the command reference. The fix writes the converted value. Only a number written out is looked at: if the value is meant, write it as arithmetic (`d=3/2`).";
+        "A literal number is implausible in the argument's unit but plausible in another: `turn(d=1.57,c=1)` turns 1.57 degrees, which looks like radians (pi/2, 90 degrees), and `goahead(120)` drives 120 m, which looks like centimetres. The thresholds are in the units section of the command reference. The fix writes the converted value. Only a number written out is looked at: if the value is meant, write it as arithmetic (`d=3/2`).";
     ReadingIndex = "E0406", Error, "sensor reading index out of range",
         "A sensor's readings are numbered from 0 to one less than the count in the robot model.";
     Unsupported = "E0407", Error, "command not available on this robot",

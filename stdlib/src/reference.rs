@@ -99,9 +99,12 @@ fn units_section(out: &mut String) {
         out,
         "\nA literal number that looks written in another unit gets a warning (W0409) when its \
          value in that unit is within the argument's range: a degree value with a fraction no \
-         larger than {} (a full turn in radians), such as `turn(d=1.57,c=1)`, looks like \
+         larger than {} (a full turn in radians) that is in radians within {} degrees of a \
+         multiple of {} degrees, such as `turn(d=1.57,c=1)` (90 degrees), looks like \
          radians; a length of {} m or more in one command looks like centimetres.\n",
         crate::units::round_for_people(crate::units::RADIANS_UP_TO),
+        crate::units::ROUND_ANGLE_SLACK,
+        crate::units::ROUND_ANGLE_DEGREES,
         crate::units::CENTIMETRES_FROM
     );
 }

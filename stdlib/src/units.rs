@@ -127,8 +127,9 @@ pub fn written_unit(text: &str) -> Option<&'static WrittenUnit> {
         .find(|u| u.spellings.iter().any(|s| s.eq_ignore_ascii_case(text)))
 }
 
-/// A degree value no larger than a full turn in radians, with a fraction, is read as
-/// radians: no robot here turns or heads by 1.57 degrees on purpose.
+/// A degree value no larger than a full turn in radians, with a fraction, whose value
+/// in radians is a round angle (see [`round_angle`]), is read as radians: no robot here
+/// turns or heads by 1.57 degrees on purpose, and 1.57 rad is 90 degrees.
 pub const RADIANS_UP_TO: f64 = std::f64::consts::TAU;
 
 /// A length of this many metres or more in one command is read as centimetres: no robot
@@ -151,10 +152,11 @@ pub fn suspect(unit: Unit, value: f64) -> Option<Suspect> {
     let magnitude = value.abs();
     match unit {
         Unit::Degrees if magnitude > 0.0 && magnitude <= RADIANS_UP_TO && value.fract() != 0.0 => {
-            Some(Suspect {
+            let meant = value * DEGREES_PER_RADIAN;
+            round_angle(meant).map(|likely| Suspect {
                 looks_like: "radians",
-                meant: value * DEGREES_PER_RADIAN,
-                likely: likely_angle(value * DEGREES_PER_RADIAN),
+                meant,
+                likely,
             })
         }
         Unit::Metres if magnitude >= CENTIMETRES_FROM => Some(Suspect {
@@ -166,20 +168,17 @@ pub fn suspect(unit: Unit, value: f64) -> Option<Suspect> {
     }
 }
 
-/// Angles people turn by are whole multiples of this many degrees: an angle converted
-/// from radians this close to one is taken to mean it.
-const ROUND_DEGREES: f64 = 5.0;
-const ROUND_SLACK: f64 = 0.5;
+/// Angles people turn or head by in radians are fractions of pi: multiples of this
+/// many degrees (pi/12).
+pub const ROUND_ANGLE_DEGREES: f64 = 15.0;
+/// How near (degrees) a converted value must come to such a multiple to be taken for
+/// it: 1.57 rad is 89.954 degrees, and the one who wrote it meant 90.
+pub const ROUND_ANGLE_SLACK: f64 = 0.5;
 
-/// The angle a converted number most likely stood for: 1.57 rad is 89.954 degrees, and
-/// the one who wrote it meant 90.
-pub fn likely_angle(value: f64) -> f64 {
-    let nearest = (value / ROUND_DEGREES).round() * ROUND_DEGREES;
-    if (value - nearest).abs() <= ROUND_SLACK {
-        nearest
-    } else {
-        value
-    }
+/// The multiple of [`ROUND_ANGLE_DEGREES`] that `degrees` stands for, if it is that near.
+pub fn round_angle(degrees: f64) -> Option<f64> {
+    let nearest = (degrees / ROUND_ANGLE_DEGREES).round() * ROUND_ANGLE_DEGREES;
+    ((degrees - nearest).abs() <= ROUND_ANGLE_SLACK && nearest != 0.0).then_some(nearest)
 }
 
 /// A number as a person would write it: at most three decimals, no trailing zeros.
@@ -202,13 +201,20 @@ mod tests {
         let kmh = written_unit("KM/H").unwrap();
         assert_eq!(kmh.dimension, Dimension::Speed);
         assert_eq!(round_for_people(30.0 * kmh.factor), "8.333");
-        assert_eq!(round_for_people(0.5 * written_unit("rad").unwrap().factor), "28.648");
+        assert_eq!(
+            round_for_people(0.5 * written_unit("rad").unwrap().factor),
+            "28.648"
+        );
         assert_eq!(written_unit("furlong"), None);
     }
 
     #[test]
     fn every_spelling_names_one_unit() {
-        let mut all: Vec<&str> = WRITTEN_UNITS.iter().flat_map(|u| u.spellings).copied().collect();
+        let mut all: Vec<&str> = WRITTEN_UNITS
+            .iter()
+            .flat_map(|u| u.spellings)
+            .copied()
+            .collect();
         let n = all.len();
         all.sort_unstable();
         all.dedup();
@@ -229,8 +235,12 @@ mod tests {
         assert_eq!(suspect(Unit::MetresPerSecond, 300.0), None);
         assert_eq!(round_for_people(-0.0001), "0");
         assert_eq!(round_for_people(2.0), "2");
-        assert_eq!(likely_angle(89.954), 90.0);
-        assert_eq!(likely_angle(28.648), 28.648);
+        assert_eq!(round_angle(89.954), Some(90.0));
+        assert_eq!(round_angle(28.648), None);
         assert_eq!(suspect(Unit::Degrees, -1.57).unwrap().likely, -90.0);
+        assert_eq!(suspect(Unit::Degrees, 0.785).unwrap().likely, 45.0);
+        // 0.3 rad is 17.2 degrees, no angle anyone means: a small heading, not radians.
+        assert_eq!(suspect(Unit::Degrees, 0.3), None);
+        assert_eq!(suspect(Unit::Degrees, 0.5), None);
     }
 }

@@ -788,7 +788,11 @@ impl<'m, 'v> Cx<'m, 'v> {
                     suspect.looks_like
                 ),
             )
-            .with_label(format!("the {param} is in {} ({})", unit.words(), unit.symbol()))
+            .with_label(format!(
+                "the {param} is in {} ({})",
+                unit.words(),
+                unit.symbol()
+            ))
             .with_help(format!(
                 "{number} {} is {exact} {}{about}: write `{meant}` if that was meant",
                 suspect.looks_like,

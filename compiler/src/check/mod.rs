@@ -639,9 +639,11 @@ impl<'a, 'm> Walker<'a, 'm> {
             ),
         );
         let d = match self.call_suggestion(call.name.text) {
-            Some(s) => d
-                .with_label(format!("did you mean `{s}`?"))
-                .with_fix(format!("replace with `{s}`"), call.name.span, s),
+            Some(s) => d.with_label(format!("did you mean `{s}`?")).with_fix(
+                format!("replace with `{s}`"),
+                call.name.span,
+                s,
+            ),
             None => {
                 let nearest = suggest::nearest(call.name.text, self.skills.names(), SKILLS_LISTED);
                 let known = if nearest.is_empty() {

@@ -28,7 +28,11 @@ fn reference(source: &str, file: FileId) -> Parsed<'_> {
     // was already reported and read as a broken line.
     let mut errors = errors.into_iter().peekable();
     let mut from = 0;
-    for to in tokens.iter().enumerate().filter(|(_, (t, _))| *t == Token::Newline) {
+    for to in tokens
+        .iter()
+        .enumerate()
+        .filter(|(_, (t, _))| *t == Token::Newline)
+    {
         let line = &tokens[from..=to.0];
         from = to.0 + 1;
         let mut mine = Vec::new();
@@ -36,7 +40,10 @@ fn reference(source: &str, file: FileId) -> Parsed<'_> {
             mine.push(e);
         }
         let whole = line[0].1.to(line[line.len() - 1].1);
-        if !ends.iter().any(|end| whole.start <= end.start && end.end <= whole.end) {
+        if !ends
+            .iter()
+            .any(|end| whole.start <= end.start && end.end <= whole.end)
+        {
             syntax.extend(explained_errors(line, mine, file, source).0);
         }
     }

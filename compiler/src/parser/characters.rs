@@ -44,26 +44,70 @@ pub const UNUSUAL: &[(char, &str, Stands)] = &[
     ('\u{200E}', "LEFT-TO-RIGHT MARK", Stands::ForNothing),
     ('\u{200F}', "RIGHT-TO-LEFT MARK", Stands::ForNothing),
     ('\u{2060}', "WORD JOINER", Stands::ForNothing),
-    ('\u{FEFF}', "ZERO WIDTH NO-BREAK SPACE (byte order mark)", Stands::ForNothing),
+    (
+        '\u{FEFF}',
+        "ZERO WIDTH NO-BREAK SPACE (byte order mark)",
+        Stands::ForNothing,
+    ),
     ('\u{00AD}', "SOFT HYPHEN", Stands::ForNothing),
     ('\u{2212}', "MINUS SIGN", Stands::For(Token::Minus, "-")),
     ('\u{2010}', "HYPHEN", Stands::For(Token::Minus, "-")),
-    ('\u{2011}', "NON-BREAKING HYPHEN", Stands::For(Token::Minus, "-")),
+    (
+        '\u{2011}',
+        "NON-BREAKING HYPHEN",
+        Stands::For(Token::Minus, "-"),
+    ),
     ('\u{2013}', "EN DASH", Stands::For(Token::Minus, "-")),
     ('\u{2014}', "EM DASH", Stands::For(Token::Minus, "-")),
-    ('\u{00D7}', "MULTIPLICATION SIGN", Stands::For(Token::Star, "*")),
+    (
+        '\u{00D7}',
+        "MULTIPLICATION SIGN",
+        Stands::For(Token::Star, "*"),
+    ),
     ('\u{22C5}', "DOT OPERATOR", Stands::For(Token::Star, "*")),
     ('\u{00F7}', "DIVISION SIGN", Stands::For(Token::Slash, "/")),
     ('\u{2215}', "DIVISION SLASH", Stands::For(Token::Slash, "/")),
-    ('\u{2264}', "LESS-THAN OR EQUAL TO", Stands::For(Token::Le, "<=")),
-    ('\u{2265}', "GREATER-THAN OR EQUAL TO", Stands::For(Token::Ge, ">=")),
+    (
+        '\u{2264}',
+        "LESS-THAN OR EQUAL TO",
+        Stands::For(Token::Le, "<="),
+    ),
+    (
+        '\u{2265}',
+        "GREATER-THAN OR EQUAL TO",
+        Stands::For(Token::Ge, ">="),
+    ),
     ('\u{2260}', "NOT EQUAL TO", Stands::For(Token::NotEq, "!=")),
-    ('\u{FF08}', "FULLWIDTH LEFT PARENTHESIS", Stands::For(Token::LParen, "(")),
-    ('\u{FF09}', "FULLWIDTH RIGHT PARENTHESIS", Stands::For(Token::RParen, ")")),
-    ('\u{FF0C}', "FULLWIDTH COMMA", Stands::For(Token::Comma, ",")),
-    ('\u{3001}', "IDEOGRAPHIC COMMA", Stands::For(Token::Comma, ",")),
-    ('\u{FF1A}', "FULLWIDTH COLON", Stands::For(Token::Colon, ":")),
-    ('\u{FF1D}', "FULLWIDTH EQUALS SIGN", Stands::For(Token::Assign, "=")),
+    (
+        '\u{FF08}',
+        "FULLWIDTH LEFT PARENTHESIS",
+        Stands::For(Token::LParen, "("),
+    ),
+    (
+        '\u{FF09}',
+        "FULLWIDTH RIGHT PARENTHESIS",
+        Stands::For(Token::RParen, ")"),
+    ),
+    (
+        '\u{FF0C}',
+        "FULLWIDTH COMMA",
+        Stands::For(Token::Comma, ","),
+    ),
+    (
+        '\u{3001}',
+        "IDEOGRAPHIC COMMA",
+        Stands::For(Token::Comma, ","),
+    ),
+    (
+        '\u{FF1A}',
+        "FULLWIDTH COLON",
+        Stands::For(Token::Colon, ":"),
+    ),
+    (
+        '\u{FF1D}',
+        "FULLWIDTH EQUALS SIGN",
+        Stands::For(Token::Assign, "="),
+    ),
     ('\u{00B0}', "DEGREE SIGN", Stands::Alone),
     ('\u{2018}', "LEFT SINGLE QUOTATION MARK", Stands::Alone),
     ('\u{2019}', "RIGHT SINGLE QUOTATION MARK", Stands::Alone),
@@ -95,7 +139,9 @@ pub fn advice(c: char) -> Option<&'static str> {
         '"' | '\'' | '\u{2018}' | '\u{2019}' | '\u{201C}' | '\u{201D}' => {
             Some("ILMR has no quoted text: write the name without quotes")
         }
-        '\u{00B0}' => Some("values are plain numbers in the command's unit: write the number alone"),
+        '\u{00B0}' => {
+            Some("values are plain numbers in the command's unit: write the number alone")
+        }
         ';' => Some("statements are one per line: put what follows on a line of its own"),
         _ => None,
     }

@@ -86,7 +86,8 @@ pub fn block_end<'s>(
 
 fn could_be_block_end(&(token, span): &(Token, Span), source: &str) -> bool {
     let text = span.slice(source).as_bytes();
-    let starts = |word: &[u8]| text.len() >= word.len() && text[..word.len()].eq_ignore_ascii_case(word);
+    let starts =
+        |word: &[u8]| text.len() >= word.len() && text[..word.len()].eq_ignore_ascii_case(word);
     match token {
         Token::Ident => starts(b"end") || starts(b"check") || starts(b"wend"),
         Token::Check => true,
@@ -173,14 +174,20 @@ fn combined_condition(
     let is_and = matches!(word.to_ascii_lowercase().as_str(), "and" | "&" | "&&");
     let text = |from: usize, to: usize| source[from..to].trim();
     let cond_start = line[open].1.end as usize;
-    let cond_end = line.get(close).map_or(line[line.len() - 1].1.end, |t| t.1.start) as usize;
+    let cond_end = line
+        .get(close)
+        .map_or(line[line.len() - 1].1.end, |t| t.1.start) as usize;
     let left = text(cond_start, joint.start as usize);
     let right = text(joint.end as usize, cond_end);
-    let keyword = if line[0].0 == Token::If { "if" } else { "while" };
+    let keyword = if line[0].0 == Token::If {
+        "if"
+    } else {
+        "while"
+    };
     let help = match (keyword, is_and) {
-        ("if", true) => format!(
-            "nest one `if` inside the other:\nif({left})\nif({right})\n...\nendif\nendif"
-        ),
+        ("if", true) => {
+            format!("nest one `if` inside the other:\nif({left})\nif({right})\n...\nendif\nendif")
+        }
         ("if", false) => format!(
             "give each condition its own block:\nif({left})\n...\nendif\nif({right})\n...\nendif"
         ),
@@ -213,7 +220,13 @@ fn combined_condition(
 fn call_of(line: &[(Token, Span)], source: &str) -> Option<(Command, usize)> {
     let at = match line {
         [(Token::Ident, _), (Token::LParen, _), ..] => 0,
-        [(Token::Ident, _), (Token::Assign, _), (Token::Ident, _), (Token::LParen, _), ..] => 2,
+        [
+            (Token::Ident, _),
+            (Token::Assign, _),
+            (Token::Ident, _),
+            (Token::LParen, _),
+            ..,
+        ] => 2,
         _ => return None,
     };
     Some((Command::from_name(line[at].1.slice(source))?, at + 2))
@@ -237,11 +250,8 @@ fn unit_after_number(
         match token {
             Token::LParen => depth += 1,
             Token::RParen => depth = depth.saturating_sub(1),
-            Token::Comma if depth == 0 => {
-                if key.take().is_none() {
-                    index += 1;
-                }
-            }
+            // A setting's comma ends the setting; a positional one counts.
+            Token::Comma if depth == 0 && key.take().is_none() => index += 1,
             Token::Ident if depth == 0 && line.get(i + 1).is_some_and(|t| t.0 == Token::Assign) => {
                 key = Some(span.slice(source));
             }
@@ -259,7 +269,11 @@ fn unit_after_number(
                         .collect();
                     if let Some(unit) = units::written_unit(&written) {
                         let negative = i > 0 && line[i - 1].0 == Token::Minus;
-                        let number_span = if negative { line[i - 1].1.to(span) } else { span };
+                        let number_span = if negative {
+                            line[i - 1].1.to(span)
+                        } else {
+                            span
+                        };
                         let value = crate::lexer::number(span.slice(source))
                             * if negative { -1.0 } else { 1.0 };
                         let expected = call.and_then(|(c, _)| c.spec().unit_of(key, index));
@@ -312,7 +326,10 @@ fn unit_diagnostic(
             let help = if meant == number {
                 format!("write the number alone: `{meant}`")
             } else {
-                format!("{number} {written} is {meant} {}: write `{meant}`", u.symbol())
+                format!(
+                    "{number} {written} is {meant} {}: write `{meant}`",
+                    u.symbol()
+                )
             };
             d.with_help(help)
                 .with_fix(format!("replace with `{meant}`"), span, meant)
@@ -385,7 +402,10 @@ mod tests {
         assert_eq!(d.code, Code::CombinedCondition);
         assert!(d.help.unwrap().contains("if(x<2)\nif(x>0)"));
         let d = explained("w = while(a>1 || b)").unwrap();
-        assert_eq!(d.message, "a condition takes one comparison; `||` cannot join two");
+        assert_eq!(
+            d.message,
+            "a condition takes one comparison; `||` cannot join two"
+        );
         assert!(explained("if(x<2 x>0)").is_none());
         // The grammar stops before the `or`: that is not the mistake to explain.
         assert!(explained("while (while--1 <= -d,or+.5)").is_none());

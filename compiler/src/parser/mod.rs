@@ -295,7 +295,12 @@ fn syntax_diagnostic(error: lines::ParseError<'_>, file: FileId, source: &str) -
                 _ => Code::Syntax,
             };
             let d = Diagnostic::new(code, file, span, message).with_label(label);
-            match span.slice(source).chars().next().and_then(characters::advice) {
+            match span
+                .slice(source)
+                .chars()
+                .next()
+                .and_then(characters::advice)
+            {
                 Some(advice) if code == Code::UnusualCharacter => d.with_help(advice),
                 _ => d,
             }
