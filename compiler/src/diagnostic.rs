@@ -56,6 +56,12 @@ codes! {
         "`break(` has no closing `)` before the end of the line. The pattern is taken up to the end of the line.";
     TooComplex = "E0104", Error, "expression too complex",
         "A line holds more operators and opening parentheses than the limit (256): every tool that reads the expression would nest that deep. Split it into several assignments.";
+    UnusualCharacter = "E0105", Error, "unusual character",
+        "A character ILMR does not read, often one that looks like another: a non-breaking space (U+00A0) or a zero-width space copied from a web page or a word processor, a typographic dash or quote, `≥` for `>=`. The message names it by its code point; where it stands for a space or an ASCII sign, the fix writes that instead, and the rest of the line is read as if it had been.";
+    UnitAfterNumber = "E0106", Error, "unit written after a number",
+        "Values are plain numbers in the unit of the command's argument (metres, m/s, degrees, seconds; see the units in the command reference). The fix writes the number converted into that unit: `speed(30 km/h)` becomes `speed(8.333)`.";
+    CombinedCondition = "E0107", Error, "more than one comparison in a condition",
+        "A condition of `if` or `while` is one comparison (or one variable): there is no `and` or `or`. Nest the blocks for `and` (`if(x<2)` then `if(x>0)` on the next line, each with its `endif`); for `or`, repeat the block under each condition.";
     UnclosedIf = "E0201", Error, "`if` without `endif`",
         "Every `if(...)` needs an `endif` on a line of its own at the same level.";
     UnclosedWhile = "E0202", Error, "`while` without `endwhile`",
@@ -96,6 +102,8 @@ codes! {
         "Requirement 9: a command that could harm the robot is rejected before it runs. The value exceeds a limit of the robot model (a speed beyond `max_speed`, a body pose beyond `max_roll`, an actuator value outside its range).";
     BeyondCapability = "W0405", Warning, "value beyond what the robot can do",
         "The robot can run the command but not as written: a curvature beyond its `max_curvature` is clipped by the position controller, so the path will be wider than asked.";
+    SuspectUnit = "W0409", Warning, "number that looks like another unit",
+        "A literal number is implausible in the argument's unit but plausible in another: `turn(d=1.57,c=1)` turns 1.57 degrees, which looks like radians (pi/2, 90 degrees), and `goahead(120)` drives 120 m, which looks like centimetres. The thresholds are in the units section of the command reference. The fix writes the converted value. Only a number written out is looked at: if the value is meant, write it as arithmetic (`d=3/2`).";
     ReadingIndex = "E0406", Error, "sensor reading index out of range",
         "A sensor's readings are numbered from 0 to one less than the count in the robot model.";
     Unsupported = "E0407", Error, "command not available on this robot",

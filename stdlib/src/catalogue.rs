@@ -882,10 +882,15 @@ pub static CATALOGUE: [CommandSpec; Command::COUNT] = [
         "A plain reading ends as soon as it has a value but its variable keeps following the \
          sensor, so `if(v < LowBattery)` watches it. With an object the command searches until \
          it finds one and stores its position; with `forever` it keeps searching and the \
-         variable holds the latest one found.",
+         variable holds the latest one found. A scanner reads distances in metres: the \
+         nearest of all its beams, of those on one side, or the beam of an index. Beams are \
+         numbered from the rightmost, evenly over the field of view: on the 180-degree, \
+         361-reading scanners of MoRo and Workpartner, reading 0 looks right, 180 straight \
+         ahead and 360 left, half a degree apart.",
         &[
             "dist = sensor(scanner)",
             "dist = sensor(scanner,left)",
+            "ahead = sensor(scanner,180)",
             "dist = sensor(scanner,1)",
             "dist = sensor(1,0)",
             "Mydoor = sensor(scanner,door)",

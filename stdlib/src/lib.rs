@@ -11,6 +11,7 @@ mod command;
 pub mod reference;
 pub mod skills;
 pub mod spec;
+pub mod units;
 
 pub use catalogue::CATALOGUE;
 pub use command::Command;

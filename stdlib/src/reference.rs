@@ -60,7 +60,53 @@ pub fn reference_markdown() -> String {
             let _ = writeln!(out, "\nExamples: {}", examples.join(", "));
         }
     }
+    units_section(&mut out);
     out
+}
+
+/// What the checker says of units, from the tables of `units.rs`.
+fn units_section(out: &mut String) {
+    out.push_str(
+        "\n## Units\n\n\
+         Values are plain numbers in the unit the reference gives for each argument: metres, \
+         metres per second, degrees, seconds, 1/m. A unit written after a number is an error \
+         (E0106) whose fix writes the number converted into the argument's unit. The units \
+         it recognises:\n\n| written | one of it is |\n| --- | --- |\n",
+    );
+    for u in crate::units::WRITTEN_UNITS {
+        let unit = crate::CATALOGUE
+            .iter()
+            .flat_map(|s| s.forms)
+            .flat_map(|f| f.params)
+            .find_map(|p| match p.kind {
+                ParamKind::Value { unit, .. } | ParamKind::Setting { unit, .. }
+                    if unit.dimension() == Some(u.dimension) =>
+                {
+                    Some(unit)
+                }
+                _ => None,
+            });
+        let spellings: Vec<String> = u.spellings.iter().map(|s| format!("`{s}`")).collect();
+        let _ = writeln!(
+            out,
+            "| {} | {} {} |",
+            spellings.join(", "),
+            crate::units::round_for_people(u.factor),
+            unit.map_or("", |u| u.symbol())
+        );
+    }
+    let _ = write!(
+        out,
+        "\nA literal number that looks written in another unit gets a warning (W0409) when its \
+         value in that unit is within the argument's range: a degree value with a fraction no \
+         larger than {} (a full turn in radians) that is in radians within {} degrees of a \
+         multiple of {} degrees, such as `turn(d=1.57,c=1)` (90 degrees), looks like \
+         radians; a length of {} m or more in one command looks like centimetres.\n",
+        crate::units::round_for_people(crate::units::RADIANS_UP_TO),
+        crate::units::ROUND_ANGLE_SLACK,
+        crate::units::ROUND_ANGLE_DEGREES,
+        crate::units::CENTIMETRES_FROM
+    );
 }
 
 fn kind_text(kind: &ParamKind) -> String {

@@ -341,6 +341,40 @@ impl CommandSpec {
             .any(|p| in_kind(&p.kind, word))
     }
 
+    /// The unit of a number argument: the setting `key`, or else the positional argument
+    /// at `index` (settings not counted), in the first form that takes a number there.
+    pub fn unit_of(&self, key: Option<&str>, index: usize) -> Option<Unit> {
+        fn unit(kind: &ParamKind) -> Option<Unit> {
+            match *kind {
+                ParamKind::Value { unit, .. } | ParamKind::Setting { unit, .. } => Some(unit),
+                ParamKind::OneOf { kinds } => kinds.iter().find_map(unit),
+                _ => None,
+            }
+        }
+        self.forms.iter().find_map(|form| match key {
+            Some(key) => form.params.iter().find_map(|p| match p.kind {
+                ParamKind::Setting { key: k, unit, .. } if k.eq_ignore_ascii_case(key) => {
+                    Some(unit)
+                }
+                _ => None,
+            }),
+            None => {
+                let positional: Vec<&Param> = form
+                    .params
+                    .iter()
+                    .filter(|p| !matches!(p.kind, ParamKind::Setting { .. }))
+                    .collect();
+                let repeats = positional
+                    .last()
+                    .filter(|p| matches!(p.occurs, Occurs::Many | Occurs::Pairs));
+                positional
+                    .get(index)
+                    .or(repeats.filter(|_| index >= positional.len()))
+                    .and_then(|p| unit(&p.kind))
+            }
+        })
+    }
+
     /// Whether some form takes no arguments, so the command may be written bare.
     pub fn allows_bare(&self) -> bool {
         self.forms.iter().any(|f| f.min_args == 0)

@@ -48,6 +48,17 @@ fn code(vm: &common::TestVm, text: &str) -> Option<&'static str> {
     })
 }
 
+/// The reason in the `end` event of the statement with `text`.
+fn reason(vm: &common::TestVm, text: &str) -> Option<String> {
+    vm.events().iter().find_map(|e| {
+        let s = e.stmt.and_then(|s| vm.module().stmt(s))?;
+        match &e.kind {
+            EventKind::End { reason, .. } if s.text == text => reason.clone(),
+            _ => None,
+        }
+    })
+}
+
 /// `(t, fault name)` of every `fault` and `recovered` event, in order.
 fn faults(vm: &common::TestVm) -> Vec<(String, f64, &'static str)> {
     vm.events()
@@ -273,6 +284,7 @@ fn gotoxy_targets_in_walls_off_the_map_or_on_obstacles_are_refused() {
             a: (2.5, 1.0),
             b: (3.5, 1.0),
             radius: 0.05,
+            name: Some("desk_front".into()),
         }],
     };
     // One scanned point 2 m in front of the scanner, 0.85 m ahead of the robot.
@@ -282,6 +294,8 @@ fn gotoxy_targets_in_walls_off_the_map_or_on_obstacles_are_refused() {
     let at_start: Vec<_> = vm.hal().setpoints().to_vec();
     settle(&mut vm, 20.0);
     assert_eq!(code(&vm, "gotoxy(x,1)"), Some("R0105"));
+    let why = reason(&vm, "gotoxy(x,1)").unwrap();
+    assert!(why.contains("from the wall `desk_front`"), "{why}");
     assert_eq!(code(&vm, "gotoxy(1,9)"), Some("R0106"));
     assert_eq!(code(&vm, "gotorelxy(2.8,0)"), Some("R0107"));
     assert!(
@@ -290,6 +304,30 @@ fn gotoxy_targets_in_walls_off_the_map_or_on_obstacles_are_refused() {
     );
     assert_eq!(ended(&vm, "gotoxy(1.5,0)").as_deref(), Some("completed"));
     insta::assert_snapshot!(trace(&vm));
+}
+
+#[test]
+fn a_target_the_robot_cannot_turn_to_is_refused_with_its_way_out() {
+    let mut a = Asm::new();
+    // 1 mm ahead and facing back: the direct curve bends far beyond max_curvature.
+    let go = a.cmd(
+        "gotoxy(0.001,0,180)",
+        Command::GotoXY,
+        &[A::N(0.001), A::N(0.0), A::N(180.0)],
+        None,
+    );
+    let b = a.block(vec![go]);
+    let mut vm = vm(a.task(&[b]), robot(), config());
+    settle(&mut vm, 5.0);
+    assert_eq!(code(&vm, "gotoxy(0.001,0,180)"), Some("R0110"));
+    let why = reason(&vm, "gotoxy(0.001,0,180)").unwrap();
+    assert!(why.contains("the robot turns at most"), "{why}");
+    let line = trace(&vm);
+    assert!(
+        line.contains(r#""code":"R0110""#)
+            && line.contains(r#""help":"give a heading the robot can reach"#),
+        "{line}"
+    );
 }
 
 /// `goahead(4)` at 0.5 m/s, and a second block that does `halt` after 1.5 s.
@@ -740,4 +778,27 @@ fn every_code_and_fault_is_documented() {
         assert!(doc.contains(f.reaction().name().split('_').next().unwrap_or("")));
     }
     assert!(doc.contains("## Fault injection and soak figures"));
+}
+
+#[test]
+fn every_code_has_its_way_out_in_the_docs() {
+    const START: &str = "<!-- ways out: generated from vm/src/runtime/safety/codes.rs -->\n";
+    const END: &str = "<!-- end of ways out -->";
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../docs/reliability.md");
+    let doc = std::fs::read_to_string(path).expect("docs/reliability.md");
+    let table = ilmr_vm::runtime::safety::ways_out_markdown();
+    let (Some(a), Some(b)) = (doc.find(START), doc.find(END)) else {
+        panic!("docs/reliability.md has no ways-out table");
+    };
+    let fresh = format!("{}{START}{table}{}", &doc[..a], &doc[b..]);
+    let doc = if std::env::var_os("UPDATE_DOCS").is_some() {
+        std::fs::write(path, &fresh).unwrap();
+        fresh.clone()
+    } else {
+        doc
+    };
+    assert!(
+        doc == fresh,
+        "the ways-out table is stale: run `UPDATE_DOCS=1 cargo test -p ilmr-vm --test safety`"
+    );
 }

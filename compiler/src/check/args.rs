@@ -5,8 +5,9 @@
 use ilmr_model::Device;
 use smallvec::SmallVec;
 
+use ilmr_stdlib::units;
 use ilmr_stdlib::{
-    CommandSpec, Form, Limit, ModelNames, NameSpace, Occurs, ParamKind, Range, VarKind,
+    CommandSpec, Form, Limit, ModelNames, NameSpace, Occurs, ParamKind, Range, Unit, VarKind,
 };
 
 use crate::ast::{Arg, Args, Expr, ExprKind, Name};
@@ -306,10 +307,11 @@ impl<'m, 'v> Cx<'m, 'v> {
                 }
                 _ => self.not_a_keyword(m, spec, words, e),
             },
-            ParamKind::Value { range, .. } => {
+            ParamKind::Value { range, unit } => {
                 let v = self.value(&mut m.findings, e);
                 if let Value::Const(v) = v {
                     self.check_range(m, spec, param, range, v, e.span, *device);
+                    self.suspect_unit(m, spec, param, unit, range, e);
                 } else if v == Value::Invalid {
                     m.cost += COST_KIND;
                 }
@@ -579,7 +581,12 @@ impl<'m, 'v> Cx<'m, 'v> {
                 self.value(&mut m.findings, value);
                 continue;
             };
-            let ParamKind::Setting { key: k, range, .. } = param.kind else {
+            let ParamKind::Setting {
+                key: k,
+                range,
+                unit,
+            } = param.kind
+            else {
                 unreachable!()
             };
             if let Some((_, first)) = seen.iter().find(|(s, _)| *s == k) {
@@ -599,6 +606,7 @@ impl<'m, 'v> Cx<'m, 'v> {
             m.findings.refs.push((key.span, Resolved::Keyword));
             if let Value::Const(v) = self.value(&mut m.findings, value) {
                 self.check_range(m, spec, k, range, v, value.span, None);
+                self.suspect_unit(m, spec, k, unit, range, value);
             }
         }
         for param in form.params {
@@ -733,6 +741,81 @@ impl<'m, 'v> Cx<'m, 'v> {
             Diagnostic::new(code, self.file, span, message)
                 .with_label(format!("must be {}", bound())),
         );
+    }
+
+    /// W0409: a number written out that looks like another unit, where its value in
+    /// that unit is one the argument admits.
+    fn suspect_unit(
+        &mut self,
+        m: &mut FormMatch<'_>,
+        spec: &CommandSpec,
+        param: &str,
+        unit: Unit,
+        range: Range,
+        e: &Expr<'_>,
+    ) {
+        let written = match &e.kind {
+            ExprKind::Number(v) => *v,
+            ExprKind::Neg(inner) => match inner.kind {
+                ExprKind::Number(v) => -v,
+                _ => return,
+            },
+            _ => return,
+        };
+        let Some(suspect) = units::suspect(unit, written) else {
+            return;
+        };
+        if !self.admits(range, suspect.meant) {
+            return;
+        }
+        let exact = units::round_for_people(suspect.meant);
+        let meant = units::round_for_people(suspect.likely);
+        let about = if meant == exact {
+            String::new()
+        } else {
+            format!(", about {meant}")
+        };
+        let number = units::round_for_people(written);
+        m.findings.diags.push(
+            Diagnostic::new(
+                Code::SuspectUnit,
+                self.file,
+                e.span,
+                format!(
+                    "{number} {} as the `{param}` of `{}` looks like {}",
+                    unit.words(),
+                    spec.name,
+                    suspect.looks_like
+                ),
+            )
+            .with_label(format!(
+                "the {param} is in {} ({})",
+                unit.words(),
+                unit.symbol()
+            ))
+            .with_help(format!(
+                "{number} {} is {exact} {}{about}: write `{meant}` if that was meant",
+                suspect.looks_like,
+                unit.symbol()
+            ))
+            .with_fix(format!("replace with `{meant}`"), e.span, meant),
+        );
+    }
+
+    /// Whether a number range admits `v`; ranges that depend on a device admit nothing.
+    fn admits(&self, range: Range, v: f64) -> bool {
+        let bound = |param: &str| self.constants.parameter_or_default(param, self.model);
+        match range {
+            Range::Any => true,
+            Range::Between { min, max, .. } => (min..=max).contains(&v),
+            Range::Positive => v > 0.0,
+            Range::NonNegative => v >= 0.0,
+            Range::Symmetric { param, .. } | Range::Magnitude { param, .. } => {
+                bound(param).is_some_and(|p| v.abs() <= p)
+            }
+            Range::UpTo { param, .. } => bound(param).is_some_and(|p| (0.0..=p).contains(&v)),
+            Range::DeviceRange | Range::ReadingIndex => false,
+        }
     }
 
     fn unsupported(&mut self, m: &mut FormMatch<'_>, param: &str, span: Span) {

@@ -23,6 +23,9 @@ use crate::diagnostic::{Code, Diagnostic, FileId};
 use crate::parser;
 use crate::span::Span;
 
+/// An unknown call with no close match lists this many known skills, the nearest first.
+const SKILLS_LISTED: usize = 5;
+
 pub use args::fits;
 pub use breaks::needle;
 pub use constants::Constants;
@@ -536,7 +539,14 @@ impl<'a, 'm> Walker<'a, 'm> {
     fn assign_name(&mut self, name: &Name<'_>, stmt: Span) -> Option<VarKind> {
         if self.unit.vars.bound(name.text).is_none() {
             let meaning = self.meaning(name.text);
-            if meaning.constant.is_none() && (meaning.skill.is_some() || meaning.command.is_some())
+            // A misspelt command or skill is reported as one, with its did-you-mean,
+            // unless a variable or constant is spelt closer.
+            let misspelt_call = meaning == names::Meaning::default()
+                && self.call_suggestion(name.text).is_some()
+                && self.cx().unbound(name).fix.is_none();
+            if misspelt_call
+                || meaning.constant.is_none()
+                    && (meaning.skill.is_some() || meaning.command.is_some())
             {
                 let call = Call {
                     name: *name,
@@ -619,10 +629,6 @@ impl<'a, 'm> Walker<'a, 'm> {
             self.target(stmt, Target::Skill(id));
             return Some(VarKind::Status);
         }
-        let candidates = Command::all()
-            .filter(|c| c.spec().syntax == Syntax::Call)
-            .map(|c| c.name())
-            .chain(self.skills.names());
         let d = Diagnostic::new(
             Code::UnknownCommand,
             file,
@@ -632,16 +638,38 @@ impl<'a, 'm> Walker<'a, 'm> {
                 call.name.text
             ),
         );
-        self.diagnostics
-            .push(match suggest::closest(call.name.text, candidates) {
-                Some(s) => d
-                    .with_label(format!("did you mean `{s}`?"))
-                    .with_fix(format!("replace with `{s}`"), call.name.span, s),
-                None => d
-                    .with_label("unknown name")
-                    .with_help("skills are found in the task's skill files, in `--skills DIR` and among the built-in skills"),
-            });
+        let d = match self.call_suggestion(call.name.text) {
+            Some(s) => d.with_label(format!("did you mean `{s}`?")).with_fix(
+                format!("replace with `{s}`"),
+                call.name.span,
+                s,
+            ),
+            None => {
+                let nearest = suggest::nearest(call.name.text, self.skills.names(), SKILLS_LISTED);
+                let known = if nearest.is_empty() {
+                    "this program knows no skills".to_string()
+                } else {
+                    format!(
+                        "the nearest known skills are {}",
+                        suggest::one_of(&nearest).trim_start_matches("one of ")
+                    )
+                };
+                d.with_label("unknown name").with_help(format!(
+                    "{known}; skills are found in the task's skill files, in `--skills DIR` and among the built-in skills"
+                ))
+            }
+        };
+        self.diagnostics.push(d);
         None
+    }
+
+    /// The command or skill a misspelt call most likely meant.
+    fn call_suggestion(&self, name: &str) -> Option<&str> {
+        let candidates = Command::all()
+            .filter(|c| c.spec().syntax == Syntax::Call)
+            .map(|c| c.name())
+            .chain(self.skills.names());
+        suggest::closest(name, candidates)
     }
 
     fn bind(&mut self, name: &Name<'_>, kind: VarKind) {

@@ -14,6 +14,22 @@ pub fn closest<'a>(word: &str, candidates: impl IntoIterator<Item = &'a str>) ->
         .map(|(_, c)| c)
 }
 
+/// Up to `n` candidates, the nearest to `word` (ignoring case) first.
+pub fn nearest<'a>(
+    word: &str,
+    candidates: impl IntoIterator<Item = &'a str>,
+    n: usize,
+) -> Vec<&'a str> {
+    let word = word.to_lowercase();
+    let mut ranked: Vec<(usize, &str)> = candidates
+        .into_iter()
+        .map(|c| (strsim::damerau_levenshtein(&word, &c.to_lowercase()), c))
+        .collect();
+    ranked.sort_unstable();
+    ranked.dedup();
+    ranked.into_iter().take(n).map(|(_, c)| c).collect()
+}
+
 /// "one of `a`, `b` or `c`".
 pub fn one_of(words: &[&str]) -> String {
     match words {
@@ -36,5 +52,7 @@ mod tests {
         assert_eq!(closest("lft", words), Some("left"));
         assert_eq!(closest("MIDDEL", words), Some("middle"));
         assert_eq!(closest("forward", words), None);
+        let near = nearest("rigid", words, 2);
+        assert_eq!((near.len(), near[0]), (2, "right"));
     }
 }

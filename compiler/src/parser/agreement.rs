@@ -22,11 +22,31 @@ fn reference(source: &str, file: FileId) -> Parsed<'_> {
         .filter(|(t, _)| *t == Token::Break)
         .filter_map(|&(_, span)| unclosed_pattern(source, span, file))
         .collect();
+    let (tokens, mut syntax, ends) = prepared(tokens, source, file);
     let (lines, errors) = lines::parse_lines(&tokens, source);
-    let syntax = errors
-        .into_iter()
-        .map(|e| syntax_diagnostic(e, file, source))
-        .collect();
+    // Each line's errors, explained as `parse` explains them; a block end of no block
+    // was already reported and read as a broken line.
+    let mut errors = errors.into_iter().peekable();
+    let mut from = 0;
+    for to in tokens
+        .iter()
+        .enumerate()
+        .filter(|(_, (t, _))| *t == Token::Newline)
+    {
+        let line = &tokens[from..=to.0];
+        from = to.0 + 1;
+        let mut mine = Vec::new();
+        while let Some(e) = errors.next_if(|e| e.span().start <= to.1.1.start) {
+            mine.push(e);
+        }
+        let whole = line[0].1.to(line[line.len() - 1].1);
+        if !ends
+            .iter()
+            .any(|end| whole.start <= end.start && end.end <= whole.end)
+        {
+            syntax.extend(explained_errors(line, mine, file, source).0);
+        }
+    }
     let mut builder = blocks::Builder::new(source, file);
     let mut unclosed = Vec::new();
     for parsed in lines {
@@ -42,6 +62,60 @@ fn reference(source: &str, file: FileId) -> Parsed<'_> {
         [patterns, syntax, structure, unclosed],
         break_patterns,
     )
+}
+
+/// What `parse` does to each line before a parser sees it, done to the whole file's
+/// tokens: characters that stand for others are read as those, and a block end written
+/// as in another language becomes the token it means (a skill's end line, one error
+/// token, whose span it returns). The diagnostics are the ones `parse` gives for them.
+fn prepared(
+    tokens: Vec<(Token, Span)>,
+    source: &str,
+    file: FileId,
+) -> (Vec<(Token, Span)>, Vec<Diagnostic>, Vec<Span>) {
+    let mut out = Vec::with_capacity(tokens.len());
+    let mut diagnostics = Vec::new();
+    let mut ends = Vec::new();
+    for line in tokens.split_inclusive(|(t, _)| *t == Token::Newline) {
+        let (newline, content) = line.split_last().unwrap();
+        let mut content = content.to_vec();
+        if content.iter().any(|(t, _)| *t == Token::Error) {
+            diagnostics.extend(characters::read_through(&mut content, source, file));
+        }
+        if let Some((meant, d)) = hints::block_end(&content, source, file) {
+            diagnostics.push(d);
+            let whole = content[0].1.to(content[content.len() - 1].1);
+            let token = match meant {
+                Line::EndIf => Token::EndIf,
+                Line::EndWhile => Token::EndWhile,
+                Line::Checkend => Token::Checkend,
+                _ => {
+                    ends.push(whole);
+                    Token::Error
+                }
+            };
+            content = vec![(token, whole)];
+        }
+        // A line explained and read as something else is read so here too.
+        let mut whole_line = content.clone();
+        whole_line.push(*newline);
+        let (_, errors) = lines::parse_lines(&whole_line, source);
+        if let Some(explained) = errors
+            .first()
+            .and_then(|e| hints::explain(&content, source, file, *e.span()))
+            && let Some(read_as) = explained.read_as
+        {
+            let mut again = read_as.clone();
+            again.push(*newline);
+            if lines::parse_lines(&again, source).1.is_empty() {
+                diagnostics.push(explained.diagnostic);
+                content = read_as;
+            }
+        }
+        out.extend(content);
+        out.push(*newline);
+    }
+    (out, diagnostics, ends)
 }
 
 /// The line grammar ends every line with a line break; the last line gets one.

@@ -4,7 +4,9 @@
 #[cfg(test)]
 mod agreement;
 mod blocks;
+mod characters;
 mod fast;
+mod hints;
 mod lines;
 
 use chumsky::error::{RichPattern, RichReason};
@@ -46,6 +48,9 @@ pub fn parse<'s>(source: &'s str, file: FileId) -> Parsed<'s> {
     let mut previous_end = source.len() as u32;
     let mut ended = false;
     let mut break_patterns = false;
+    // Whether the line holds text the lexer could not read: only then is it searched
+    // for characters that stand for something.
+    let mut unreadable = false;
     loop {
         let (token, span) = match tokens.next() {
             Some(next) => next,
@@ -59,8 +64,12 @@ pub fn parse<'s>(source: &'s str, file: FileId) -> Parsed<'s> {
                 break_patterns |= lexer::break_pattern(source, span).inner.is_some();
                 patterns.extend(unclosed_pattern(source, span, file));
             }
+            unreadable |= token == Token::Error;
             line.push((token, span));
             continue;
+        }
+        if std::mem::take(&mut unreadable) {
+            syntax.extend(characters::read_through(&mut line, source, file));
         }
         // Only a line of more tokens than the limit can pass it.
         let too_complex = (line.len() > limits::MAX_LINE_OPERATORS)
@@ -71,25 +80,30 @@ pub fn parse<'s>(source: &'s str, file: FileId) -> Parsed<'s> {
                 syntax.push(too_complex_diagnostic(at, file));
                 emit(unparsed_line(&line, source));
             }
-            (Some(&(_, first)), Some(&(_, last)), None) => match fast::line(&line, source) {
-                Some(parsed) => emit(ParsedLine {
-                    line: parsed,
-                    span: Span {
-                        start: first.start,
-                        end: last.end,
-                    },
-                }),
-                None => {
+            (Some(&(_, first)), Some(&(_, last)), None) => {
+                let whole = Span {
+                    start: first.start,
+                    end: last.end,
+                };
+                if let Some((meant, d)) = hints::block_end(&line, source, file) {
+                    syntax.push(d);
+                    emit(ParsedLine {
+                        line: meant,
+                        span: whole,
+                    });
+                } else if let Some(parsed) = fast::line(&line, source) {
+                    emit(ParsedLine {
+                        line: parsed,
+                        span: whole,
+                    });
+                } else {
                     line.push((token, span));
                     let (lines, errors) = lines::parse_lines(&line, source);
-                    syntax.extend(
-                        errors
-                            .into_iter()
-                            .map(|e| syntax_diagnostic(e, file, source)),
-                    );
-                    lines.into_iter().for_each(&mut emit);
+                    let (diagnostics, read_as) = explained_errors(&line, errors, file, source);
+                    syntax.extend(diagnostics);
+                    read_as.unwrap_or(lines).into_iter().for_each(&mut emit);
                 }
-            },
+            }
             _ => emit(ParsedLine {
                 line: Line::Blank,
                 span: Span {
@@ -217,11 +231,43 @@ fn unclosed_args(line: &Line<'_>, file: FileId) -> Option<Diagnostic> {
     )
 }
 
+/// The grammar's errors on one line (ending in its line break), or the one diagnostic
+/// that explains them with, where it can be told, what the line is read as instead.
+fn explained_errors<'s>(
+    line: &[(Token, Span)],
+    errors: Vec<lines::ParseError<'_>>,
+    file: FileId,
+    source: &'s str,
+) -> (Vec<Diagnostic>, Option<Vec<ParsedLine<'s>>>) {
+    let (content, newline) = line.split_at(line.len().saturating_sub(1));
+    match errors
+        .first()
+        .and_then(|e| hints::explain(content, source, file, *e.span()))
+    {
+        Some(explained) => {
+            let read_as = explained.read_as.and_then(|mut tokens| {
+                tokens.extend_from_slice(newline);
+                let (lines, errors) = lines::parse_lines(&tokens, source);
+                errors.is_empty().then_some(lines)
+            });
+            (vec![explained.diagnostic], read_as)
+        }
+        None => (
+            errors
+                .into_iter()
+                .map(|e| syntax_diagnostic(e, file, source))
+                .collect(),
+            None,
+        ),
+    }
+}
+
 fn syntax_diagnostic(error: lines::ParseError<'_>, file: FileId, source: &str) -> Diagnostic {
     let span = *error.span();
     match error.reason() {
         RichReason::Custom(message) => Diagnostic::new(Code::Syntax, file, span, message.clone()),
         RichReason::ExpectedFound { found, .. } => {
+            let found_token = found.as_deref().copied();
             let found = found.as_deref().map_or("end of file".to_string(), |t| {
                 describe(t, span.slice(source))
             });
@@ -243,7 +289,21 @@ fn syntax_diagnostic(error: lines::ParseError<'_>, file: FileId, source: &str) -
                 [one] => format!("expected {one}"),
                 [init @ .., last] => format!("expected {} or {last}", init.join(", ")),
             };
-            Diagnostic::new(Code::Syntax, file, span, message).with_label(label)
+            // Text the lexer could not read is a character ILMR does not have.
+            let code = match found_token {
+                Some(Token::Error) => Code::UnusualCharacter,
+                _ => Code::Syntax,
+            };
+            let d = Diagnostic::new(code, file, span, message).with_label(label);
+            match span
+                .slice(source)
+                .chars()
+                .next()
+                .and_then(characters::advice)
+            {
+                Some(advice) if code == Code::UnusualCharacter => d.with_help(advice),
+                _ => d,
+            }
         }
     }
 }
@@ -253,6 +313,10 @@ fn describe(token: &Token, text: &str) -> String {
     match token {
         Token::Ident => format!("name `{text}`"),
         Token::Number => format!("number `{text}`"),
+        Token::Error => {
+            let named: Vec<String> = text.chars().map(characters::describe).collect();
+            format!("character {}", named.join(" "))
+        }
         other => other.to_string(),
     }
 }

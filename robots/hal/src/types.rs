@@ -148,11 +148,15 @@ pub enum OpStatus {
 
 /// A solid of the known map: every point within `radius` of the segment from `a` to
 /// `b` (a wall of thickness `2 * radius`; a round obstacle when `a == b`).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Solid {
     pub a: (f64, f64),
     pub b: (f64, f64),
     pub radius: f64,
+    /// What the site plan calls it (a world file's wall `id`), for messages that
+    /// point at it; `None` when the plan gives no name.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub name: Option<String>,
 }
 
 impl Solid {

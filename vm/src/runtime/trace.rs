@@ -198,6 +198,10 @@ pub fn render_event(m: &Module, e: &Event) -> String {
                 o.push_str(",\"reason\":");
                 json_str(&mut o, r);
             }
+            if let Some(c) = code {
+                o.push_str(",\"help\":");
+                json_str(&mut o, c.help());
+            }
         }
         EventKind::Var {
             var,
@@ -265,6 +269,8 @@ pub fn render_event(m: &Module, e: &Event) -> String {
                 fault.reaction().name()
             );
             json_str(&mut o, message);
+            o.push_str(",\"help\":");
+            json_str(&mut o, Code::Fault(*fault).help());
         }
         EventKind::Recovered { fault } => {
             let _ = write!(

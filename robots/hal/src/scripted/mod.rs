@@ -593,11 +593,13 @@ mod tests {
                     a: (2.0, 0.0),
                     b: (2.0, 4.0),
                     radius: 0.1,
+                    name: None,
                 },
                 crate::types::Solid {
                     a: (6.0, 2.0),
                     b: (6.0, 2.0),
                     radius: 0.5,
+                    name: None,
                 },
             ],
         };

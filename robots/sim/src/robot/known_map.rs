@@ -20,6 +20,7 @@ pub(crate) fn known_map(world: &World) -> KnownMap {
                 a: (a.x, a.y),
                 b: (b.x, b.y),
                 radius: 0.5 * w.thickness,
+                name: Some(w.id.clone()),
             })
         })
         .collect();
@@ -42,6 +43,7 @@ fn furniture(shape: &Shape, out: &mut Vec<Solid>) {
             a: p(c.center),
             b: p(c.center),
             radius: c.radius,
+            name: None,
         }),
         Shape::Box(obb) => {
             let k = obb.corners();
@@ -50,6 +52,7 @@ fn furniture(shape: &Shape, out: &mut Vec<Solid>) {
                     a: p(k[i]),
                     b: p(k[(i + 1) % 4]),
                     radius: 0.0,
+                    name: None,
                 });
             }
             let (long, short, axis) = if obb.half.x >= obb.half.y {
@@ -62,6 +65,7 @@ fn furniture(shape: &Shape, out: &mut Vec<Solid>) {
                 a: p(obb.center - reach),
                 b: p(obb.center + reach),
                 radius: short,
+                name: None,
             });
         }
     }

@@ -137,5 +137,6 @@ impl<H: Hal, C: Clock> Vm<H, C> {
         let bearing = (y - pose.y).atan2(x - pose.x);
         let goal = Pose::new(x - d * bearing.cos(), y - d * bearing.sin(), bearing);
         self.bezier(pose, goal, self.travel_direction(), false)
+            .map_err(|r| r.message)
     }
 }

@@ -14,7 +14,7 @@ use ilmr_motion::path::{TurnSpec, straight, taught, turn};
 use ilmr_motion::wall::{
     FOLLOWWALL_AHEAD, WallParams, fit_wall, followwall_goal, middle_goal, turn_space_free,
 };
-use ilmr_motion::{Direction, Path, PlanParams, Pose, Side, plan_with};
+use ilmr_motion::{Direction, Path, PlanError, PlanParams, Pose, Side, plan_with};
 use nalgebra::Point2;
 
 use super::{Mode, WallSide};
@@ -22,6 +22,7 @@ use crate::bytecode::{NameId, VarId};
 use crate::runtime::Vm;
 use crate::runtime::clock::Clock;
 use crate::runtime::nodes::{MoveSpec, WallMode};
+use crate::runtime::safety::{Code, Refusal};
 
 /// Distance between the points of a reference path, m.
 pub(crate) const SPACING: f64 = 0.05;
@@ -91,11 +92,14 @@ impl<H: Hal, C: Clock> Vm<H, C> {
         goal: Pose,
         direction: Direction,
         allow_reverse: bool,
-    ) -> Result<Path, String> {
+    ) -> Result<Path, Refusal> {
         plan_with(start, goal, &self.plan_params(direction, allow_reverse))
-            .map_err(err)?
+            .map_err(|e| match e {
+                PlanError::NoAdmissiblePath { .. } => Refusal::new(Code::PathTooCurved, err(e)),
+                e => Refusal::from(err(e)),
+            })?
             .path()
-            .map_err(err)
+            .map_err(|e| Refusal::from(err(e)))
     }
 
     /// The body heading that faces (or, reversing, backs towards) `to`.
@@ -107,17 +111,17 @@ impl<H: Hal, C: Clock> Vm<H, C> {
         }
     }
 
-    fn goto(&self, start: Pose, to: Point2<f64>, h: Option<f64>, r: bool) -> Result<Path, String> {
+    fn goto(&self, start: Pose, to: Point2<f64>, h: Option<f64>, r: bool) -> Result<Path, Refusal> {
         let dir = self.travel_direction();
         let h = h.unwrap_or_else(|| Self::facing(&start, &to, dir));
         self.bezier(start, Pose::new(to.x, to.y, h), dir, r)
     }
 
-    fn approach_point(&self, start: Pose, tx: f64, ty: f64, d: f64) -> Result<Path, String> {
+    fn approach_point(&self, start: Pose, tx: f64, ty: f64, d: f64) -> Result<Path, Refusal> {
         let target = Point2::new(tx, ty);
         let dist = start.distance_to(&target);
         if dist <= d {
-            return straight(start, 0.0, SPACING).map_err(err);
+            return Ok(straight(start, 0.0, SPACING).map_err(err)?);
         }
         let bearing = (ty - start.y).atan2(tx - start.x);
         let goal = Point2::new(tx - d * bearing.cos(), ty - d * bearing.sin());
@@ -150,7 +154,7 @@ impl<H: Hal, C: Clock> Vm<H, C> {
             .map(|o| (o.x, o.y))
     }
 
-    pub(crate) fn plan_spec(&self, spec: MoveSpec, start: Pose) -> Result<Planned, String> {
+    pub(crate) fn plan_spec(&self, spec: MoveSpec, start: Pose) -> Result<Planned, Refusal> {
         let dir = self.travel_direction();
         Ok(match spec {
             MoveSpec::Goahead { d } if d.is_nan() => Planned {
@@ -168,7 +172,7 @@ impl<H: Hal, C: Clock> Vm<H, C> {
             MoveSpec::TurnExact { deg, c } => {
                 let (deg, c) = (f64::from(deg), f64::from(c));
                 if !(c.is_finite() && c != 0.0) {
-                    return Err("a turn needs a curvature other than 0".into());
+                    return Err("a turn needs a curvature other than 0".to_string().into());
                 }
                 let spec = TurnSpec::degrees(deg, c.abs());
                 Planned::path(turn(start, &spec, dir, SPACING).map_err(err)?)
@@ -332,7 +336,7 @@ impl<H: Hal, C: Clock> Vm<H, C> {
         name: u32,
         reverse: bool,
         backwards: bool,
-    ) -> Result<Path, String> {
+    ) -> Result<Path, Refusal> {
         let key = self.module.name(NameId(name)).to_lowercase();
         let pts = self
             .paths
@@ -364,7 +368,7 @@ impl<H: Hal, C: Clock> Vm<H, C> {
             None => (self.bezier(start, first, dir, true)?, path),
         };
         lead.concat(&rest, ilmr_motion::path::JOIN_TOLERANCE)
-            .map_err(err)
+            .map_err(|e| Refusal::from(err(e)))
     }
 
     /// Joins `path` past its first point where a lead-in from `start` fits

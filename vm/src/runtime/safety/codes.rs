@@ -23,6 +23,8 @@ pub enum Code {
     MovementLocked,
     /// A movement in `parking` mode, where every joint is locked.
     Parked,
+    /// A path to a target pose that bends more than `max_curvature` allows.
+    PathTooCurved,
     Fault(Fault),
 }
 
@@ -140,7 +142,7 @@ impl Fault {
 }
 
 /// Every code, in the order of the docs table.
-pub const CODES: [Code; 17] = [
+pub const CODES: [Code; 18] = [
     Code::SpeedLimit,
     Code::ActuatorRange,
     Code::BodyPoseRange,
@@ -150,6 +152,7 @@ pub const CODES: [Code; 17] = [
     Code::TargetOnObstacle,
     Code::MovementLocked,
     Code::Parked,
+    Code::PathTooCurved,
     Code::Fault(Fault::BatteryLow),
     Code::Fault(Fault::ScannerLost),
     Code::Fault(Fault::OdometryLost),
@@ -173,6 +176,7 @@ impl Code {
             Code::TargetOnObstacle => "R0107",
             Code::MovementLocked => "R0108",
             Code::Parked => "R0109",
+            Code::PathTooCurved => "R0110",
             Code::Fault(f) => match f {
                 Fault::BatteryLow => "R0201",
                 Fault::ScannerLost => "R0202",
@@ -198,6 +202,7 @@ impl Code {
             Code::TargetOnObstacle => "movement target on a scanned obstacle",
             Code::MovementLocked => "movement while a fault locks movement",
             Code::Parked => "movement in `parking` mode",
+            Code::PathTooCurved => "path to the target bends more than `max_curvature`",
             Code::Fault(f) => match f {
                 Fault::BatteryLow => "battery below `LowBattery`",
                 Fault::ScannerLost => "no new scan for `scanner_timeout`",
@@ -210,6 +215,73 @@ impl Code {
             },
         }
     }
+}
+
+impl Code {
+    /// The way out: what the task can change so that the command is not refused, or
+    /// what clears the fault. Traces carry it in `end` and `fault` events, and
+    /// `docs/reliability.md` lists it beside each code.
+    pub fn help(self) -> &'static str {
+        match self {
+            Code::SpeedLimit => {
+                "compute a speed within max_speed of the robot model (negative drives backwards)"
+            }
+            Code::ActuatorRange => {
+                "keep the value within the actuator's min..max in [SENSORSANDACTUATORS] of the robot model"
+            }
+            Code::BodyPoseRange => {
+                "keep r and p within max_roll and max_pitch, and rc within 0..max_clearance"
+            }
+            Code::BodyPoseMode => {
+                "change the movement mode first (movemode) or, in rolking, change only rc"
+            }
+            Code::TargetInWall => {
+                "move the target away from the wall by at least half the robot's width"
+            }
+            Code::TargetOffMap => "choose a target inside the known map, or locate the robot first",
+            Code::TargetOnObstacle => {
+                "choose a target clear of the obstacle, or approach it with approach(..,d)"
+            }
+            Code::MovementLocked => {
+                "wait for the fault to clear (sensor(supervisor) reads 0), then start the movement again"
+            }
+            Code::Parked => "leave parking mode with movemode(..) before moving",
+            Code::PathTooCurved => {
+                "give a heading the robot can reach (gotoxy(x,y,h)), allow reversing with r where the command takes it (gotoxy(x,y,r)), or put the target further off"
+            }
+            Code::Fault(f) => match f {
+                Fault::BatteryLow => "drive to the charger (go_charger) or end the task",
+                Fault::ScannerLost => {
+                    "the movement goes on when scans arrive again; check the scanner"
+                }
+                Fault::OdometryLost => "start the movement again once odometry is back",
+                Fault::NavLost => "the robot drives slowly on dead reckoning until a fix arrives",
+                Fault::LocalizationJump => {
+                    "start the movement again from where the robot now knows it is"
+                }
+                Fault::ObstacleNear => {
+                    "clear the way, turn obsavoid(on) so the robot drives round it, or break the movement and plan another"
+                }
+                Fault::OperationTimeout => "check the device and give the operation again",
+                Fault::RobotLink => "the movement goes on when the robot answers again",
+            },
+        }
+    }
+}
+
+/// The table of `docs/reliability.md` that gives each refusal and fault its way out
+/// (`vm/tests/safety.rs` keeps it fresh).
+pub fn ways_out_markdown() -> String {
+    let mut out = String::from("| code | what | way out |\n| --- | --- | --- |\n");
+    for c in CODES {
+        out.push_str(&format!(
+            "| {} | {} | {} |\n",
+            c.code(),
+            c.title(),
+            c.help()
+        ));
+    }
+    out
 }
 
 #[cfg(test)]
@@ -225,6 +297,13 @@ mod tests {
         for f in FAULTS {
             assert_eq!(Code::Fault(f).code(), format!("R02{:02}", f.number()));
             assert!(CODES.contains(&Code::Fault(f)));
+        }
+        for c in CODES {
+            assert!(
+                !c.help().is_empty() && !c.help().contains('"'),
+                "{}",
+                c.code()
+            );
         }
         let mut urgency: Vec<u8> = FAULTS.iter().map(|f| f.urgency()).collect();
         urgency.sort_unstable();

@@ -149,6 +149,7 @@ mod tests {
                 a: (0.0, 0.0),
                 b: (1.0, 0.0),
                 radius: 0.1,
+                name: None,
             }],
         };
         let pts = surface_points(&map);

@@ -73,7 +73,12 @@ mod tests {
     /// A small office: walls round a 12 x 9 m room, an inner wall with a door
     /// gap, a pillar.
     fn office() -> KnownMap {
-        let wall = |a: (f64, f64), b: (f64, f64)| ilmr_hal::Solid { a, b, radius: 0.1 };
+        let wall = |a: (f64, f64), b: (f64, f64)| ilmr_hal::Solid {
+            a,
+            b,
+            radius: 0.1,
+            name: None,
+        };
         KnownMap {
             bounds: None,
             solids: vec![
@@ -87,6 +92,7 @@ mod tests {
                     a: (3.0, 6.0),
                     b: (3.0, 6.0),
                     radius: 0.3,
+                    name: None,
                 },
             ],
         }

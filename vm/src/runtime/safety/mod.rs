@@ -12,7 +12,7 @@ mod sweep;
 
 use ilmr_model::RobotModel;
 
-pub use codes::{CODES, Code, FAULTS, Fault, Reaction};
+pub use codes::{CODES, Code, FAULTS, Fault, Reaction, ways_out_markdown};
 pub(crate) use refuse::Refusal;
 
 /// Limits of `bodypose(r=,p=,rc=)`: degrees, degrees, metres.

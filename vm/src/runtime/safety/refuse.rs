@@ -187,10 +187,15 @@ impl<H: Hal, C: Clock> Vm<H, C> {
             if let Some((i, d)) = map.nearest(on_map)
                 && d < half
             {
+                // The site plan's name for the solid where it gives one.
+                let what = match map.solids.get(i).and_then(|s| s.name.as_deref()) {
+                    Some(name) => format!("the wall `{name}`"),
+                    None => format!("solid {i} of the known map"),
+                };
                 return Err(Refusal::new(
                     Code::TargetInWall,
                     format!(
-                        "({x:.2}, {y:.2}) is {:.2} m from solid {i} of the known map; the robot needs {half:.2} m",
+                        "({x:.2}, {y:.2}) is {:.2} m from {what}; the robot needs {half:.2} m",
                         d.max(0.0)
                     ),
                 ));
