@@ -762,6 +762,11 @@ impl<'m, 'v> Cx<'m, 'v> {
             },
             _ => return,
         };
+        // A position is not a distance: outdoors (Workpartner's yard) a coordinate of
+        // hundreds of metres is ordinary, and would read as centimetres.
+        if matches!(param, "x" | "y") {
+            return;
+        }
         let Some(suspect) = units::suspect(unit, written) else {
             return;
         };
