@@ -209,6 +209,12 @@ fn a_task_drives_a_cyclone_dds_robot_to_its_goal() {
     );
     assert_eq!(d.code, Some(0), "{}\n{}", d.summary, d.stderr);
     assert!(d.summary.contains("finished"), "{}", d.summary);
+    // This robot publishes no tf: the operator is told how its scans are read.
+    assert!(
+        d.stderr.contains("no transform places the robot's scanner"),
+        "{}",
+        d.stderr
+    );
     let (x, y, _) = d.pose;
     let miss = (x - 2.0).hypot(y - 1.0);
     assert!(
@@ -641,6 +647,21 @@ fn ilmrc_run_drives_ilmrc_sim_in_another_process_over_dds() {
     let summary = ran["stdout"].as_str().unwrap();
     assert_eq!(ran["code"], 0, "{ran}");
     assert!(summary.contains("finished: no command left"), "{summary}");
+    // The simulator's tf places MoRo's scanner where its body has it, and the run
+    // reads the scans from there.
+    let moro = RobotModel::builtin("moro").unwrap();
+    let mount = ilmr_sim::config_from_model(&moro, ilmr_sim::RobotKind::Moro)
+        .scanner
+        .mount;
+    let said = format!(
+        "scanner         at ({}, {}) m on the robot, by tf",
+        ilmr_vm::runtime::trace::fmt_num(mount.x),
+        ilmr_vm::runtime::trace::fmt_num(mount.y)
+    );
+    assert!(
+        mount.x > 0.1 && summary.contains(&said),
+        "{said}\n{summary}"
+    );
     let text = std::fs::read_to_string(&trace).unwrap();
     let _ = std::fs::remove_file(&task);
     let _ = std::fs::remove_file(&trace);

@@ -57,11 +57,14 @@ pub fn open(args: &RobotArgs) -> Result<Opened, String> {
         _ => return Err(format!("--robot {spec} is not a live robot")),
     };
     let robot = setup::open(&setup, &Scenario::default(), args.seed)?;
-    let config = Config {
+    let mut config = Config {
         trace: TraceLevel::Full,
         pose_every: POSE_EVERY,
         ..vm_config(&setup.model, body.as_ref())
     };
+    if setup.backend == Backend::Ros2 {
+        setup::ros2_scanner_offset(&robot, &mut config);
+    }
     Ok(Opened {
         spec: setup.model_spec,
         model: setup.model,

@@ -37,6 +37,12 @@ pub trait Robot: Hal {
         None
     }
 
+    /// Where a ROS 2 robot's scanner is on its body (from `tf`), for the VM's
+    /// `scanner_offset`; `None` for the other robots, whose model or body says.
+    fn scanner_mount(&self) -> Option<Pose> {
+        None
+    }
+
     /// Keep the ROS 2 messages that go over the link, for [`Robot::take_ros2_messages`].
     fn record_ros2_messages(&mut self) {}
 
@@ -267,6 +273,9 @@ impl Robot for AnyRobot {
     fn link_stats(&self) -> Option<ilmr_ros2::LinkStats> {
         self.0.link_stats()
     }
+    fn scanner_mount(&self) -> Option<Pose> {
+        self.0.scanner_mount()
+    }
     fn record_ros2_messages(&mut self) {
         self.0.record_ros2_messages()
     }
@@ -319,8 +328,11 @@ impl Robot for Ros2 {
             return None;
         }
         self.seen_scan = Some(scan.t);
-        // Placed at the robot's own pose: the scanner's mounting is not applied (docs/ros2.md).
-        let origin = self.robot.pose()?;
+        // From where the scanner is on the robot, when `tf` has said so.
+        let p = self.robot.pose()?;
+        let m = self.robot.scanner_mount().unwrap_or_default();
+        let (s, c) = p.h.sin_cos();
+        let origin = Pose::new(p.x + c * m.x - s * m.y, p.y + s * m.x + c * m.y, p.h + m.h);
         Some(WorldScan {
             t: scan.t,
             origin,
@@ -333,6 +345,10 @@ impl Robot for Ros2 {
 
     fn link_stats(&self) -> Option<ilmr_ros2::LinkStats> {
         Some(self.robot.stats())
+    }
+
+    fn scanner_mount(&self) -> Option<Pose> {
+        self.robot.scanner_mount()
     }
 
     fn record_ros2_messages(&mut self) {

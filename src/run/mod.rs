@@ -204,11 +204,14 @@ fn execute(args: &RunArgs, reached: &mut Reached) -> Result<Ran, String> {
     } else {
         TraceLevel::Commands
     };
-    let config = ilmr_vm::Config {
+    let mut config = ilmr_vm::Config {
         trace: trace_level,
         pose_every: args.pose_every,
         ..setup::vm_config(&setup.model, body.as_ref())
     };
+    if setup.backend == Backend::Ros2 {
+        setup::ros2_scanner_offset(&robot, &mut config);
+    }
     if let Some(line) = &reached.header {
         sink.line(line)?;
     }

@@ -91,6 +91,13 @@ pub fn render<C: Clock>(
     if world.is_some() {
         s.push_str(&format!("  contacts        {}\n", vm.hal().contacts()));
     }
+    if let (Some(_), Some(m)) = (ros2, vm.hal().scanner_mount()) {
+        s.push_str(&format!(
+            "  scanner         at ({}, {}) m on the robot, by tf\n",
+            fmt_num(m.x),
+            fmt_num(m.y)
+        ));
+    }
     if let Some(l) = vm.hal().link_stats() {
         s.push_str(&format!(
             "  ros 2 link      {} cmd_vel sent; odom {} taken, {} dropped ({} not numbers); scan {} taken, {} dropped; battery {} taken; at most {} of a topic in a tick\n",

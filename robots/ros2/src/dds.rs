@@ -45,23 +45,25 @@ pub enum Profile {
     /// The default profile: reliable, the last 10, volatile. A reliable writer matches
     /// readers of either reliability, so writers use it.
     Reliable,
+    /// `tf_static`'s: reliable and transient local, so that a reader that comes late
+    /// still gets what was published once.
+    Latched,
 }
 
 impl Profile {
     fn qos(self) -> QosPolicies {
-        let (reliability, depth) = match self {
-            Profile::SensorData => (Reliability::BestEffort, 5),
-            Profile::Reliable => (
-                Reliability::Reliable {
-                    max_blocking_time: rustdds::Duration::from_millis(10),
-                },
-                10,
-            ),
+        let reliable = Reliability::Reliable {
+            max_blocking_time: rustdds::Duration::from_millis(10),
+        };
+        let (reliability, depth, durability) = match self {
+            Profile::SensorData => (Reliability::BestEffort, 5, Durability::Volatile),
+            Profile::Reliable => (reliable, 10, Durability::Volatile),
+            Profile::Latched => (reliable, 100, Durability::TransientLocal),
         };
         QosPolicyBuilder::new()
             .reliability(reliability)
             .history(History::KeepLast { depth })
-            .durability(Durability::Volatile)
+            .durability(durability)
             .build()
     }
 }

@@ -19,7 +19,7 @@ use crate::cdr;
 use crate::convert::{self, Limits, Motion};
 use crate::dds::{LinkError, Participant, Profile, Reach, Reader, Writer};
 use crate::frame::Frame;
-use crate::msg::{BatteryState, LaserScan, Odometry, RosMessage, Twist};
+use crate::msg::{BatteryState, LaserScan, Odometry, RosMessage, TFMessage, Twist};
 use crate::names::TopicName;
 
 /// Samples taken from one topic in one tick at most: a peer that floods costs a
@@ -113,8 +113,18 @@ struct Endpoints {
     odom: Reader<Odometry>,
     scan: Reader<LaserScan>,
     battery: Reader<BatteryState>,
+    tf: Reader<TFMessage>,
+    tf_static: Reader<TFMessage>,
     _participant: Participant,
 }
+
+/// Frames mounted on the robot's body frame, as `tf` and `tf_static` place them: where
+/// the scanner is, to read its scans from there.
+const MAX_MOUNTS: usize = 64;
+
+/// How long [`Ros2Robot::connect`] waits, beyond the first scan, for the transform that
+/// places the scanner on the robot.
+const MOUNT_WAIT: Duration = Duration::from_secs(2);
 
 pub struct Ros2Robot {
     link: Endpoints,
@@ -139,6 +149,12 @@ pub struct Ros2Robot {
     /// What went over the link since the last [`Ros2Robot::take_recorded`], when
     /// recording (`None` otherwise).
     recorded: Option<Vec<Recorded>>,
+    /// The robot's body frame, whose children `mounts` holds.
+    base_frame: String,
+    /// Frames on the body frame and where: (frame, pose on the body).
+    mounts: Vec<(String, Pose)>,
+    /// The frame of the latest scan.
+    scan_frame: Option<String>,
 }
 
 impl Ros2Robot {
@@ -155,6 +171,8 @@ impl Ros2Robot {
             odom: participant.reader(&topic(&config.topics.odom)?, config.sensor_profile)?,
             scan: participant.reader(&topic(&config.topics.scan)?, config.sensor_profile)?,
             battery: participant.reader(&topic(&config.topics.battery)?, config.sensor_profile)?,
+            tf: participant.reader(&topic("tf")?, Profile::SensorData)?,
+            tf_static: participant.reader(&topic("tf_static")?, Profile::Latched)?,
             _participant: participant,
         };
         let mut robot = Ros2Robot {
@@ -175,6 +193,9 @@ impl Ros2Robot {
             odometry_unusable: 0,
             inits: 0,
             recorded: None,
+            base_frame: config.frames.base.clone(),
+            mounts: Vec::new(),
+            scan_frame: None,
         };
         robot.wait_for_streams(config)?;
         Ok(robot)
@@ -182,14 +203,25 @@ impl Ros2Robot {
 
     fn wait_for_streams(&mut self, config: &Ros2Config) -> Result<(), LinkError> {
         let start = Instant::now();
+        let mut scanned_at: Option<Instant> = None;
         loop {
             self.receive(0.0);
             let scan_ready = self.scanner.is_none() || self.scan.is_some();
             if self.motion.is_some() && scan_ready {
-                // What arrived while waiting is not fresh at the first tick; the
-                // first tick's samples will be.
-                self.odometry_t = None;
-                return Ok(());
+                // A scanner off the robot's origin is placed by a transform, which
+                // comes with the robot's first `tf` or its latched `tf_static`.
+                let placed = self.scanner_mount().is_some()
+                    || self
+                        .scan_frame
+                        .as_deref()
+                        .is_none_or(|f| f == self.base_frame);
+                let scanned_at = *scanned_at.get_or_insert_with(Instant::now);
+                if placed || scanned_at.elapsed() >= MOUNT_WAIT {
+                    // What arrived while waiting is not fresh at the first tick; the
+                    // first tick's samples will be.
+                    self.odometry_t = None;
+                    return Ok(());
+                }
             }
             if start.elapsed() >= config.wait {
                 let (topic, what) = if self.motion.is_none() {
@@ -257,6 +289,36 @@ impl Ros2Robot {
             keep(&mut recorded, &|| Recorded::of(now, &topic, &m));
             scan = Some(m);
         });
+        if let Some(m) = &scan
+            && self.scan_frame.as_deref() != Some(m.header.frame_id.as_str())
+        {
+            self.scan_frame = Some(m.header.frame_id.clone());
+        }
+        let mut transforms = Vec::new();
+        self.link
+            .tf
+            .drain(MAX_SAMPLES_PER_TICK, |m| transforms.push(m));
+        self.link
+            .tf_static
+            .drain(MAX_SAMPLES_PER_TICK, |m| transforms.push(m));
+        for t in transforms.iter().flat_map(|m| &m.transforms) {
+            if t.header.frame_id != self.base_frame {
+                continue;
+            }
+            let at = &t.transform;
+            let pose = Pose::new(at.translation.x, at.translation.y, at.rotation.yaw());
+            if !(pose.x.is_finite() && pose.y.is_finite() && pose.h.is_finite()) {
+                continue;
+            }
+            let known = self.mounts.len();
+            match self.mounts.iter_mut().find(|(f, _)| *f == t.child_frame_id) {
+                Some(slot) => slot.1 = pose,
+                None if known < MAX_MOUNTS => {
+                    self.mounts.push((t.child_frame_id.clone(), pose));
+                }
+                None => {}
+            }
+        }
         if let (Some(m), Some(device)) = (scan, &self.scanner) {
             let mut s = convert::scan(&m, device);
             s.t = now;
@@ -304,6 +366,19 @@ impl Ros2Robot {
     /// The last twist sent.
     pub fn twist(&self) -> &Twist {
         &self.twist
+    }
+
+    /// Where the scanner is on the robot (its scans' frame on the body frame), once a
+    /// transform has said so.
+    pub fn scanner_mount(&self) -> Option<Pose> {
+        let frame = self.scan_frame.as_deref()?;
+        if frame == self.base_frame {
+            return Some(Pose::default());
+        }
+        self.mounts
+            .iter()
+            .find(|(f, _)| f == frame)
+            .map(|(_, p)| *p)
     }
 
     /// The latest scan, as the HAL has it, and its maximum range, m.
