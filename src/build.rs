@@ -49,18 +49,23 @@ pub fn compile(
     skills: Option<&Path>,
     extra: impl Fn(&Module) -> Vec<Diagnostic>,
 ) -> Result<Compiled, String> {
-    let report = crate::check::check(&CheckArgs {
+    let args = CheckArgs {
         robot: robot.to_string(),
         skills: skills.map(Path::to_path_buf),
         format: Format::Human,
         files: vec![task.to_path_buf()],
-    })?;
-    let model = inputs::load_robot_model(robot)?;
+    };
+    let loaded = inputs::load_robot(robot)?;
     let mut sources: Vec<Source> = vec![inputs::read_source(task)?];
     if let Some(dir) = skills {
         sources.extend(inputs::read_skill_dir(dir)?);
     }
-    let analysis = analyze(&sources, &model);
+    // One analysis, the full one the lowering reads; what `check` reports of it is what
+    // `check` reports of its own lighter one (`compiler/tests/detail.rs`).
+    let analysis = analyze(&sources, &loaded.model);
+    let report = crate::check::report(&args, &loaded, &analysis);
+    inputs::warn_about(robot, &loaded.warnings);
+    let model = &loaded.model;
     let quiet = analysis.diagnostics.is_empty() && !report.errors;
     if !quiet {
         print!("{}", report.output);
@@ -68,7 +73,7 @@ pub fn compile(
     if report.errors {
         return Ok(Compiled::Rejected);
     }
-    let problems = match ilmr_compiler::lower::lower(&analysis, &model, FileId(0)) {
+    let problems = match ilmr_compiler::lower::lower(&analysis, model, FileId(0)) {
         Ok(module) => {
             let problems = extra(&module);
             if problems.is_empty() {

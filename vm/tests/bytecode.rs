@@ -287,3 +287,72 @@ fn the_builder_refuses_what_the_vm_could_not_run() {
         Err(BuildError::Invalid(ModuleError::NotIssuable(Command::Wait)))
     );
 }
+
+/// Each file, name, constant, variable and unit is interned once, variables and units
+/// in any letter case; a builder lent a live module finds what the module holds and
+/// indexes what it adds.
+#[test]
+fn the_builder_interns_each_value_once() {
+    let mut b = ModuleBuilder::new();
+    let x = b.global("Count", VarKind::Number).expect("new");
+    let vars: Vec<_> = (0..1000)
+        .map(|i| b.global(&format!("v{i}"), VarKind::Number).expect("new"))
+        .collect();
+    assert_eq!(b.find_global("COUNT"), Some(x));
+    assert_eq!(b.find_global("V999"), Some(vars[999]));
+    assert_eq!(b.find_global("v1000"), None);
+    let zero = b.constant(0.0).expect("constant");
+    assert_ne!(b.constant(-0.0).expect("constant"), zero);
+    assert_eq!(b.constant(0.0).expect("constant"), zero);
+    let word = b.name("Left").expect("name");
+    assert_ne!(b.name("left").expect("name"), word, "names keep their case");
+    assert_eq!(b.name("Left").expect("name"), word);
+    let file = b.file("a.ilmr").expect("file");
+    assert_eq!(b.file("a.ilmr").expect("file"), file);
+    let unit = b.declare_unit("Task", false).expect("unit");
+    assert_eq!(b.find_unit("task"), Some(unit));
+    assert_eq!(
+        b.declare_unit("TASK", true),
+        Err(BuildError::DuplicateUnit("TASK".into()))
+    );
+    let blk = b.block(&[]).expect("block");
+    b.define_unit(unit, &[blk]);
+    let live = b.finish().expect("valid");
+
+    let mut lent = ModuleBuilder::extending(&live);
+    assert_eq!(lent.find_global("count"), Some(x));
+    assert_eq!(lent.global("v500", VarKind::Number), Ok(vars[500]));
+    let y = lent.global("y", VarKind::Number).expect("new");
+    assert_eq!(y.0 as usize, live.globals.len());
+    assert_eq!(lent.find_global("Y"), Some(y));
+    assert_eq!(lent.constant(0.0), Ok(zero));
+    let one = lent.constant(1.0).expect("new");
+    assert_eq!(lent.constant(1.0), Ok(one));
+    assert_eq!(lent.name("Left"), Ok(word));
+    assert_eq!(lent.file("a.ilmr"), Ok(file));
+    assert_eq!(lent.find_unit("TASK"), Some(unit));
+    let fragment = lent.finish_fragment(&[]).expect("valid");
+    assert_eq!(fragment.added.globals.len(), 1);
+    assert_eq!(fragment.added.consts, [1.0]);
+}
+
+/// The format stands on its own: a loader or disassembler needs the bytecode module
+/// alone, so nothing in it reaches into the runtime (docs/bytecode.md).
+#[test]
+fn the_bytecode_does_not_import_the_runtime() {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("src/bytecode");
+    let mut files = 0;
+    for entry in std::fs::read_dir(&dir).expect("vm/src/bytecode") {
+        let path = entry.expect("entry").path();
+        let text = std::fs::read_to_string(&path).expect("source");
+        files += 1;
+        for needle in ["runtime::", "crate::Vm", "super::super::"] {
+            assert!(
+                !text.contains(needle),
+                "{} mentions `{needle}`",
+                path.display()
+            );
+        }
+    }
+    assert!(files > 5);
+}

@@ -18,7 +18,7 @@ use crate::ast::FileKind;
 use crate::check::SkillId;
 use crate::diagnostic::{Code, Diagnostic, FileId};
 use crate::parser;
-use crate::span::Span;
+use crate::span::{LineIndex, Span};
 
 /// How a line is taken.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
@@ -117,10 +117,12 @@ pub fn lower_line_warned(
         .new_file(&path)
         .map_err(|e| vec![*build_error(file, Span::default(), e)])?;
     let skill_unit = |id: SkillId| skill_units.get(id.0 as usize).map(|&i| UnitId(i));
+    let lines = LineIndex::new(text);
     let scope = Scope::from_parts(
         file,
         module_file,
         text,
+        &lines,
         &unit.refs,
         &unit.targets,
         &unit.vars,

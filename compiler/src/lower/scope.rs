@@ -2,11 +2,12 @@
 //! know about its names: the checker's resolutions by span, the command or skill each
 //! call statement runs, the unit's variables, and which module unit runs each skill.
 
-use std::collections::HashMap;
+use std::cell::RefCell;
 
-use ilmr_vm::bytecode::UnitId;
+use ilmr_vm::bytecode::{UnitId, VarId as ModuleVar};
+use rustc_hash::FxHashMap;
 
-use crate::check::{Analysis, Resolved, SkillId, Target, Unit, Vars};
+use crate::check::{Analysis, Resolved, SkillId, Target, Unit, VarId, Vars};
 use crate::diagnostic::FileId;
 use crate::span::{LineIndex, Span};
 
@@ -16,54 +17,80 @@ pub struct Scope<'a> {
     /// The module's number for the same file, which statements record.
     pub module_file: ilmr_vm::bytecode::FileId,
     pub text: &'a str,
-    pub lines: LineIndex,
+    pub lines: &'a LineIndex,
     /// The last resolution recorded for each span (a name is resolved once per role).
-    pub refs: HashMap<Span, Resolved>,
-    pub targets: &'a rustc_hash::FxHashMap<Span, Target>,
+    pub refs: FxHashMap<Span, Resolved>,
+    pub targets: &'a FxHashMap<Span, Target>,
     pub vars: &'a Vars,
     pub skill_unit: &'a dyn Fn(SkillId) -> Option<UnitId>,
+    /// The module's variable for each of `vars` the unit has used so far (`NO_SLOT`
+    /// for the others), so that a name is hashed once per unit, not once per use.
+    slots: RefCell<Vec<u32>>,
 }
 
+const NO_SLOT: u32 = u32::MAX;
+
 impl<'a> Scope<'a> {
+    /// `lines` indexes each of the analysis's files, in its order.
     pub fn new(
         analysis: &'a Analysis<'_>,
+        lines: &'a [LineIndex],
         unit: &'a Unit,
         skill_unit: &'a dyn Fn(SkillId) -> Option<UnitId>,
-    ) -> Scope<'a> {
-        let text = analysis
-            .files
-            .get(unit.file.0 as usize)
-            .map_or("", |f| f.text);
-        Scope::from_parts(
+    ) -> Option<Scope<'a>> {
+        let file = unit.file.0 as usize;
+        Some(Scope::from_parts(
             unit.file,
             ilmr_vm::bytecode::FileId(unit.file.0),
-            text,
+            analysis.files.get(file)?.text,
+            lines.get(file)?,
             &unit.refs,
             &unit.targets,
             &unit.vars,
             skill_unit,
-        )
+        ))
     }
 
     pub fn from_parts(
         file: FileId,
         module_file: ilmr_vm::bytecode::FileId,
         text: &'a str,
+        lines: &'a LineIndex,
         refs: &[(Span, Resolved)],
-        targets: &'a rustc_hash::FxHashMap<Span, Target>,
+        targets: &'a FxHashMap<Span, Target>,
         vars: &'a Vars,
         skill_unit: &'a dyn Fn(SkillId) -> Option<UnitId>,
     ) -> Scope<'a> {
+        let mut by_span = FxHashMap::with_capacity_and_hasher(refs.len(), Default::default());
+        by_span.extend(refs.iter().copied());
         Scope {
             file,
             module_file,
             text,
-            lines: LineIndex::new(text),
-            refs: refs.iter().copied().collect(),
+            lines,
+            refs: by_span,
             targets,
             vars,
             skill_unit,
+            slots: RefCell::new(Vec::new()),
         }
+    }
+
+    pub fn slot(&self, id: VarId) -> Option<ModuleVar> {
+        let slots = self.slots.borrow();
+        slots
+            .get(id.0 as usize)
+            .filter(|&&s| s != NO_SLOT)
+            .map(|&s| ModuleVar(s))
+    }
+
+    pub fn remember(&self, id: VarId, var: ModuleVar) {
+        let mut slots = self.slots.borrow_mut();
+        let i = id.0 as usize;
+        if slots.len() <= i {
+            slots.resize(i + 1, NO_SLOT);
+        }
+        slots[i] = var.0;
     }
 
     pub fn resolved(&self, span: Span) -> Option<Resolved> {

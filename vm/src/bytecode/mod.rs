@@ -4,6 +4,8 @@
 mod builder;
 mod disasm;
 mod ids;
+mod index;
+pub mod limits;
 mod op;
 mod serde_kinds;
 mod validate;

@@ -149,20 +149,27 @@ impl Module {
                 Op::BreakAll | Op::Stop | Op::Cont | Op::Priority => {}
             }
         }
-        for (i, _) in from(&self.blocks, base.blocks) {
-            let code = self.block_code(super::BlockId(i as u32));
-            if code.iter().skip(1).any(|c| c.op == Op::Priority) {
-                return Err(ModuleError::PriorityNotFirst { block: i as u32 });
+        // Few tasks set a priority: where no new instruction does and no new block
+        // covers trusted code, no block can have one out of place.
+        let mut priorities = from(&self.code, base.code)
+            .filter(|(_, instr)| instr.op == Op::Priority)
+            .peekable();
+        let covers_trusted =
+            || from(&self.blocks, base.blocks).any(|(_, b)| b.len > 0 && b.start < base.code);
+        if priorities.peek().is_some() || covers_trusted() {
+            for (i, _) in from(&self.blocks, base.blocks) {
+                let code = self.block_code(super::BlockId(i as u32));
+                if code.iter().skip(1).any(|c| c.op == Op::Priority) {
+                    return Err(ModuleError::PriorityNotFirst { block: i as u32 });
+                }
             }
-        }
-        // Trusted blocks cover only trusted code, so new code can only start a new
-        // block.
-        let starts: std::collections::BTreeSet<u32> = from(&self.blocks, base.blocks)
-            .filter(|(_, b)| b.len > 0)
-            .map(|(_, b)| b.start)
-            .collect();
-        for (pc, instr) in from(&self.code, base.code) {
-            if instr.op == Op::Priority && !starts.contains(&(pc as u32)) {
+            // Trusted blocks cover only trusted code, so new code can only start a
+            // new block.
+            let starts: std::collections::BTreeSet<u32> = from(&self.blocks, base.blocks)
+                .filter(|(_, b)| b.len > 0)
+                .map(|(_, b)| b.start)
+                .collect();
+            if priorities.any(|(pc, _)| !starts.contains(&(pc as u32))) {
                 return Err(ModuleError::PriorityNotFirst { block: u32::MAX });
             }
         }
@@ -209,7 +216,7 @@ impl Module {
                 expr: id,
                 reason: "stack underflow",
             })? + push;
-            if depth as usize > crate::runtime::EXPR_STACK {
+            if depth as usize > super::limits::EXPR_STACK {
                 return Err(ModuleError::Expr {
                     expr: id,
                     reason: "too deep",
