@@ -1,5 +1,6 @@
 //! `ilmrc build` and `ilmrc disasm`: a checked task to an `.ilmb` module, and a module
-//! back to a readable listing.
+//! back to a readable listing. [`compile`] also takes a built module where a task is
+//! expected, so `run`, `serve --task` and `shell --task` run `.ilmb` files.
 
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -29,8 +30,18 @@ pub struct BuildArgs {
 
 #[derive(clap::Args)]
 pub struct DisasmArgs {
+    /// `text`: the listing, one instruction a line with its source; `json`: the
+    /// module's tables.
+    #[arg(long, value_enum, default_value_t = ListingFormat::Text)]
+    pub format: ListingFormat,
     /// An `.ilmb` module written by `ilmrc build`.
     pub file: PathBuf,
+}
+
+#[derive(Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum ListingFormat {
+    Text,
+    Json,
 }
 
 /// What `check` and the lowering made of a task.
@@ -42,13 +53,17 @@ pub enum Compiled {
 
 /// Checks the task exactly as `ilmrc check` does (printing what it prints when there is
 /// anything to say), then lowers it. `extra` adds problems found in the lowered module
-/// (`--robot none`); they are rendered in the same way.
+/// (`--robot none`); they are rendered in the same way. A built module (a file that
+/// starts with the `.ilmb` magic) is loaded and validated instead.
 pub fn compile(
     task: &Path,
     robot: &str,
     skills: Option<&Path>,
     extra: impl Fn(&Module) -> Vec<Diagnostic>,
 ) -> Result<Compiled, String> {
+    if is_module(task) {
+        return load_module(task, skills, extra);
+    }
     let args = CheckArgs {
         robot: robot.to_string(),
         skills: skills.map(Path::to_path_buf),
@@ -85,6 +100,67 @@ pub fn compile(
     };
     print!("{}", render_diagnostics(&analysis, &problems));
     Ok(Compiled::Rejected)
+}
+
+/// Whether the file starts as an `.ilmb` does (no task text can: its first byte is not
+/// UTF-8 on its own).
+fn is_module(path: &Path) -> bool {
+    use std::io::Read;
+    let mut head = [0u8; 8];
+    std::fs::File::open(path)
+        .and_then(|mut f| f.read_exact(&mut head))
+        .is_ok_and(|()| head == ilmr_vm::bytecode::file::MAGIC)
+}
+
+/// A module `ilmrc build` wrote, read within `MAX_MODULE_BYTES` and validated. Its
+/// problems (`extra`) point at statements whose source is not at hand: each is said
+/// with its file, line and statement text.
+fn load_module(
+    path: &Path,
+    skills: Option<&Path>,
+    extra: impl Fn(&Module) -> Vec<Diagnostic>,
+) -> Result<Compiled, String> {
+    let module = read_module(path)?;
+    if skills.is_some() {
+        eprintln!(
+            "warning: --skills is ignored for `{}`: a built module holds the skills its task calls",
+            path.display()
+        );
+    }
+    let problems = extra(&module);
+    if problems.is_empty() {
+        return Ok(Compiled::Module(Box::new(module)));
+    }
+    let statements: std::collections::HashMap<(u32, (u32, u32)), &ilmr_vm::bytecode::Stmt> = module
+        .stmts
+        .iter()
+        .map(|s| ((s.file.0, s.span), s))
+        .collect();
+    for d in &problems {
+        let file = module
+            .files
+            .get(d.file.0 as usize)
+            .map_or("?", String::as_str);
+        let at = statements.get(&(d.file.0, (d.span.start, d.span.end)));
+        let (line, text) = at.map_or((0, ""), |s| (s.line, s.text.as_str()));
+        println!(
+            "error[{}]: {}\n  --> {file}:{line}: {text}",
+            d.code.as_str(),
+            d.message
+        );
+        if let Some(help) = &d.help {
+            println!("  = help: {help}");
+        }
+    }
+    Ok(Compiled::Rejected)
+}
+
+/// Reads and validates an `.ilmb` file; the error says which file and what is wrong.
+fn read_module(path: &Path) -> Result<Module, String> {
+    let bytes = ilmr_files::read(path, ilmr_files::Kind::Module)
+        .map_err(|e| format!("cannot read `{}`: {e}", path.display()))?;
+    Module::from_bytes(&bytes)
+        .map_err(|e| format!("`{}` is not a valid ILMR module: {e}", path.display()))
 }
 
 /// Diagnostics as `ilmrc check` shows them (colour only on a terminal).
@@ -136,26 +212,24 @@ pub fn build(args: BuildArgs) -> ExitCode {
 }
 
 pub fn disasm(args: DisasmArgs) -> ExitCode {
-    let bytes = match ilmr_files::read(&args.file, ilmr_files::Kind::Module) {
-        Ok(b) => b,
+    let module = match read_module(&args.file) {
+        Ok(m) => m,
         Err(e) => {
-            eprintln!("error: cannot read `{}`: {e}", args.file.display());
+            eprintln!("error: {e}");
             return ExitCode::from(crate::EXIT_USAGE);
         }
     };
-    match Module::from_bytes(&bytes) {
-        Ok(module) => {
-            print!("{}", listing(&module));
-            ExitCode::SUCCESS
-        }
-        Err(e) => {
-            eprintln!(
-                "error: `{}` is not a valid ILMR module: {e}",
-                args.file.display()
-            );
-            ExitCode::from(crate::EXIT_USAGE)
-        }
+    match args.format {
+        ListingFormat::Text => print!("{}", listing(&module)),
+        ListingFormat::Json => match serde_json::to_string_pretty(&module) {
+            Ok(json) => println!("{json}"),
+            Err(e) => {
+                eprintln!("error: cannot write the module as JSON: {e}");
+                return ExitCode::from(crate::EXIT_USAGE);
+            }
+        },
     }
+    ExitCode::SUCCESS
 }
 
 /// The source files, then the VM's listing (one instruction per line with its source

@@ -8,3 +8,6 @@
 /// compiler accepts at most 256 operators on a line, so every expression it lowers
 /// fits.
 pub const EXPR_STACK: usize = 257;
+
+/// The longest name of the toolchain an `.ilmb` file records (`ilmrc 0.1.0`), in bytes.
+pub const MAX_COMPILER_NAME: usize = 64;

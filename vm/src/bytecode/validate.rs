@@ -8,11 +8,23 @@ use super::op::{Arg, ArgRange, ExprOp, Op};
 
 #[derive(Debug, Clone, PartialEq)]
 pub enum ModuleError {
+    /// The tables of an `.ilmb` file cannot be read.
     Decode(String),
-    BadMagic(String),
+    /// The bytes do not start as an `.ilmb` file does.
+    NotModule,
     Version {
         found: u32,
         expected: u32,
+    },
+    /// The file is not as long as its header says (cut short, or with bytes after it).
+    Length {
+        promised: u64,
+        found: u64,
+    },
+    /// The file's checksum does not match its bytes: it changed after it was written.
+    Checksum {
+        stored: u32,
+        computed: u32,
     },
     Index {
         what: &'static str,
@@ -34,11 +46,23 @@ pub enum ModuleError {
 impl std::fmt::Display for ModuleError {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
-            ModuleError::Decode(e) => write!(f, "not a module: {e}"),
-            ModuleError::BadMagic(m) => write!(f, "not an ILMR module (magic {m:?})"),
-            ModuleError::Version { found, expected } => {
-                write!(f, "module version {found}, this VM runs version {expected}")
-            }
+            ModuleError::Decode(e) => write!(f, "a damaged module: {e}"),
+            ModuleError::NotModule => write!(
+                f,
+                "not an ILMR module (an `.ilmb` file written by `ilmrc build` starts otherwise)"
+            ),
+            ModuleError::Version { found, expected } => write!(
+                f,
+                "module format version {found}, this ilmrc reads version {expected}: build the task again with `ilmrc build`"
+            ),
+            ModuleError::Length { promised, found } => write!(
+                f,
+                "the file holds {found} byte(s) where its header promises {promised}: it was cut short or added to"
+            ),
+            ModuleError::Checksum { stored, computed } => write!(
+                f,
+                "the checksum does not match (stored {stored:08x}, computed {computed:08x}): the file changed after it was written"
+            ),
             ModuleError::Index { what, index, len } => {
                 write!(f, "{what} {index} out of range (table holds {len})")
             }
