@@ -61,6 +61,18 @@ pub fn compile(
     skills: Option<&Path>,
     extra: impl Fn(&Module) -> Vec<Diagnostic>,
 ) -> Result<Compiled, String> {
+    compile_leaving(task, robot, skills, extra, false)
+}
+
+/// [`compile`]; with `leave`, the analysis is left to the operating system instead of
+/// freed (freeing a large one costs a tenth of making it, and `build` ends right after).
+fn compile_leaving(
+    task: &Path,
+    robot: &str,
+    skills: Option<&Path>,
+    extra: impl Fn(&Module) -> Vec<Diagnostic>,
+    leave: bool,
+) -> Result<Compiled, String> {
     if is_module(task) {
         return load_module(task, skills, extra);
     }
@@ -92,6 +104,10 @@ pub fn compile(
         Ok(module) => {
             let problems = extra(&module);
             if problems.is_empty() {
+                if leave {
+                    std::mem::forget(analysis);
+                    std::mem::forget(sources);
+                }
                 return Ok(Compiled::Module(Box::new(module)));
             }
             problems
@@ -183,24 +199,38 @@ pub fn render_diagnostics(analysis: &Analysis<'_>, diagnostics: &[Diagnostic]) -
 }
 
 pub fn build(args: BuildArgs) -> ExitCode {
-    let compiled = compile(&args.task, &args.robot, args.skills.as_deref(), |_| {
-        Vec::new()
-    });
+    let compiled = compile_leaving(
+        &args.task,
+        &args.robot,
+        args.skills.as_deref(),
+        |_| Vec::new(),
+        true,
+    );
     match compiled {
         Ok(Compiled::Module(module)) => {
-            let bytes = module.to_bytes();
-            if let Err(e) = std::fs::write(&args.output, &bytes) {
-                eprintln!("error: cannot write `{}`: {e}", args.output.display());
-                return ExitCode::from(crate::EXIT_USAGE);
-            }
+            let written = std::fs::File::create(&args.output).and_then(|f| {
+                let mut out = std::io::BufWriter::new(f);
+                let len = ilmr_vm::bytecode::file::write(&module, &mut out)?;
+                std::io::Write::flush(&mut out)?;
+                Ok(len)
+            });
+            let bytes = match written {
+                Ok(len) => len,
+                Err(e) => {
+                    eprintln!("error: cannot write `{}`: {e}", args.output.display());
+                    return ExitCode::from(crate::EXIT_USAGE);
+                }
+            };
             println!(
                 "built {}: {} statement(s), {} instruction(s), {} skill(s), {} byte(s)",
                 args.output.display(),
                 module.stmts.len(),
                 module.code.len(),
                 module.units.iter().filter(|u| u.skill).count(),
-                bytes.len()
+                bytes
             );
+            // As the analysis: the process ends now.
+            std::mem::forget(module);
             ExitCode::SUCCESS
         }
         Ok(Compiled::Rejected) => ExitCode::from(crate::EXIT_ERRORS),
@@ -219,16 +249,18 @@ pub fn disasm(args: DisasmArgs) -> ExitCode {
             return ExitCode::from(crate::EXIT_USAGE);
         }
     };
-    match args.format {
-        ListingFormat::Text => print!("{}", listing(&module)),
+    let text = match args.format {
+        ListingFormat::Text => listing(&module),
         ListingFormat::Json => match serde_json::to_string_pretty(&module) {
-            Ok(json) => println!("{json}"),
+            Ok(json) => json + "\n",
             Err(e) => {
                 eprintln!("error: cannot write the module as JSON: {e}");
                 return ExitCode::from(crate::EXIT_USAGE);
             }
         },
-    }
+    };
+    // A reader that stops early (`| head`) is not an error of the listing.
+    let _ = std::io::Write::write_all(&mut std::io::stdout().lock(), text.as_bytes());
     ExitCode::SUCCESS
 }
 

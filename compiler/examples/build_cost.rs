@@ -30,8 +30,10 @@ fn fastest(mut f: impl FnMut()) -> Duration {
 
 fn main() {
     let model = ilmr_model::RobotModel::builtin("moro").expect("shipped model");
-    println!("| blocks | lines | check | build | build / check | lowering alone | .ilmb bytes |");
-    println!("| ---: | ---: | ---: | ---: | ---: | ---: | ---: |");
+    println!(
+        "| blocks | lines | check | build | build / check | of which full analysis | lowering | encoding | .ilmb bytes |"
+    );
+    println!("| ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |");
     for arg in std::env::args().skip(1) {
         let Ok(n) = arg.parse::<usize>() else {
             eprintln!("usage: build_cost N...");
@@ -48,18 +50,27 @@ fn main() {
             let m = ilmr_compiler::lower::lower(&a, &model, FileId(0)).expect("lowers");
             bytes = m.to_bytes().len();
         });
+        let full = fastest(|| {
+            analyze(&sources, &model);
+        });
         let analysis = analyze(&sources, &model);
         let lower = fastest(|| {
             ilmr_compiler::lower::lower(&analysis, &model, FileId(0)).expect("lowers");
         });
+        let module = ilmr_compiler::lower::lower(&analysis, &model, FileId(0)).expect("lowers");
+        let encode = fastest(|| {
+            module.to_bytes();
+        });
         let ms = |d: Duration| format!("{:.1} ms", d.as_secs_f64() * 1e3);
         println!(
-            "| {n} | {} | {} | {} | {:.2} | {} | {bytes} |",
+            "| {n} | {} | {} | {} | {:.2} | {} | {} | {} | {bytes} |",
             n * 6,
             ms(check),
             ms(build),
             build.as_secs_f64() / check.as_secs_f64(),
+            ms(full),
             ms(lower),
+            ms(encode),
         );
     }
 }

@@ -538,3 +538,47 @@ fn the_bytecode_does_not_import_the_runtime() {
     }
     assert!(files > 5);
 }
+
+/// A writer that fails part way (a full disk) makes `file::write` return its error;
+/// one that takes everything gets the bytes `to_bytes` gives.
+#[test]
+fn writing_a_file_reports_the_writers_error() {
+    struct Full {
+        room: usize,
+        inner: std::io::Cursor<Vec<u8>>,
+    }
+    impl std::io::Write for Full {
+        fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
+            if buf.len() > self.room {
+                return Err(std::io::Error::other("no space left"));
+            }
+            self.room -= buf.len();
+            self.inner.write(buf)
+        }
+        fn flush(&mut self) -> std::io::Result<()> {
+            Ok(())
+        }
+    }
+    impl std::io::Seek for Full {
+        fn seek(&mut self, to: std::io::SeekFrom) -> std::io::Result<u64> {
+            self.inner.seek(to)
+        }
+    }
+    let m = figure_27();
+    let whole = m.to_bytes();
+    for room in [0, 10, whole.len() / 2, whole.len() - 1] {
+        let mut out = Full {
+            room,
+            inner: std::io::Cursor::new(Vec::new()),
+        };
+        let e = ilmr_vm::bytecode::file::write(&m, &mut out).expect_err("the disk is full");
+        assert!(e.to_string().contains("no space left"), "{room}: {e}");
+    }
+    let mut out = Full {
+        room: usize::MAX,
+        inner: std::io::Cursor::new(Vec::new()),
+    };
+    let len = ilmr_vm::bytecode::file::write(&m, &mut out).expect("written");
+    assert_eq!(len as usize, whole.len());
+    assert_eq!(out.inner.into_inner(), whole);
+}

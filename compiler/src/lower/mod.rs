@@ -11,6 +11,7 @@
 mod args;
 mod expr;
 mod line;
+mod refs;
 mod robotless;
 mod scope;
 mod stmt;

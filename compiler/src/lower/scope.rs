@@ -2,10 +2,12 @@
 //! know about its names: the checker's resolutions by span, the command or skill each
 //! call statement runs, the unit's variables, and which module unit runs each skill.
 
-use std::cell::RefCell;
+use std::cell::{Cell, RefCell};
 
 use ilmr_vm::bytecode::{UnitId, VarId as ModuleVar};
 use rustc_hash::FxHashMap;
+
+use super::refs::Refs;
 
 use crate::check::{Analysis, Resolved, SkillId, Target, Unit, VarId, Vars};
 use crate::diagnostic::FileId;
@@ -18,14 +20,16 @@ pub struct Scope<'a> {
     pub module_file: ilmr_vm::bytecode::FileId,
     pub text: &'a str,
     pub lines: &'a LineIndex,
-    /// The last resolution recorded for each span (a name is resolved once per role).
-    pub refs: FxHashMap<Span, Resolved>,
+    /// The checker's resolution of each name.
+    refs: Refs<'a>,
     pub targets: &'a FxHashMap<Span, Target>,
     pub vars: &'a Vars,
     pub skill_unit: &'a dyn Fn(SkillId) -> Option<UnitId>,
     /// The module's variable for each of `vars` the unit has used so far (`NO_SLOT`
     /// for the others), so that a name is hashed once per unit, not once per use.
     slots: RefCell<Vec<u32>>,
+    /// The 0-based line of the last statement recorded.
+    line_hint: Cell<usize>,
 }
 
 const NO_SLOT: u32 = u32::MAX;
@@ -56,23 +60,22 @@ impl<'a> Scope<'a> {
         module_file: ilmr_vm::bytecode::FileId,
         text: &'a str,
         lines: &'a LineIndex,
-        refs: &[(Span, Resolved)],
+        refs: &'a [(Span, Resolved)],
         targets: &'a FxHashMap<Span, Target>,
         vars: &'a Vars,
         skill_unit: &'a dyn Fn(SkillId) -> Option<UnitId>,
     ) -> Scope<'a> {
-        let mut by_span = FxHashMap::with_capacity_and_hasher(refs.len(), Default::default());
-        by_span.extend(refs.iter().copied());
         Scope {
             file,
             module_file,
             text,
             lines,
-            refs: by_span,
+            refs: Refs::new(refs),
             targets,
             vars,
             skill_unit,
             slots: RefCell::new(Vec::new()),
+            line_hint: Cell::new(0),
         }
     }
 
@@ -94,12 +97,27 @@ impl<'a> Scope<'a> {
     }
 
     pub fn resolved(&self, span: Span) -> Option<Resolved> {
-        self.refs.get(&span).copied()
+        self.refs.get(span)
     }
 
-    /// 1-based line of a byte offset.
+    /// 1-based line of a span's start. Statements are recorded in source order, so the
+    /// line is looked for first just after the last one's.
     pub fn line(&self, span: Span) -> u32 {
-        u32::try_from(self.lines.line_of(span.start as usize) + 1).unwrap_or(u32::MAX)
+        let offset = span.start as usize;
+        let count = self.lines.line_count();
+        let starts_by = |l: usize| l < count && self.lines.line_start(l) <= offset;
+        let mut l = self.line_hint.get().min(count.saturating_sub(1));
+        for _ in 0..4 {
+            if !starts_by(l + 1) {
+                break;
+            }
+            l += 1;
+        }
+        if !starts_by(l) || starts_by(l + 1) {
+            l = self.lines.line_of(offset);
+        }
+        self.line_hint.set(l);
+        u32::try_from(l + 1).unwrap_or(u32::MAX)
     }
 
     pub fn slice(&self, span: Span) -> &'a str {

@@ -343,13 +343,10 @@ impl<'m> Lowerer<'m> {
             return Ok(v);
         }
         let var = sc.vars.get(id);
-        let v = match self.b.find_global(&var.spelling) {
-            Some(v) => v,
-            None => self
-                .b
-                .global(&var.spelling, var.kind)
-                .map_err(|e| build_error(sc.file, span, e))?,
-        };
+        let v = self
+            .b
+            .global_keeping_kind(&var.spelling, var.kind)
+            .map_err(|e| build_error(sc.file, span, e))?;
         sc.remember(id, v);
         Ok(v)
     }

@@ -138,6 +138,7 @@ impl ModuleBuilder {
         self.m.exprs.reserve(statements);
         self.m.expr_code.reserve(statements.saturating_mul(2));
         self.m.globals.reserve(variables);
+        self.index.reserve_globals(&self.m, variables);
     }
 
     /// Records a statement; `text` is trimmed here.
@@ -200,6 +201,18 @@ impl ModuleBuilder {
             kind,
         });
         self.index.added_global(&self.m, id);
+        Ok(VarId(id))
+    }
+
+    /// The variable of this name (any case); declared with `kind` if there is none. An
+    /// existing variable keeps the kind it has: the lowering names the field of every
+    /// read, so a slot's kind only labels it in listings and traces.
+    pub fn global_keeping_kind(&mut self, name: &str, kind: VarKind) -> Result<VarId, BuildError> {
+        index(&self.m.globals, "variables")?;
+        let (id, _) = self.index.global_or_push(&mut self.m, name, || Global {
+            name: name.to_string(),
+            kind,
+        });
         Ok(VarId(id))
     }
 

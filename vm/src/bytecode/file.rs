@@ -15,6 +15,8 @@
 //! then every index ([`Module::validate`]). Nothing is allocated from a length before
 //! the bytes it promises are there.
 
+use std::io::{Seek, SeekFrom, Write};
+
 use super::limits::MAX_COMPILER_NAME;
 use super::wire::{Tables, TablesRef};
 use super::{Header, MAGIC_NAME, Module, ModuleError, VERSION};
@@ -30,18 +32,97 @@ const TRAILER: usize = 4;
 
 /// The `.ilmb` bytes of `module`.
 pub fn encode(module: &Module) -> Vec<u8> {
-    // Serialising plain tables into a vector cannot fail.
-    let payload = postcard::to_allocvec(&TablesRef::of(module)).unwrap_or_default();
+    // Room for a typical statement's share, so that a large file is not copied as it
+    // doubles.
+    let guess = 64 * module.stmts.len() + 16 * module.code.len() + 1024;
+    let mut out = std::io::Cursor::new(Vec::with_capacity(guess));
+    // Writing to memory cannot fail.
+    let _ = write(module, &mut out);
+    out.into_inner()
+}
+
+/// Writes the `.ilmb` file of `module` to `out` as it is encoded, so that no copy of a
+/// large task's file (tens of MB) is held in memory. `out` must seek: the payload's
+/// length is written when it is known. Returns the file's length.
+pub fn write<W: Write + Seek>(module: &Module, out: &mut W) -> std::io::Result<u64> {
     let compiler = truncated(&module.header.compiler, MAX_COMPILER_NAME);
-    let mut out = Vec::with_capacity(HEADER + compiler.len() + payload.len() + TRAILER);
-    out.extend_from_slice(&MAGIC);
-    out.extend_from_slice(&VERSION.to_le_bytes());
-    out.push(compiler.len() as u8);
-    out.extend_from_slice(compiler.as_bytes());
-    out.extend_from_slice(&(payload.len() as u64).to_le_bytes());
-    out.extend_from_slice(&payload);
-    seal(&mut out);
-    out
+    let start = out.stream_position()?;
+    let mut header = Vec::with_capacity(HEADER + compiler.len());
+    header.extend_from_slice(&MAGIC);
+    header.extend_from_slice(&VERSION.to_le_bytes());
+    header.push(compiler.len() as u8);
+    header.extend_from_slice(compiler.as_bytes());
+    let length_at = header.len();
+    header.extend_from_slice(&0u64.to_le_bytes());
+    out.write_all(&header)?;
+    let mut failed = None;
+    let stream = Stream {
+        out: &mut *out,
+        buf: Vec::with_capacity(STREAM_BUFFER),
+        crc: crc32fast::Hasher::new(),
+        len: 0,
+        failed: &mut failed,
+    };
+    let (payload_crc, len) = match postcard::serialize_with_flavor(&TablesRef::of(module), stream) {
+        Ok(done) => done,
+        // The only failure of plain tables is the writer's.
+        Err(e) => return Err(failed.unwrap_or_else(|| std::io::Error::other(e.to_string()))),
+    };
+    header[length_at..].copy_from_slice(&len.to_le_bytes());
+    let mut crc = crc32fast::Hasher::new();
+    crc.update(&header);
+    crc.combine(&payload_crc);
+    out.write_all(&crc.finalize().to_le_bytes())?;
+    let end = out.stream_position()?;
+    out.seek(SeekFrom::Start(start + length_at as u64))?;
+    out.write_all(&len.to_le_bytes())?;
+    out.seek(SeekFrom::Start(end))?;
+    Ok(end - start)
+}
+
+const STREAM_BUFFER: usize = 64 * 1024;
+
+/// postcard's output: buffered to `out`, with the payload's checksum and length.
+struct Stream<'w, W: Write> {
+    out: &'w mut W,
+    buf: Vec<u8>,
+    crc: crc32fast::Hasher,
+    len: u64,
+    failed: &'w mut Option<std::io::Error>,
+}
+
+impl<W: Write> Stream<'_, W> {
+    fn flush(&mut self) -> postcard::Result<()> {
+        self.crc.update(&self.buf);
+        self.len += self.buf.len() as u64;
+        if let Err(e) = self.out.write_all(&self.buf) {
+            *self.failed = Some(e);
+            return Err(postcard::Error::SerializeBufferFull);
+        }
+        self.buf.clear();
+        Ok(())
+    }
+}
+
+impl<W: Write> postcard::ser_flavors::Flavor for Stream<'_, W> {
+    type Output = (crc32fast::Hasher, u64);
+
+    fn try_extend(&mut self, data: &[u8]) -> postcard::Result<()> {
+        if self.buf.len() + data.len() > STREAM_BUFFER {
+            self.flush()?;
+        }
+        self.buf.extend_from_slice(data);
+        Ok(())
+    }
+
+    fn try_push(&mut self, data: u8) -> postcard::Result<()> {
+        self.try_extend(&[data])
+    }
+
+    fn finalize(mut self) -> postcard::Result<Self::Output> {
+        self.flush()?;
+        Ok((self.crc, self.len))
+    }
 }
 
 /// Appends the checksum of everything so far. Public for tools and tests that change

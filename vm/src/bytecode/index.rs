@@ -11,9 +11,10 @@
 use std::hash::{BuildHasher, Hasher};
 
 use hashbrown::HashTable;
+use hashbrown::hash_table::Entry;
 use rustc_hash::{FxBuildHasher, FxHasher};
 
-use super::{Counts, Module};
+use super::{Counts, Global, Module};
 
 #[derive(Debug, Clone, Default)]
 pub(super) struct Index {
@@ -113,6 +114,48 @@ impl Index {
         find(&self.units, self.from.units, &m.units, folded(name), |u| {
             u.name.eq_ignore_ascii_case(name)
         })
+    }
+
+    /// The variable named `name` in any case, or `make()` pushed as a new one: one
+    /// probe of the table either way. Whether it is new comes back with the id.
+    pub(super) fn global_or_push(
+        &mut self,
+        m: &mut Module,
+        name: &str,
+        make: impl FnOnce() -> Global,
+    ) -> (u32, bool) {
+        let globals = &m.globals;
+        let entry = self.globals.entry(
+            folded(name),
+            |&i| {
+                globals
+                    .get(i as usize)
+                    .is_some_and(|g| g.name.eq_ignore_ascii_case(name))
+            },
+            |&i| globals.get(i as usize).map_or(0, |g| folded(&g.name)),
+        );
+        match entry {
+            Entry::Occupied(e) => (*e.get(), false),
+            Entry::Vacant(v) => {
+                let older = (self.from.globals as usize).min(m.globals.len());
+                if let Some(i) = m.globals[..older]
+                    .iter()
+                    .position(|g| g.name.eq_ignore_ascii_case(name))
+                {
+                    return (i as u32, false);
+                }
+                let id = m.globals.len() as u32;
+                m.globals.push(make());
+                v.insert(id);
+                (id, true)
+            }
+        }
+    }
+
+    pub(super) fn reserve_globals(&mut self, m: &Module, more: usize) {
+        self.globals.reserve(more, |&i| {
+            m.globals.get(i as usize).map_or(0, |g| folded(&g.name))
+        });
     }
 
     // Each `added_*` records entry `id`, just pushed and not found before.
