@@ -119,9 +119,13 @@ fn compile_leaving(
 }
 
 /// Whether the file starts as an `.ilmb` does (no task text can: its first byte is not
-/// UTF-8 on its own).
+/// UTF-8 on its own). Only a regular file is opened: opening a FIFO would wait for a
+/// writer, and whatever is not a regular file is refused by the read that follows.
 fn is_module(path: &Path) -> bool {
     use std::io::Read;
+    if !std::fs::metadata(path).is_ok_and(|m| m.is_file()) {
+        return false;
+    }
     let mut head = [0u8; 8];
     std::fs::File::open(path)
         .and_then(|mut f| f.read_exact(&mut head))

@@ -25,7 +25,8 @@ fn lower_blocks(bencher: Bencher, n: usize) {
     let model = RobotModel::builtin("moro").expect("shipped model");
     let analysis = analyze(&sources, &model);
     assert!(!analysis.has_errors());
-    bencher.counter(ItemsCount::new(n)).bench(|| {
+    // The analysis shares its tables by `Rc`: one thread.
+    bencher.counter(ItemsCount::new(n)).bench_local(|| {
         lower(black_box(&analysis), &model, FileId(0))
             .map(|m| m.code.len())
             .expect("the task lowers")

@@ -118,16 +118,7 @@ pub fn lower_line_warned(
         .map_err(|e| vec![*build_error(file, Span::default(), e)])?;
     let skill_unit = |id: SkillId| skill_units.get(id.0 as usize).map(|&i| UnitId(i));
     let lines = LineIndex::new(text);
-    let scope = Scope::from_parts(
-        file,
-        module_file,
-        text,
-        &lines,
-        &unit.refs,
-        &unit.targets,
-        &unit.vars,
-        &skill_unit,
-    );
+    let scope = Scope::from_parts(file, module_file, text, &lines, &unit, &skill_unit);
     // The lowerer owns its builder; lend it this one and put it back whatever happens.
     let mut low = Lowerer::with_builder(std::mem::take(b), model);
     let blocks = low.blocks(&scope, &parsed.file.blocks);

@@ -48,9 +48,7 @@ impl<'a> Scope<'a> {
             ilmr_vm::bytecode::FileId(unit.file.0),
             analysis.files.get(file)?.text,
             lines.get(file)?,
-            &unit.refs,
-            &unit.targets,
-            &unit.vars,
+            unit,
             skill_unit,
         ))
     }
@@ -60,9 +58,7 @@ impl<'a> Scope<'a> {
         module_file: ilmr_vm::bytecode::FileId,
         text: &'a str,
         lines: &'a LineIndex,
-        refs: &'a [(Span, Resolved)],
-        targets: &'a FxHashMap<Span, Target>,
-        vars: &'a Vars,
+        unit: &'a Unit,
         skill_unit: &'a dyn Fn(SkillId) -> Option<UnitId>,
     ) -> Scope<'a> {
         Scope {
@@ -70,9 +66,9 @@ impl<'a> Scope<'a> {
             module_file,
             text,
             lines,
-            refs: Refs::new(refs),
-            targets,
-            vars,
+            refs: Refs::new(&unit.refs),
+            targets: &unit.targets,
+            vars: &unit.vars,
             skill_unit,
             slots: RefCell::new(Vec::new()),
             line_hint: Cell::new(0),
