@@ -26,7 +26,8 @@ use super::{Header, MAGIC_NAME, Module, ModuleError, VERSION};
 /// is caught) and ^Z (stops `type` on DOS).
 pub const MAGIC: [u8; 8] = [0x89, b'I', b'L', b'M', b'B', b'\r', b'\n', 0x1a];
 
-/// The fixed part before the payload, with an empty toolchain name, and the checksum.
+/// The fixed part before the payload (with an empty toolchain name), and the checksum
+/// after it.
 const HEADER: usize = 8 + 4 + 1 + 8;
 const TRAILER: usize = 4;
 
