@@ -1,5 +1,6 @@
 //! `ilmrc build` and `ilmrc disasm`: a checked task to an `.ilmb` module, and a module
-//! back to a readable listing.
+//! back to a readable listing. [`compile`] also takes a built module where a task is
+//! expected, so `run`, `serve --task` and `shell --task` run `.ilmb` files.
 
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -29,8 +30,18 @@ pub struct BuildArgs {
 
 #[derive(clap::Args)]
 pub struct DisasmArgs {
+    /// `text`: the listing, one instruction a line with its source; `json`: the
+    /// module's tables.
+    #[arg(long, value_enum, default_value_t = ListingFormat::Text)]
+    pub format: ListingFormat,
     /// An `.ilmb` module written by `ilmrc build`.
     pub file: PathBuf,
+}
+
+#[derive(Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum ListingFormat {
+    Text,
+    Json,
 }
 
 /// What `check` and the lowering made of a task.
@@ -42,25 +53,46 @@ pub enum Compiled {
 
 /// Checks the task exactly as `ilmrc check` does (printing what it prints when there is
 /// anything to say), then lowers it. `extra` adds problems found in the lowered module
-/// (`--robot none`); they are rendered in the same way.
+/// (`--robot none`); they are rendered in the same way. A built module (a file that
+/// starts with the `.ilmb` magic) is loaded and validated instead.
 pub fn compile(
     task: &Path,
     robot: &str,
     skills: Option<&Path>,
     extra: impl Fn(&Module) -> Vec<Diagnostic>,
 ) -> Result<Compiled, String> {
-    let report = crate::check::check(&CheckArgs {
+    compile_leaving(task, robot, skills, extra, false)
+}
+
+/// [`compile`]; with `leave`, the analysis is left to the operating system instead of
+/// freed (freeing a large one costs a tenth of making it, and `build` ends right after).
+fn compile_leaving(
+    task: &Path,
+    robot: &str,
+    skills: Option<&Path>,
+    extra: impl Fn(&Module) -> Vec<Diagnostic>,
+    leave: bool,
+) -> Result<Compiled, String> {
+    if is_module(task) {
+        return load_module(task, skills, extra);
+    }
+    let args = CheckArgs {
         robot: robot.to_string(),
         skills: skills.map(Path::to_path_buf),
         format: Format::Human,
         files: vec![task.to_path_buf()],
-    })?;
-    let model = inputs::load_robot_model(robot)?;
+    };
+    let loaded = inputs::load_robot(robot)?;
     let mut sources: Vec<Source> = vec![inputs::read_source(task)?];
     if let Some(dir) = skills {
         sources.extend(inputs::read_skill_dir(dir)?);
     }
-    let analysis = analyze(&sources, &model);
+    // One analysis, the full one the lowering reads; what `check` reports of it is what
+    // `check` reports of its own lighter one (`compiler/tests/detail.rs`).
+    let analysis = analyze(&sources, &loaded.model);
+    let report = crate::check::report(&args, &loaded, &analysis);
+    inputs::warn_about(robot, &loaded.warnings);
+    let model = &loaded.model;
     let quiet = analysis.diagnostics.is_empty() && !report.errors;
     if !quiet {
         print!("{}", report.output);
@@ -68,10 +100,14 @@ pub fn compile(
     if report.errors {
         return Ok(Compiled::Rejected);
     }
-    let problems = match ilmr_compiler::lower::lower(&analysis, &model, FileId(0)) {
+    let problems = match ilmr_compiler::lower::lower(&analysis, model, FileId(0)) {
         Ok(module) => {
             let problems = extra(&module);
             if problems.is_empty() {
+                if leave {
+                    std::mem::forget(analysis);
+                    std::mem::forget(sources);
+                }
                 return Ok(Compiled::Module(Box::new(module)));
             }
             problems
@@ -80,6 +116,71 @@ pub fn compile(
     };
     print!("{}", render_diagnostics(&analysis, &problems));
     Ok(Compiled::Rejected)
+}
+
+/// Whether the file starts as an `.ilmb` does (no task text can: its first byte is not
+/// UTF-8 on its own). Only a regular file is opened: opening a FIFO would wait for a
+/// writer, and whatever is not a regular file is refused by the read that follows.
+fn is_module(path: &Path) -> bool {
+    use std::io::Read;
+    if !std::fs::metadata(path).is_ok_and(|m| m.is_file()) {
+        return false;
+    }
+    let mut head = [0u8; 8];
+    std::fs::File::open(path)
+        .and_then(|mut f| f.read_exact(&mut head))
+        .is_ok_and(|()| head == ilmr_vm::bytecode::file::MAGIC)
+}
+
+/// A module `ilmrc build` wrote, read within `MAX_MODULE_BYTES` and validated. Its
+/// problems (`extra`) point at statements whose source is not at hand: each is said
+/// with its file, line and statement text.
+fn load_module(
+    path: &Path,
+    skills: Option<&Path>,
+    extra: impl Fn(&Module) -> Vec<Diagnostic>,
+) -> Result<Compiled, String> {
+    let module = read_module(path)?;
+    if skills.is_some() {
+        eprintln!(
+            "warning: --skills is ignored for `{}`: a built module holds the skills its task calls",
+            path.display()
+        );
+    }
+    let problems = extra(&module);
+    if problems.is_empty() {
+        return Ok(Compiled::Module(Box::new(module)));
+    }
+    let statements: std::collections::HashMap<(u32, (u32, u32)), &ilmr_vm::bytecode::Stmt> = module
+        .stmts
+        .iter()
+        .map(|s| ((s.file.0, s.span), s))
+        .collect();
+    for d in &problems {
+        let file = module
+            .files
+            .get(d.file.0 as usize)
+            .map_or("?", String::as_str);
+        let at = statements.get(&(d.file.0, (d.span.start, d.span.end)));
+        let (line, text) = at.map_or((0, ""), |s| (s.line, s.text.as_str()));
+        println!(
+            "error[{}]: {}\n  --> {file}:{line}: {text}",
+            d.code.as_str(),
+            d.message
+        );
+        if let Some(help) = &d.help {
+            println!("  = help: {help}");
+        }
+    }
+    Ok(Compiled::Rejected)
+}
+
+/// Reads and validates an `.ilmb` file; the error says which file and what is wrong.
+fn read_module(path: &Path) -> Result<Module, String> {
+    let bytes = ilmr_files::read(path, ilmr_files::Kind::Module)
+        .map_err(|e| format!("cannot read `{}`: {e}", path.display()))?;
+    Module::from_bytes(&bytes)
+        .map_err(|e| format!("`{}` is not a valid ILMR module: {e}", path.display()))
 }
 
 /// Diagnostics as `ilmrc check` shows them (colour only on a terminal).
@@ -102,24 +203,38 @@ pub fn render_diagnostics(analysis: &Analysis<'_>, diagnostics: &[Diagnostic]) -
 }
 
 pub fn build(args: BuildArgs) -> ExitCode {
-    let compiled = compile(&args.task, &args.robot, args.skills.as_deref(), |_| {
-        Vec::new()
-    });
+    let compiled = compile_leaving(
+        &args.task,
+        &args.robot,
+        args.skills.as_deref(),
+        |_| Vec::new(),
+        true,
+    );
     match compiled {
         Ok(Compiled::Module(module)) => {
-            let bytes = module.to_bytes();
-            if let Err(e) = std::fs::write(&args.output, &bytes) {
-                eprintln!("error: cannot write `{}`: {e}", args.output.display());
-                return ExitCode::from(crate::EXIT_USAGE);
-            }
+            let written = std::fs::File::create(&args.output).and_then(|f| {
+                let mut out = std::io::BufWriter::new(f);
+                let len = ilmr_vm::bytecode::file::write(&module, &mut out)?;
+                std::io::Write::flush(&mut out)?;
+                Ok(len)
+            });
+            let bytes = match written {
+                Ok(len) => len,
+                Err(e) => {
+                    eprintln!("error: cannot write `{}`: {e}", args.output.display());
+                    return ExitCode::from(crate::EXIT_USAGE);
+                }
+            };
             println!(
                 "built {}: {} statement(s), {} instruction(s), {} skill(s), {} byte(s)",
                 args.output.display(),
                 module.stmts.len(),
                 module.code.len(),
                 module.units.iter().filter(|u| u.skill).count(),
-                bytes.len()
+                bytes
             );
+            // As the analysis: the process ends now.
+            std::mem::forget(module);
             ExitCode::SUCCESS
         }
         Ok(Compiled::Rejected) => ExitCode::from(crate::EXIT_ERRORS),
@@ -131,26 +246,26 @@ pub fn build(args: BuildArgs) -> ExitCode {
 }
 
 pub fn disasm(args: DisasmArgs) -> ExitCode {
-    let bytes = match ilmr_files::read(&args.file, ilmr_files::Kind::Module) {
-        Ok(b) => b,
+    let module = match read_module(&args.file) {
+        Ok(m) => m,
         Err(e) => {
-            eprintln!("error: cannot read `{}`: {e}", args.file.display());
+            eprintln!("error: {e}");
             return ExitCode::from(crate::EXIT_USAGE);
         }
     };
-    match Module::from_bytes(&bytes) {
-        Ok(module) => {
-            print!("{}", listing(&module));
-            ExitCode::SUCCESS
-        }
-        Err(e) => {
-            eprintln!(
-                "error: `{}` is not a valid ILMR module: {e}",
-                args.file.display()
-            );
-            ExitCode::from(crate::EXIT_USAGE)
-        }
-    }
+    let text = match args.format {
+        ListingFormat::Text => listing(&module),
+        ListingFormat::Json => match serde_json::to_string_pretty(&module) {
+            Ok(json) => json + "\n",
+            Err(e) => {
+                eprintln!("error: cannot write the module as JSON: {e}");
+                return ExitCode::from(crate::EXIT_USAGE);
+            }
+        },
+    };
+    // A reader that stops early (`| head`) is not an error of the listing.
+    let _ = std::io::Write::write_all(&mut std::io::stdout().lock(), text.as_bytes());
+    ExitCode::SUCCESS
 }
 
 /// The source files, then the VM's listing (one instruction per line with its source

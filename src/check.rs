@@ -4,7 +4,7 @@ use std::io::{IsTerminal, Write};
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use ilmr_compiler::check::{Detail, Source, analyze_with};
+use ilmr_compiler::check::{Analysis, Detail, Source, analyze_with};
 use ilmr_compiler::render::{self, RenderFile, Style};
 use ilmr_compiler::{Code, Diagnostic, FileId, LineIndex, Span};
 
@@ -62,7 +62,17 @@ pub fn check(args: &CheckArgs) -> Result<Report, String> {
         sources.extend(inputs::read_skill_dir(dir)?);
     }
     let analysis = analyze_with(&sources, &robot.model, Detail::Diagnostics);
+    let report = report(args, &robot, &analysis);
+    // Freeing a large program's trees and tables costs a tenth of checking it, and the
+    // process ends right after: let the operating system reclaim them.
+    std::mem::forget(analysis);
+    std::mem::forget(sources);
+    Ok(report)
+}
 
+/// What `check` says about an analysis of `args.files` (with the robot model's own
+/// warnings): `build` and `run` print the same of the analysis they lower.
+pub fn report(args: &CheckArgs, robot: &inputs::Robot, analysis: &Analysis<'_>) -> Report {
     let mut files: Vec<RenderFile<'_>> = analysis
         .files
         .iter()
@@ -122,10 +132,5 @@ pub fn check(args: &CheckArgs) -> Result<Report, String> {
             s
         }
     };
-    // Freeing a large program's trees and tables costs a tenth of checking it, and the
-    // process ends right after: let the operating system reclaim them.
-    drop(files);
-    std::mem::forget(analysis);
-    std::mem::forget(sources);
-    Ok(Report { output, errors })
+    Report { output, errors }
 }

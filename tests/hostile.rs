@@ -234,7 +234,7 @@ fn the_limits_table_quotes_the_constants() {
         ),
         (
             "EXPR_STACK",
-            format!("{} values", ilmr_vm::runtime::EXPR_STACK),
+            format!("{} values", ilmr_vm::bytecode::limits::EXPR_STACK),
         ),
         (
             "max_call_depth",

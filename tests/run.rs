@@ -182,37 +182,109 @@ fn build_exits_like_check() {
 #[test]
 fn disasm_refuses_corrupt_and_foreign_files_without_panicking() {
     let good = lowered(&root().join("examples/short_task.ilmr")).to_bytes();
-    let text = String::from_utf8(good.clone()).unwrap();
-    let cases: Vec<(&str, Vec<u8>)> = vec![
-        ("empty", Vec::new()),
-        ("binary", vec![0xff, 0x00, 0x13, 0x37]),
-        ("truncated", good[..good.len() / 2].to_vec()),
-        ("foreign json", br#"{"hello":"world"}"#.to_vec()),
+    let with = |at: usize, bytes: &[u8]| {
+        let mut v = good.clone();
+        v[at..at + bytes.len()].copy_from_slice(bytes);
+        v
+    };
+    let last = good.len() - 1;
+    let cases: Vec<(&str, Vec<u8>, &str)> = vec![
+        ("empty", Vec::new(), "not an ILMR module"),
+        ("binary", vec![0xff, 0x00, 0x13, 0x37], "not an ILMR module"),
+        ("text", b"speed(0.2)\n".to_vec(), "not an ILMR module"),
         (
-            "magic",
-            text.replacen("\"ILMB\"", "\"ELF!\"", 1).into_bytes(),
+            "json of format 1",
+            br#"{"header":{"magic":"ILMB","version":1},"files":[]}"#.to_vec(),
+            "format version 1",
         ),
         (
             "version",
-            text.replacen("\"version\":1", "\"version\":99", 1)
-                .into_bytes(),
+            with(8, &99u32.to_le_bytes()),
+            "format version 99",
         ),
+        ("truncated", good[..good.len() / 2].to_vec(), "cut short"),
         (
-            "index",
-            text.replacen("\"main\":0", "\"main\":4000000", 1)
-                .into_bytes(),
+            "flipped",
+            with(last - 4, &[good[last - 4] ^ 0x10]),
+            "checksum",
         ),
+        ("checksum", with(last, &[good[last] ^ 1]), "checksum"),
     ];
-    for (what, bytes) in cases {
+    for (what, bytes, says) in cases {
         let path = scratch(&format!("corrupt-{}.ilmb", what.replace(' ', "_")));
         std::fs::write(&path, &bytes).unwrap();
         let (code, out, err) = ilmrc(&["disasm", &path.display().to_string()]);
         let _ = std::fs::remove_file(&path);
         assert_eq!(code, 2, "{what}: {out}{err}");
         assert!(err.contains("is not a valid ILMR module"), "{what}: {err}");
+        assert!(err.contains(says), "{what}: {err}");
         assert!(!err.contains("panicked"), "{what}: {err}");
     }
     assert_eq!(ilmrc(&["disasm", "no/such.ilmb"]).0, 2);
+}
+
+/// `run` takes what `build` wrote and runs it as it runs the task's text: the same
+/// trace, byte for byte; `disasm --format json` gives the tables as JSON; a damaged
+/// module is refused with exit 2 before anything runs.
+#[test]
+fn run_takes_a_built_module() {
+    let built = scratch("counting.ilmb");
+    let built_arg = built.display().to_string();
+    let (code, out, err) = ilmrc(&["build", "tests/run/counting.ilmr", "-o", &built_arg]);
+    assert_eq!(code, 0, "{out}{err}");
+    let trace_of = |task: &str, n: u32| {
+        let trace = scratch(&format!("counting-{n}.jsonl"));
+        let trace_arg = trace.display().to_string();
+        let (code, out, err) = ilmrc(&[
+            "run",
+            "--robot",
+            "none",
+            "--scenario",
+            "tests/run/counting.json",
+            "--max-time",
+            "10",
+            "--trace",
+            &trace_arg,
+            task,
+        ]);
+        assert_eq!(code, 0, "{task}: {out}{err}");
+        let bytes = std::fs::read(&trace).expect("the trace is written");
+        let _ = std::fs::remove_file(&trace);
+        bytes
+    };
+    assert!(trace_of("tests/run/counting.ilmr", 1) == trace_of(&built_arg, 2));
+
+    let (code, json, err) = ilmrc(&["disasm", "--format", "json", &built_arg]);
+    assert_eq!(code, 0, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&json).expect("JSON");
+    assert_eq!(v["header"]["version"], ilmr_vm::bytecode::VERSION);
+    assert!(
+        v["code"].as_array().is_some_and(|c| !c.is_empty()),
+        "{json}"
+    );
+
+    let mut bytes = std::fs::read(&built).unwrap();
+    bytes.truncate(bytes.len() - 3);
+    std::fs::write(&built, &bytes).unwrap();
+    let (code, out, err) = ilmrc(&["run", "--robot", "none", &built_arg]);
+    let _ = std::fs::remove_file(&built);
+    assert_eq!(code, 2, "{out}{err}");
+    assert!(err.contains("cut short"), "{err}");
+}
+
+/// A built module that commands the robot, run with `--robot none`, is refused like
+/// its text, each statement named by its file and line.
+#[test]
+fn robot_none_refuses_a_built_module_that_needs_a_robot() {
+    let built = scratch("short-robotless.ilmb");
+    let built_arg = built.display().to_string();
+    let (code, out, err) = ilmrc(&["build", "examples/short_task.ilmr", "-o", &built_arg]);
+    assert_eq!(code, 0, "{out}{err}");
+    let (code, out, _) = ilmrc(&["run", "--robot", "none", &built_arg]);
+    let _ = std::fs::remove_file(&built);
+    assert_eq!(code, 1, "{out}");
+    assert!(out.contains("error[E0407]: `speed` needs a robot"), "{out}");
+    assert!(out.contains("--> examples/short_task.ilmr:"), "{out}");
 }
 
 #[test]

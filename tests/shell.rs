@@ -384,6 +384,27 @@ fn a_bad_task_or_robot_exits_before_the_prompt() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
+/// `--task` takes what `ilmrc build` wrote as it takes the task's text.
+#[test]
+fn a_built_task_is_loaded_like_its_text() {
+    let dir = std::env::temp_dir().join(format!("ilmr-shell-ilmb-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    let task = dir.join("good.ilmr");
+    std::fs::write(&task, "m = goahead(0.5)\n").expect("write task");
+    let built = dir.join("good.ilmb");
+    let status = std::process::Command::new(env!("CARGO_BIN_EXE_ilmrc"))
+        .args(["build", "-o"])
+        .args([&built, &task])
+        .output()
+        .expect("ilmrc build");
+    assert!(status.status.success(), "{status:?}");
+    let built_arg = built.display().to_string();
+    let mut sh = Shell::piped(&["--task", &built_arg]);
+    sh.keys("wait(m)\n");
+    sh.expect("joined at t=");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
 #[test]
 fn a_piped_line_that_is_not_utf8_or_too_long_is_skipped_and_reading_goes_on() {
     let mut sh = Shell::piped(&[]);

@@ -18,10 +18,10 @@ pub const MAX_BLOCK_DEPTH: usize = 256;
 /// Operators (`+ - * /`, unary minus, comparisons) and opening parentheses on one line.
 /// An expression tree is no deeper than the operators it holds, so this also bounds
 /// every expression's depth and the VM's evaluation stack
-/// ([`ilmr_vm::runtime::EXPR_STACK`]).
+/// ([`ilmr_vm::bytecode::limits::EXPR_STACK`]).
 pub const MAX_LINE_OPERATORS: usize = 256;
 
-const _: () = assert!(MAX_LINE_OPERATORS < ilmr_vm::runtime::EXPR_STACK);
+const _: () = assert!(MAX_LINE_OPERATORS < ilmr_vm::bytecode::limits::EXPR_STACK);
 
 /// The native stack a thread that checks, lowers or formats a program is given: twice
 /// what an unoptimised build needs at the limits (`compiler/tests/limits.rs` runs there

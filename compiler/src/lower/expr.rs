@@ -4,7 +4,8 @@
 //! condition; two positions compared with `==`/`!=` become `POSEQ`.
 
 use ilmr_stdlib::{Field, VarKind};
-use ilmr_vm::bytecode::{ExprId, ExprOp};
+use ilmr_vm::bytecode::{ExprId, ExprOp, VarId};
+use smallvec::{SmallVec, smallvec};
 
 use super::scope::Scope;
 use super::stmt::{Lowered, Lowerer};
@@ -12,10 +13,22 @@ use super::{build_error, internal};
 use crate::ast::{BinOp, CmpOp, Expr, ExprKind, Name};
 use crate::check::Resolved;
 
+/// Postfix ops; most expressions of a task fit inline.
+type Ops = SmallVec<[ExprOp; 4]>;
+
 /// An expression on its way to postfix.
 enum Val {
     Const(f64),
-    Ops(Vec<ExprOp>),
+    Ops(Ops),
+}
+
+/// A variable read as a number: the field its kind means in one (a position, which
+/// has none, reads its status).
+fn read((v, kind): (VarId, VarKind)) -> Val {
+    Val::Ops(smallvec![ExprOp::Field(
+        v,
+        kind.numeric_field().unwrap_or(Field::Status),
+    )])
 }
 
 impl Lowerer<'_> {
@@ -29,13 +42,15 @@ impl Lowerer<'_> {
     pub fn condition(&mut self, sc: &Scope<'_>, e: &Expr<'_>) -> Lowered<ExprId> {
         let v = match &e.kind {
             ExprKind::Name(n) => match self.var(sc, n)? {
-                Some((v, _)) => Val::Ops(vec![ExprOp::Field(v, Field::Status)]),
+                Some((v, _)) => Val::Ops(smallvec![ExprOp::Field(v, Field::Status)]),
                 None => Val::Const(self.constant(sc, n)?),
             },
             ExprKind::Compare { op, lhs, rhs, .. } => {
-                let positions = (self.position(sc, lhs)?, self.position(sc, rhs)?);
-                if let (Some(a), Some(b)) = positions {
-                    let mut ops = vec![ExprOp::PosEq(a, b)];
+                // Both sides' variables first, then their values: the order in which
+                // the module's variables and constants are made.
+                let sides = (self.side(sc, lhs)?, self.side(sc, rhs)?);
+                if let (Some((a, VarKind::Position)), Some((b, VarKind::Position))) = sides {
+                    let mut ops = smallvec![ExprOp::PosEq(a, b)];
                     match op {
                         CmpOp::Eq => {}
                         CmpOp::Ne => {
@@ -49,7 +64,10 @@ impl Lowerer<'_> {
                     }
                     Val::Ops(ops)
                 } else {
-                    let (a, b) = (self.val(sc, lhs)?, self.val(sc, rhs)?);
+                    let (a, b) = (
+                        self.side_val(sc, lhs, sides.0)?,
+                        self.side_val(sc, rhs, sides.1)?,
+                    );
                     let cmp = match op {
                         CmpOp::Lt => ExprOp::Lt,
                         CmpOp::Le => ExprOp::Le,
@@ -78,10 +96,7 @@ impl Lowerer<'_> {
         Ok(match &e.kind {
             ExprKind::Number(n) => Val::Const(*n),
             ExprKind::Name(n) => match self.var(sc, n)? {
-                Some((v, kind)) => Val::Ops(vec![ExprOp::Field(
-                    v,
-                    kind.numeric_field().unwrap_or(Field::Status),
-                )]),
+                Some(var) => read(var),
                 None => Val::Const(self.constant(sc, n)?),
             },
             ExprKind::Neg(inner) => match self.val(sc, inner)? {
@@ -128,10 +143,10 @@ impl Lowerer<'_> {
         Ok(Val::Ops(ops))
     }
 
-    fn ops(&mut self, sc: &Scope<'_>, e: &Expr<'_>, v: Val) -> Lowered<Vec<ExprOp>> {
+    fn ops(&mut self, sc: &Scope<'_>, e: &Expr<'_>, v: Val) -> Lowered<Ops> {
         Ok(match v {
             Val::Ops(ops) => ops,
-            Val::Const(c) => vec![ExprOp::Const(
+            Val::Const(c) => smallvec![ExprOp::Const(
                 self.b
                     .constant(c)
                     .map_err(|err| build_error(sc.file, e.span, err))?,
@@ -140,33 +155,36 @@ impl Lowerer<'_> {
     }
 
     /// A name the checker resolved to a variable, with the kind it has in this unit.
-    fn var(
-        &mut self,
-        sc: &Scope<'_>,
-        n: &Name<'_>,
-    ) -> Lowered<Option<(ilmr_vm::bytecode::VarId, VarKind)>> {
+    fn var(&mut self, sc: &Scope<'_>, n: &Name<'_>) -> Lowered<Option<(VarId, VarKind)>> {
         match sc.resolved(n.span) {
             Some(Resolved::Variable(id)) => {
                 let kind = sc.vars.get(id).kind;
-                Ok(Some((self.bound(sc, n)?, kind)))
+                Ok(Some((self.slot(sc, id, n.span)?, kind)))
             }
             _ => Ok(None),
         }
     }
 
-    /// A position variable standing alone as one side of a comparison.
-    fn position(
+    /// A variable standing alone as one side of a comparison (two positions compare
+    /// with `POSEQ`).
+    fn side(&mut self, sc: &Scope<'_>, e: &Expr<'_>) -> Lowered<Option<(VarId, VarKind)>> {
+        match &e.kind {
+            ExprKind::Name(n) => self.var(sc, n),
+            _ => Ok(None),
+        }
+    }
+
+    /// The value of a side [`Self::side`] looked at.
+    fn side_val(
         &mut self,
         sc: &Scope<'_>,
         e: &Expr<'_>,
-    ) -> Lowered<Option<ilmr_vm::bytecode::VarId>> {
-        let ExprKind::Name(n) = &e.kind else {
-            return Ok(None);
-        };
-        Ok(self
-            .var(sc, n)?
-            .filter(|(_, kind)| *kind == VarKind::Position)
-            .map(|(v, _)| v))
+        side: Option<(VarId, VarKind)>,
+    ) -> Lowered<Val> {
+        match side {
+            Some(var) => Ok(read(var)),
+            None => self.val(sc, e),
+        }
     }
 
     /// `[PARAMETERS]` (with their defaults), `[IDENTIFIERS]` and `[COLORS]`, as the

@@ -18,7 +18,7 @@ use crate::ast::FileKind;
 use crate::check::SkillId;
 use crate::diagnostic::{Code, Diagnostic, FileId};
 use crate::parser;
-use crate::span::Span;
+use crate::span::{LineIndex, Span};
 
 /// How a line is taken.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
@@ -117,15 +117,8 @@ pub fn lower_line_warned(
         .new_file(&path)
         .map_err(|e| vec![*build_error(file, Span::default(), e)])?;
     let skill_unit = |id: SkillId| skill_units.get(id.0 as usize).map(|&i| UnitId(i));
-    let scope = Scope::from_parts(
-        file,
-        module_file,
-        text,
-        &unit.refs,
-        &unit.targets,
-        &unit.vars,
-        &skill_unit,
-    );
+    let lines = LineIndex::new(text);
+    let scope = Scope::from_parts(file, module_file, text, &lines, &unit, &skill_unit);
     // The lowerer owns its builder; lend it this one and put it back whatever happens.
     let mut low = Lowerer::with_builder(std::mem::take(b), model);
     let blocks = low.blocks(&scope, &parsed.file.blocks);

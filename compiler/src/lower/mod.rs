@@ -11,6 +11,7 @@
 mod args;
 mod expr;
 mod line;
+mod refs;
 mod robotless;
 mod scope;
 mod stmt;
@@ -24,7 +25,7 @@ use ilmr_vm::bytecode::{BuildError, UnitId};
 use crate::ast::{Block, StmtKind};
 use crate::check::{Analysis, SkillId};
 use crate::diagnostic::{Code, Diagnostic, FileId};
-use crate::span::Span;
+use crate::span::{LineIndex, Span};
 
 pub use line::{LineOptions, lower_line, lower_line_into, lower_line_warned};
 pub use robotless::robot_uses;
@@ -71,7 +72,13 @@ pub fn lower(
         .map_err(|e| fail(e.to_string()))?;
     low.b.set_main(main);
 
-    let reached = reachable(analysis, task);
+    // Each skill's checked unit, found once rather than by a search per skill.
+    let checked_units: HashMap<SkillId, &crate::check::Unit> = analysis
+        .units
+        .iter()
+        .filter_map(|u| Some((u.skill?, u)))
+        .collect();
+    let reached = reachable(analysis, task, &checked_units);
     let mut units: HashMap<SkillId, UnitId> = HashMap::new();
     for &id in &reached {
         let name = &analysis.skills.get(id).name;
@@ -83,15 +90,32 @@ pub fn lower(
     }
     let skill_unit = |id: SkillId| units.get(&id).copied();
 
-    let scope = Scope::new(analysis, task, &skill_unit);
+    // Each file's lines indexed once, not once per skill in it.
+    let lines: Vec<LineIndex> = analysis
+        .files
+        .iter()
+        .map(|f| LineIndex::new(f.text))
+        .collect();
+    let bodies = reached.iter().filter_map(|&id| {
+        let info = analysis.skills.get(id);
+        let file = analysis.files.get(info.file.0 as usize)?;
+        Some(&file.tree.skills.get(info.index)?.blocks)
+    });
+    let statements: usize = std::iter::once(&entry.tree.blocks)
+        .chain(bodies)
+        .map(|b| statements(b))
+        .sum();
+    low.b.reserve(statements, task.vars.len());
+    let Some(scope) = Scope::new(analysis, &lines, task, &skill_unit) else {
+        return Err(fail(format!("no file {} in the analysis", task_file.0)));
+    };
     let blocks = low.blocks(&scope, &entry.tree.blocks);
     low.b.define_unit(main, &blocks);
     for &id in &reached {
         let info = analysis.skills.get(id);
-        let (Some(unit), Some(checked)) = (
-            units.get(&id).copied(),
-            analysis.units.iter().find(|u| u.skill == Some(id)),
-        ) else {
+        let (Some(unit), Some(checked)) =
+            (units.get(&id).copied(), checked_units.get(&id).copied())
+        else {
             low.diags.push(*internal(
                 info.file,
                 info.header,
@@ -106,17 +130,35 @@ pub fn lower(
         else {
             continue;
         };
-        let scope = Scope::new(analysis, checked, &skill_unit);
+        let Some(scope) = Scope::new(analysis, &lines, checked, &skill_unit) else {
+            continue;
+        };
         let blocks = low.blocks(&scope, &body.blocks);
         low.b.define_unit(unit, &blocks);
     }
     low.finish(task_file)
 }
 
+/// How many statements the blocks hold, inside bodies too.
+fn statements(blocks: &[Block<'_>]) -> usize {
+    blocks
+        .iter()
+        .flat_map(|b| &b.stmts)
+        .map(|stmt| match &stmt.kind {
+            StmtKind::If(c) | StmtKind::While { body: c, .. } => 1 + statements(&c.body),
+            _ => 1,
+        })
+        .sum()
+}
+
 /// The skills a task calls, directly or through other skills, in the order first
 /// reached (depth first, calls in text order), so that module layout is stable. Calls
 /// inside `check` blocks never run and reach nothing.
-fn reachable(analysis: &Analysis<'_>, task: &crate::check::Unit) -> Vec<SkillId> {
+fn reachable(
+    analysis: &Analysis<'_>,
+    task: &crate::check::Unit,
+    checked_units: &HashMap<SkillId, &crate::check::Unit>,
+) -> Vec<SkillId> {
     fn calls(analysis: &Analysis<'_>, unit: &crate::check::Unit) -> Vec<SkillId> {
         let Some(entry) = analysis.files.get(unit.file.0 as usize) else {
             return Vec::new();
@@ -134,23 +176,27 @@ fn reachable(analysis: &Analysis<'_>, task: &crate::check::Unit) -> Vec<SkillId>
     }
     fn walk(blocks: &[Block<'_>], unit: &crate::check::Unit, out: &mut Vec<SkillId>) {
         for stmt in blocks.iter().flat_map(|b| &b.stmts) {
-            if let Some(crate::check::Target::Skill(id)) = unit.targets.get(&stmt.span) {
-                out.push(*id);
-            }
             match &stmt.kind {
+                // Only a call, or an assignment of a call's value, can run a skill.
+                StmtKind::Call { .. } | StmtKind::Assign { .. } => {
+                    if let Some(crate::check::Target::Skill(id)) = unit.targets.get(&stmt.span) {
+                        out.push(*id);
+                    }
+                }
                 StmtKind::If(c) | StmtKind::While { body: c, .. } => walk(&c.body, unit, out),
                 _ => {}
             }
         }
     }
     let mut order = Vec::new();
+    let mut seen = std::collections::HashSet::new();
     let mut stack: Vec<SkillId> = calls(analysis, task).into_iter().rev().collect();
     while let Some(id) = stack.pop() {
-        if order.contains(&id) {
+        if !seen.insert(id) {
             continue;
         }
         order.push(id);
-        if let Some(unit) = analysis.units.iter().find(|u| u.skill == Some(id)) {
+        if let Some(unit) = checked_units.get(&id) {
             stack.extend(calls(analysis, unit).into_iter().rev());
         }
     }

@@ -2,7 +2,7 @@
 //! them, so every block's code stays contiguous (the builder's rule).
 
 use ilmr_model::RobotModel;
-use ilmr_stdlib::{Category, Command, Syntax, VarKind};
+use ilmr_stdlib::{Category, Command, Syntax};
 use ilmr_vm::Module;
 use ilmr_vm::bytecode::{BlockId, Instr, ModuleBuilder, Op, StmtId, VarId};
 
@@ -23,6 +23,11 @@ pub struct Lowerer<'m> {
     pub diags: Vec<Diagnostic>,
     /// Counts the units made for bodies of several blocks, to name them apart.
     synthetic: u32,
+    /// The instructions of the blocks being lowered, innermost last: a block's are
+    /// handed to the builder and popped when it ends, so no block allocates its own.
+    code: Vec<Instr>,
+    /// The same for the ids of blocks that start together.
+    ids: Vec<BlockId>,
 }
 
 /// Whether the VM issues this command with `ISSUE` (control flow has its own opcodes).
@@ -46,6 +51,8 @@ impl<'m> Lowerer<'m> {
             model,
             diags: Vec::new(),
             synthetic: 0,
+            code: Vec::new(),
+            ids: Vec::new(),
         }
     }
 
@@ -62,29 +69,36 @@ impl<'m> Lowerer<'m> {
     /// Lowers blocks that start together; a statement that fails is reported and left
     /// out, so that one run reports every failure.
     pub fn blocks(&mut self, sc: &Scope<'_>, blocks: &[ast::Block<'_>]) -> Vec<BlockId> {
-        let mut out = Vec::with_capacity(blocks.len());
+        let from = self.ids.len();
+        self.start_blocks(sc, blocks);
+        self.ids.split_off(from)
+    }
+
+    /// Lowers the blocks onto `self.ids`.
+    fn start_blocks(&mut self, sc: &Scope<'_>, blocks: &[ast::Block<'_>]) {
         for block in blocks {
-            let mut code = Vec::with_capacity(block.stmts.len());
+            let from = self.code.len();
             for stmt in &block.stmts {
-                if let Err(d) = self.stmt(sc, stmt, &mut code) {
+                if let Err(d) = self.stmt(sc, stmt) {
                     self.diags.push(*d);
                 }
             }
-            match self.b.block(&code) {
-                Ok(id) => out.push(id),
+            let built = self.b.block(&self.code[from..]);
+            self.code.truncate(from);
+            match built {
+                Ok(id) => self.ids.push(id),
                 Err(e) => self.diags.push(*build_error(sc.file, block.span, e)),
             }
         }
-        out
     }
 
-    fn stmt(&mut self, sc: &Scope<'_>, stmt: &Stmt<'_>, code: &mut Vec<Instr>) -> Lowered<()> {
+    fn stmt(&mut self, sc: &Scope<'_>, stmt: &Stmt<'_>) -> Lowered<()> {
         if matches!(stmt.kind, StmtKind::Check { .. }) {
             return Ok(());
         }
         let id = self.record(sc, stmt.span)?;
         if let Some(op) = self.op(sc, stmt)? {
-            code.push(Instr::new(op, id));
+            self.code.push(Instr::new(op, id));
         }
         Ok(())
     }
@@ -152,23 +166,30 @@ impl<'m> Lowerer<'m> {
     /// A body of one block is that block; several blocks become a unit of their own,
     /// started by one call, so that they start together as on the top level.
     fn body(&mut self, sc: &Scope<'_>, blocks: &[ast::Block<'_>], span: Span) -> Lowered<BlockId> {
-        let ids = self.blocks(sc, blocks);
+        let from = self.ids.len();
+        self.start_blocks(sc, blocks);
         let fail = |e| build_error(sc.file, span, e);
-        match ids.as_slice() {
+        let made = match self.ids[from..] {
             [] => self.b.block(&[]).map_err(fail),
-            [one] => Ok(*one),
-            many => {
-                self.synthetic += 1;
-                let name = format!("{}@{}#{}", sc.slice(span), sc.line(span), self.synthetic);
-                let unit = self.b.declare_unit(&name, false).map_err(fail)?;
-                self.b.define_unit(unit, many);
-                // A statement of its own, so that each statement has one instruction
-                // (the run loop follows commands by statement).
-                let stmt = self.record(sc, span)?;
-                let call = Instr::new(Op::Call { unit, bind: None }, stmt);
-                self.b.block(&[call]).map_err(fail)
-            }
-        }
+            [one] => Ok(one),
+            _ => self.several(sc, from, span),
+        };
+        self.ids.truncate(from);
+        made
+    }
+
+    /// A body of several blocks: a unit of its own, started by one call.
+    fn several(&mut self, sc: &Scope<'_>, from: usize, span: Span) -> Lowered<BlockId> {
+        let fail = |e| build_error(sc.file, span, e);
+        self.synthetic += 1;
+        let name = format!("{}@{}#{}", sc.slice(span), sc.line(span), self.synthetic);
+        let unit = self.b.declare_unit(&name, false).map_err(fail)?;
+        self.b.define_unit(unit, &self.ids[from..]);
+        // A statement of its own, so that each statement has one instruction
+        // (the run loop follows commands by statement).
+        let stmt = self.record(sc, span)?;
+        let call = Instr::new(Op::Call { unit, bind: None }, stmt);
+        self.b.block(&[call]).map_err(fail)
     }
 
     fn call(
@@ -279,7 +300,7 @@ impl<'m> Lowerer<'m> {
                 .with_help("save it with `savepos(name)`, or use the variable itself"),
             ));
         };
-        let src = self.global(sc, &source.spelling, source.kind, span)?;
+        let src = self.slot(sc, from, span)?;
         let expr = self
             .b
             .expr(&[ilmr_vm::bytecode::ExprOp::Field(src, field)])
@@ -293,10 +314,7 @@ impl<'m> Lowerer<'m> {
     /// The variable a name binds or reads, by the checker's resolution.
     pub fn bound(&mut self, sc: &Scope<'_>, name: &Name<'_>) -> Lowered<VarId> {
         match sc.resolved(name.span) {
-            Some(Resolved::Variable(id)) => {
-                let var = sc.vars.get(id);
-                self.global(sc, &var.spelling, var.kind, name.span)
-            }
+            Some(Resolved::Variable(id)) => self.slot(sc, id, name.span),
             _ => Err(internal(
                 sc.file,
                 name.span,
@@ -311,26 +329,25 @@ impl<'m> Lowerer<'m> {
             return None;
         };
         match sc.resolved(n.span) {
-            Some(Resolved::Variable(_)) => self.bound(sc, n).ok(),
+            Some(Resolved::Variable(id)) => self.slot(sc, id, n.span).ok(),
             _ => None,
         }
     }
 
-    /// The module's slot for a variable. A variable the program binds with two kinds
-    /// keeps the first: expressions name their field explicitly, so the slot's kind
-    /// only labels the record in listings and traces.
-    pub fn global(
-        &mut self,
-        sc: &Scope<'_>,
-        name: &str,
-        kind: VarKind,
-        span: Span,
-    ) -> Lowered<VarId> {
-        if let Some(v) = self.b.find_global(name) {
+    /// The module's slot for one of the unit's variables, looked up by name the first
+    /// time the unit uses it and remembered by the checker's id after that. A variable
+    /// the program binds with two kinds keeps the first: expressions name their field
+    /// explicitly, so the slot's kind only labels the record in listings and traces.
+    pub fn slot(&mut self, sc: &Scope<'_>, id: crate::check::VarId, span: Span) -> Lowered<VarId> {
+        if let Some(v) = sc.slot(id) {
             return Ok(v);
         }
-        self.b
-            .global(name, kind)
-            .map_err(|e| build_error(sc.file, span, e))
+        let var = sc.vars.get(id);
+        let v = self
+            .b
+            .global_keeping_kind(&var.spelling, var.kind)
+            .map_err(|e| build_error(sc.file, span, e))?;
+        sc.remember(id, v);
+        Ok(v)
     }
 }

@@ -1,4 +1,4 @@
-//! `.ilmb` bytes through `Module::from_bytes` (what `ilmrc disasm` does with a file
+//! `.ilmb` files through `Module::from_bytes` (what `ilmrc disasm` does with a file
 //! from anywhere), the disassembler and, when a module validates, the VM: a module
 //! that passes validation must run without a panic.
 
@@ -33,11 +33,23 @@ pub fn fuzz(budget: Budget) -> Stats {
         &corpus,
         budget,
         |base, rng: &mut Rng| {
-            if rng.chance(90) {
-                mutate::json(base, rng)
-            } else {
-                mutate::bytes(base.to_vec(), rng)
+            // Structure-aware: a node of the module's JSON form changes and the module
+            // is written again as a file, so that the change reaches the validator
+            // rather than the checksum.
+            let as_json = Module::from_bytes(base)
+                .ok()
+                .and_then(|m| serde_json::to_vec(&m).ok());
+            if let Some(json) = as_json.filter(|_| rng.chance(90)) {
+                let changed = mutate::json(&json, rng);
+                if let Ok(m) = serde_json::from_slice::<Module>(&changed) {
+                    return m.to_bytes();
+                }
             }
+            let mut bytes = mutate::bytes(base.to_vec(), rng);
+            if rng.chance(50) {
+                ilmr_vm::bytecode::file::reseal(&mut bytes);
+            }
+            bytes
         },
         |input| {
             let module = match Module::from_bytes(input) {
@@ -68,16 +80,30 @@ pub fn errors_are_clear() {
         Err(e) => e,
     };
 
-    assert!(matches!(refuse(b""), ModuleError::Decode(_)));
-    assert!(matches!(refuse(b"\xff\xfe"), ModuleError::Decode(_)));
+    assert!(matches!(refuse(b""), ModuleError::NotModule));
+    assert!(matches!(refuse(b"\xff\xfe"), ModuleError::NotModule));
     assert!(matches!(
         refuse(br#"{"header":{"magic":"ILMX","version":1}}"#),
-        ModuleError::BadMagic(m) if m == "ILMX"
+        ModuleError::NotModule
     ));
     assert!(matches!(
-        refuse(br#"{"header":{"magic":"ILMB","version":99}}"#),
+        refuse(br#"{"header":{"magic":"ILMB","version":1}}"#),
+        ModuleError::Version { found: 1, .. }
+    ));
+    let mut newer = encode(&good);
+    newer[8..12].copy_from_slice(&99u32.to_le_bytes());
+    assert!(matches!(
+        refuse(&newer),
         ModuleError::Version { found: 99, .. }
     ));
+    let whole = encode(&good);
+    assert!(matches!(
+        refuse(&whole[..whole.len() - 1]),
+        ModuleError::Length { .. }
+    ));
+    let mut damaged = whole.clone();
+    damaged[whole.len() - 5] ^= 0x40;
+    assert!(matches!(refuse(&damaged), ModuleError::Checksum { .. }));
 
     let mut m = good.clone();
     m.main = ilmr_vm::bytecode::UnitId(m.units.len() as u32);

@@ -4,6 +4,7 @@
 use ilmr_stdlib::VarKind;
 
 use super::ids::{BlockId, ConstId, ExprId, FileId, NameId, StmtId, UnitId, VarId};
+use super::index::Index;
 use super::op::{Arg, ArgRange, ExprOp, Instr};
 use super::{Block, Counts, Expr, Fragment, Global, Header, Module, ModuleError, Stmt, Unit};
 
@@ -51,6 +52,7 @@ pub struct ModuleBuilder {
     m: Module,
     /// Set when building a fragment against a live module.
     base: Option<Counts>,
+    index: Index,
 }
 
 impl Default for ModuleBuilder {
@@ -79,6 +81,7 @@ impl ModuleBuilder {
                 expr_code: Vec::new(),
             },
             base: None,
+            index: Index::default(),
         }
     }
 
@@ -88,6 +91,7 @@ impl ModuleBuilder {
         ModuleBuilder {
             m: live.clone(),
             base: Some(live.counts()),
+            index: Index::after(live.counts()),
         }
     }
 
@@ -99,6 +103,7 @@ impl ModuleBuilder {
         ModuleBuilder {
             m: live,
             base: Some(base),
+            index: Index::after(base),
         }
     }
 
@@ -109,8 +114,8 @@ impl ModuleBuilder {
     }
 
     pub fn file(&mut self, path: &str) -> Result<FileId, BuildError> {
-        if let Some(i) = self.m.files.iter().position(|f| f == path) {
-            return Ok(FileId(i as u32));
+        if let Some(i) = self.index.file(&self.m, path) {
+            return Ok(FileId(i));
         }
         self.new_file(path)
     }
@@ -120,7 +125,20 @@ impl ModuleBuilder {
     pub fn new_file(&mut self, path: &str) -> Result<FileId, BuildError> {
         let id = index(&self.m.files, "files")?;
         self.m.files.push(path.to_string());
+        self.index.added_file(&self.m, id);
         Ok(FileId(id))
+    }
+
+    /// Room for `statements` more statements with an instruction and an expression
+    /// each, and for `variables` more variables, so that a large task's tables grow
+    /// once instead of being copied as they double.
+    pub fn reserve(&mut self, statements: usize, variables: usize) {
+        self.m.stmts.reserve(statements);
+        self.m.code.reserve(statements);
+        self.m.exprs.reserve(statements);
+        self.m.expr_code.reserve(statements.saturating_mul(2));
+        self.m.globals.reserve(variables);
+        self.index.reserve_globals(&self.m, variables);
     }
 
     /// Records a statement; `text` is trimmed here.
@@ -143,33 +161,30 @@ impl ModuleBuilder {
 
     /// Interns a number (by bit pattern, so -0.0 and 0.0 stay apart).
     pub fn constant(&mut self, value: f64) -> Result<ConstId, BuildError> {
-        if let Some(i) = self
-            .m
-            .consts
-            .iter()
-            .position(|c| c.to_bits() == value.to_bits())
-        {
-            return Ok(ConstId(i as u32));
+        if let Some(i) = self.index.constant(&self.m, value) {
+            return Ok(ConstId(i));
         }
         let id = index(&self.m.consts, "constants")?;
         self.m.consts.push(value);
+        self.index.added_constant(&self.m, id);
         Ok(ConstId(id))
     }
 
     /// Interns a name exactly as written (keywords and model names keep their case for
     /// messages; the VM compares them case-insensitively).
     pub fn name(&mut self, text: &str) -> Result<NameId, BuildError> {
-        if let Some(i) = self.m.names.iter().position(|n| n == text) {
-            return Ok(NameId(i as u32));
+        if let Some(i) = self.index.name(&self.m, text) {
+            return Ok(NameId(i));
         }
         let id = index(&self.m.names, "names")?;
         self.m.names.push(text.to_string());
+        self.index.added_name(&self.m, id);
         Ok(NameId(id))
     }
 
     /// Declares a global variable, or returns the existing slot of that name (any case).
     pub fn global(&mut self, name: &str, kind: VarKind) -> Result<VarId, BuildError> {
-        if let Some(id) = self.m.find_global(name) {
+        if let Some(id) = self.find_global(name) {
             let was = self.m.globals[id.index()].kind;
             if was != kind {
                 return Err(BuildError::KindConflict {
@@ -185,20 +200,35 @@ impl ModuleBuilder {
             name: name.to_string(),
             kind,
         });
+        self.index.added_global(&self.m, id);
         Ok(VarId(id))
     }
 
-    pub fn find_global(&self, name: &str) -> Option<VarId> {
-        self.m.find_global(name)
+    /// The variable of this name (any case); declared with `kind` if there is none. An
+    /// existing variable keeps the kind it has: the lowering names the field of every
+    /// read, so a slot's kind only labels it in listings and traces.
+    pub fn global_keeping_kind(&mut self, name: &str, kind: VarKind) -> Result<VarId, BuildError> {
+        index(&self.m.globals, "variables")?;
+        let (id, _) = self.index.global_or_push(&mut self.m, name, || Global {
+            name: name.to_string(),
+            kind,
+        });
+        Ok(VarId(id))
     }
 
+    /// A variable by name in any letter case.
+    pub fn find_global(&self, name: &str) -> Option<VarId> {
+        self.index.global(&self.m, name).map(VarId)
+    }
+
+    /// A unit by name in any letter case.
     pub fn find_unit(&self, name: &str) -> Option<UnitId> {
-        self.m.find_unit(name)
+        self.index.unit(&self.m, name).map(UnitId)
     }
 
     /// Declares a unit so that calls can refer to it before its blocks exist.
     pub fn declare_unit(&mut self, name: &str, skill: bool) -> Result<UnitId, BuildError> {
-        if self.m.find_unit(name).is_some() {
+        if self.find_unit(name).is_some() {
             return Err(BuildError::DuplicateUnit(name.to_string()));
         }
         let id = index(&self.m.units, "units")?;
@@ -207,6 +237,7 @@ impl ModuleBuilder {
             skill,
             blocks: Vec::new(),
         });
+        self.index.added_unit(&self.m, id);
         Ok(UnitId(id))
     }
 

@@ -3,10 +3,14 @@
 
 mod builder;
 mod disasm;
+pub mod file;
 mod ids;
+mod index;
+pub mod limits;
 mod op;
 mod serde_kinds;
 mod validate;
+mod wire;
 
 pub use builder::{BuildError, ModuleBuilder};
 pub use disasm::{disassemble, render_expr};
@@ -19,22 +23,29 @@ pub(crate) use serde_kinds::{serde_field, serde_var_kind};
 use ilmr_stdlib::VarKind;
 use serde::{Deserialize, Serialize};
 
-/// The first bytes of every `.ilmb` file (after the JSON opening).
-pub const MAGIC: &str = "ILMB";
-/// Bumped on every change to the tables or instructions.
-pub const VERSION: u32 = 1;
+/// The format's name, which a module's header carries (the file starts with
+/// [`file::MAGIC`]).
+pub const MAGIC_NAME: &str = "ILMB";
+/// The version of the `.ilmb` format: bumped on every change to the file's layout, the
+/// tables or the instructions (docs/bytecode.md says what a version promises). 1 was
+/// the JSON file of sessions 1 to 4; 2 is the binary file.
+pub const VERSION: u32 = 2;
 
 #[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
 pub struct Header {
     pub magic: String,
     pub version: u32,
+    /// The toolchain that built the module (`ilmrc 0.1.0`), recorded in the file.
+    pub compiler: String,
 }
 
 impl Default for Header {
     fn default() -> Header {
         Header {
-            magic: MAGIC.to_string(),
+            magic: MAGIC_NAME.to_string(),
             version: VERSION,
+            // The VM and the compiler are built together, under one version.
+            compiler: format!("ilmrc {}", env!("CARGO_PKG_VERSION")),
         }
     }
 }
@@ -217,33 +228,15 @@ impl Module {
             .unwrap_or(&[])
     }
 
-    /// The `.ilmb` encoding: JSON with the versioned header first.
+    /// The `.ilmb` file of this module ([`file`]).
     pub fn to_bytes(&self) -> Vec<u8> {
-        // Serialising plain data with string keys cannot fail.
-        serde_json::to_vec(self).unwrap_or_default()
+        file::encode(self)
     }
 
-    /// Reads an `.ilmb` file: checks the header, then every index ([`Module::validate`]).
+    /// Reads an `.ilmb` file: its header, length and checksum, the tables, then every
+    /// index ([`Module::validate`]).
     pub fn from_bytes(bytes: &[u8]) -> Result<Module, ModuleError> {
-        #[derive(Deserialize)]
-        struct HeaderOnly {
-            header: Header,
-        }
-        let head: HeaderOnly =
-            serde_json::from_slice(bytes).map_err(|e| ModuleError::Decode(e.to_string()))?;
-        if head.header.magic != MAGIC {
-            return Err(ModuleError::BadMagic(head.header.magic));
-        }
-        if head.header.version != VERSION {
-            return Err(ModuleError::Version {
-                found: head.header.version,
-                expected: VERSION,
-            });
-        }
-        let module: Module =
-            serde_json::from_slice(bytes).map_err(|e| ModuleError::Decode(e.to_string()))?;
-        module.validate()?;
-        Ok(module)
+        file::decode(bytes)
     }
 
     /// Appends a fragment compiled against exactly this module, after validating what

@@ -8,11 +8,23 @@ use super::op::{Arg, ArgRange, ExprOp, Op};
 
 #[derive(Debug, Clone, PartialEq)]
 pub enum ModuleError {
+    /// The tables of an `.ilmb` file cannot be read.
     Decode(String),
-    BadMagic(String),
+    /// The bytes do not start as an `.ilmb` file does.
+    NotModule,
     Version {
         found: u32,
         expected: u32,
+    },
+    /// The file is not as long as its header says (cut short, or with bytes after it).
+    Length {
+        promised: u64,
+        found: u64,
+    },
+    /// The file's checksum does not match its bytes: it changed after it was written.
+    Checksum {
+        stored: u32,
+        computed: u32,
     },
     Index {
         what: &'static str,
@@ -34,11 +46,23 @@ pub enum ModuleError {
 impl std::fmt::Display for ModuleError {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
-            ModuleError::Decode(e) => write!(f, "not a module: {e}"),
-            ModuleError::BadMagic(m) => write!(f, "not an ILMR module (magic {m:?})"),
-            ModuleError::Version { found, expected } => {
-                write!(f, "module version {found}, this VM runs version {expected}")
-            }
+            ModuleError::Decode(e) => write!(f, "a damaged module: {e}"),
+            ModuleError::NotModule => write!(
+                f,
+                "not an ILMR module (an `.ilmb` file written by `ilmrc build` starts otherwise)"
+            ),
+            ModuleError::Version { found, expected } => write!(
+                f,
+                "module format version {found}, this ilmrc reads version {expected}: build the task again with `ilmrc build`"
+            ),
+            ModuleError::Length { promised, found } => write!(
+                f,
+                "the file holds {found} byte(s) where its header promises {promised}: it was cut short or added to"
+            ),
+            ModuleError::Checksum { stored, computed } => write!(
+                f,
+                "the checksum does not match (stored {stored:08x}, computed {computed:08x}): the file changed after it was written"
+            ),
             ModuleError::Index { what, index, len } => {
                 write!(f, "{what} {index} out of range (table holds {len})")
             }
@@ -149,20 +173,27 @@ impl Module {
                 Op::BreakAll | Op::Stop | Op::Cont | Op::Priority => {}
             }
         }
-        for (i, _) in from(&self.blocks, base.blocks) {
-            let code = self.block_code(super::BlockId(i as u32));
-            if code.iter().skip(1).any(|c| c.op == Op::Priority) {
-                return Err(ModuleError::PriorityNotFirst { block: i as u32 });
+        // Few tasks set a priority: where no new instruction does and no new block
+        // covers trusted code, no block can have one out of place.
+        let mut priorities = from(&self.code, base.code)
+            .filter(|(_, instr)| instr.op == Op::Priority)
+            .peekable();
+        let covers_trusted =
+            || from(&self.blocks, base.blocks).any(|(_, b)| b.len > 0 && b.start < base.code);
+        if priorities.peek().is_some() || covers_trusted() {
+            for (i, _) in from(&self.blocks, base.blocks) {
+                let code = self.block_code(super::BlockId(i as u32));
+                if code.iter().skip(1).any(|c| c.op == Op::Priority) {
+                    return Err(ModuleError::PriorityNotFirst { block: i as u32 });
+                }
             }
-        }
-        // Trusted blocks cover only trusted code, so new code can only start a new
-        // block.
-        let starts: std::collections::BTreeSet<u32> = from(&self.blocks, base.blocks)
-            .filter(|(_, b)| b.len > 0)
-            .map(|(_, b)| b.start)
-            .collect();
-        for (pc, instr) in from(&self.code, base.code) {
-            if instr.op == Op::Priority && !starts.contains(&(pc as u32)) {
+            // Trusted blocks cover only trusted code, so new code can only start a
+            // new block.
+            let starts: std::collections::BTreeSet<u32> = from(&self.blocks, base.blocks)
+                .filter(|(_, b)| b.len > 0)
+                .map(|(_, b)| b.start)
+                .collect();
+            if priorities.any(|(pc, _)| !starts.contains(&(pc as u32))) {
                 return Err(ModuleError::PriorityNotFirst { block: u32::MAX });
             }
         }
@@ -209,7 +240,7 @@ impl Module {
                 expr: id,
                 reason: "stack underflow",
             })? + push;
-            if depth as usize > crate::runtime::EXPR_STACK {
+            if depth as usize > super::limits::EXPR_STACK {
                 return Err(ModuleError::Expr {
                     expr: id,
                     reason: "too deep",

@@ -9,7 +9,8 @@ use super::nodes::{BlockState, Kind, NodeRef};
 use super::trace::EventKind;
 use super::vars::{FieldMask, How, NONE, Waiter, Woken};
 use super::watch::{Cmp, Shape};
-use super::{EXPR_STACK, Vm, stmt_of};
+use super::{Vm, stmt_of};
+use crate::bytecode::limits::EXPR_STACK;
 use crate::bytecode::{ExprId, ExprOp, Op, StmtId};
 
 /// What running a block's instructions came to.

@@ -17,6 +17,7 @@ use std::collections::{BTreeMap, BinaryHeap, VecDeque};
 
 use ilmr_hal::{Hal, KnownMap, Snapshot};
 
+use crate::bytecode::limits::EXPR_STACK;
 use crate::bytecode::{BlockId, Fragment, Module, ModuleBuilder, ModuleError, StmtId};
 use activity::{Activity, REST_SPEED};
 use clock::Clock;
@@ -25,11 +26,6 @@ use motion::Motion;
 use nodes::{Class, Kind, NodeRef, Nodes};
 use trace::{Event, EventKind};
 use vars::{NONE, VarRecord, Vars};
-
-/// Depth of the expression stack; `Module::validate` rejects deeper expressions. An
-/// expression of n operators needs at most n + 1 slots, and the compiler accepts at most
-/// 256 operators on a line, so every expression it accepts fits.
-pub const EXPR_STACK: usize = 257;
 
 /// What a reading variable keeps following after its command
 /// ended (`v = sensor(battery)`).
