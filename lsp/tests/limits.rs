@@ -129,16 +129,16 @@ fn a_megabyte_line_gets_every_answer_in_linear_time() {
 /// `64 MiB`, `8 KiB`, `2,000`: as the README's table writes them.
 fn shown(value: usize, bytes: bool) -> String {
     const MIB: usize = 1024 * 1024;
-    if bytes && value % MIB == 0 {
+    if bytes && value.is_multiple_of(MIB) {
         return format!("{} MiB", value / MIB);
     }
-    if bytes && value % 1024 == 0 {
+    if bytes && value.is_multiple_of(1024) {
         return format!("{} KiB", value / 1024);
     }
     let digits = value.to_string();
     let mut out = String::new();
     for (i, d) in digits.chars().enumerate() {
-        if i > 0 && (digits.len() - i) % 3 == 0 {
+        if i > 0 && (digits.len() - i).is_multiple_of(3) {
             out.push(',');
         }
         out.push(d);
