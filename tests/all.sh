@@ -1,8 +1,19 @@
 #!/usr/bin/env bash
 # Every test of the repository: the Rust workspace (unit, integration, snapshot and
-# property tests) and the VS Code extension (grammar tests and packaging).
+# property tests; the ROS 2 ones in network namespaces of their own, which needs root
+# or CAP_SYS_ADMIN, `unshare` and `ip`) and the VS Code extension (grammar tests and
+# packaging).
 set -euo pipefail
 cd "$(dirname "$0")/.."
+
+# Software this project did not write, which the interop tests run against: Eclipse
+# Cyclone DDS's Python binding (it ships its own C library) and Foxglove's MCAP readers.
+python_packages="cyclonedds mcap mcap-ros2-support"
+if ! python3 -c 'import cyclonedds.idl, mcap.reader, mcap_ros2.decoder' >/dev/null 2>&1; then
+    python3 -m pip install --quiet --disable-pip-version-check $python_packages \
+        || python3 -m pip install --quiet --disable-pip-version-check --break-system-packages $python_packages
+fi
+python3 -c 'import cyclonedds.idl, mcap.reader, mcap_ros2.decoder'
 
 cargo test --workspace
 
