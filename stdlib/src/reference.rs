@@ -101,7 +101,8 @@ fn units_section(out: &mut String) {
          value in that unit is within the argument's range: a degree value with a fraction no \
          larger than {} (a full turn in radians) that is in radians within {} degrees of a \
          multiple of {} degrees, such as `turn(d=1.57,c=1)` (90 degrees), looks like \
-         radians; a length of {} m or more in one command looks like centimetres.\n",
+         radians; a length of {} m or more in one command looks like centimetres, but for \
+         a position (`x`, `y`: a coordinate outdoors is often hundreds of metres).\n",
         crate::units::round_for_people(crate::units::RADIANS_UP_TO),
         crate::units::ROUND_ANGLE_SLACK,
         crate::units::ROUND_ANGLE_DEGREES,
