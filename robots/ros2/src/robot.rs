@@ -124,7 +124,12 @@ const MAX_MOUNTS: usize = 64;
 
 /// How long [`Ros2Robot::connect`] waits, beyond the first scan, for the transform that
 /// places the scanner on the robot.
-const MOUNT_WAIT: Duration = Duration::from_secs(2);
+const MOUNT_WAIT: Duration = Duration::from_secs(1);
+
+/// `connect` returns only just after odometry and a scan arrived (within this): the
+/// VM's supervisor watches a stream from its second stamp on, so a stream that had
+/// already stopped when the task started would go unwatched.
+const FRESH_SCAN: Duration = Duration::from_millis(200);
 
 pub struct Ros2Robot {
     link: Endpoints,
@@ -204,10 +209,25 @@ impl Ros2Robot {
     fn wait_for_streams(&mut self, config: &Ros2Config) -> Result<(), LinkError> {
         let start = Instant::now();
         let mut scanned_at: Option<Instant> = None;
+        let mut last_scan: Option<Instant> = None;
+        let mut last_odometry: Option<Instant> = None;
+        let mut scans = self.link.scan.counts().0;
+        let mut odometry = self.link.odom.counts().0;
         loop {
             self.receive(0.0);
-            let scan_ready = self.scanner.is_none() || self.scan.is_some();
-            if self.motion.is_some() && scan_ready {
+            if self.link.scan.counts().0 != scans {
+                scans = self.link.scan.counts().0;
+                last_scan = Some(Instant::now());
+            }
+            if self.link.odom.counts().0 != odometry {
+                odometry = self.link.odom.counts().0;
+                last_odometry = Some(Instant::now());
+            }
+            let odometry_ready =
+                self.motion.is_some() && last_odometry.is_some_and(|at| at.elapsed() <= FRESH_SCAN);
+            let scan_ready = self.scanner.is_none()
+                || (self.scan.is_some() && last_scan.is_some_and(|at| at.elapsed() <= FRESH_SCAN));
+            if odometry_ready && scan_ready {
                 // A scanner off the robot's origin is placed by a transform, which
                 // comes with the robot's first `tf` or its latched `tf_static`.
                 let placed = self.scanner_mount().is_some()
