@@ -140,6 +140,8 @@ impl Ros2Args {
             scanner,
             limits: Limits::of(model),
             wait: Duration::from_secs_f64(wait),
+            odometry_timeout: model.odometry_timeout(),
+            scanner_timeout: model.scanner_timeout(),
         })
     }
 }

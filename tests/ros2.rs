@@ -84,14 +84,12 @@ fn drive_beside(
     }
     cmd.arg("--")
         .arg(env!("CARGO_BIN_EXE_ilmrc"))
-        .args([
-            "run",
-            "--robot",
-            "ros2",
-            "--ros-loopback",
-            "--ros-wait",
-            "20",
-        ])
+        .args(["run", "--robot", "ros2", "--ros-loopback"])
+        .args(if run.contains(&"--ros-wait") {
+            &[][..]
+        } else {
+            &["--ros-wait", "20"][..]
+        })
         .arg("--trace")
         .arg(&trace_path)
         .args(run)
@@ -852,6 +850,47 @@ fn the_models_ros2_section_names_the_topics_on_both_sides() {
         at.len() == 2 && (at[0] - 2.0).hypot(at[1] - 1.0) < 0.10,
         "{summary}"
     );
+}
+
+/// A stream that stops around the moment the task starts would never be watched by the
+/// VM's supervisor (it watches a stream from its second sample): either the run does
+/// not start on it, or the backend holds the robot itself.
+#[test]
+fn odometry_that_stops_as_the_run_starts_never_leaves_the_robot_driven_blind() {
+    let _serial = one_at_a_time();
+    for stop in ["0.9", "1.2", "1.5"] {
+        let d = drive(
+            "stopped",
+            "speed(0.3)\ngoahead(2)\n",
+            &["--duration=30", &format!("--odom-stop-at={stop}")],
+            &["--ros-wait", "4", "--max-time", "4"],
+        );
+        let stop: f64 = stop.parse().unwrap();
+        let moving_after = d
+            .twists
+            .iter()
+            .filter(|t| t.t > stop + 0.25 + 0.15 && t.v != 0.0)
+            .count();
+        match d.code {
+            Some(2) => assert!(
+                d.stderr.contains("stopped while connecting"),
+                "{}",
+                d.stderr
+            ),
+            Some(0) => assert!(
+                d.summary.contains("held 1 times for a stale stream")
+                    || faults(&d, "fault").iter().any(|f| f == "odometry_lost"),
+                "{}",
+                d.summary
+            ),
+            other => panic!("exit {other:?}: {}\n{}", d.summary, d.stderr),
+        }
+        assert_eq!(
+            moving_after, 0,
+            "odometry stopped at {stop} s; moving twists came after"
+        );
+        assert!(d.speed.abs() < 1e-9, "the robot still moves: {}", d.speed);
+    }
 }
 
 #[test]

@@ -100,7 +100,7 @@ pub fn render<C: Clock>(
     }
     if let Some(l) = vm.hal().link_stats() {
         s.push_str(&format!(
-            "  ros 2 link      {} cmd_vel sent; odom {} taken, {} dropped ({} not numbers); scan {} taken, {} dropped; battery {} taken; at most {} of a topic in a tick\n",
+            "  ros 2 link      {} cmd_vel sent; odom {} taken, {} dropped ({} not numbers); scan {} taken, {} dropped; battery {} taken; at most {} of a topic in a tick; held {} times for a stale stream\n",
             l.twists_sent,
             l.odometry.0,
             l.odometry.1,
@@ -108,7 +108,8 @@ pub fn render<C: Clock>(
             l.scans.0,
             l.scans.1,
             l.battery.0,
-            l.most_in_one_tick
+            l.most_in_one_tick,
+            l.stale_holds
         ));
     }
     if k.lines_accepted + k.lines_rejected > 0 {

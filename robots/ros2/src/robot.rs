@@ -67,6 +67,10 @@ pub struct Ros2Config {
     pub limits: Limits,
     /// How long [`Ros2Robot::connect`] waits for the robot's first odometry and scan.
     pub wait: Duration,
+    /// The model's `odometry_timeout` and `scanner_timeout`, s: older streams than
+    /// these, and the backend itself sends only zero twists.
+    pub odometry_timeout: f64,
+    pub scanner_timeout: f64,
 }
 
 /// Counts of what went over the link, for the run's summary.
@@ -78,6 +82,8 @@ pub struct LinkStats {
     pub battery: (u64, u64),
     /// Odometry samples that decoded but held NaN or infinity.
     pub odometry_unusable: u64,
+    /// Times the backend itself held the robot (zero twists) for a stale stream.
+    pub stale_holds: u64,
     /// The most samples of one topic read in one tick (at most
     /// [`MAX_SAMPLES_PER_TICK`]).
     pub most_in_one_tick: usize,
@@ -129,7 +135,7 @@ const MOUNT_WAIT: Duration = Duration::from_secs(1);
 /// `connect` returns only just after odometry and a scan arrived (within this): the
 /// VM's supervisor watches a stream from its second stamp on, so a stream that had
 /// already stopped when the task started would go unwatched.
-const FRESH_SCAN: Duration = Duration::from_millis(200);
+const FRESH: Duration = Duration::from_millis(200);
 
 pub struct Ros2Robot {
     link: Endpoints,
@@ -160,6 +166,15 @@ pub struct Ros2Robot {
     mounts: Vec<(String, Pose)>,
     /// The frame of the latest scan.
     scan_frame: Option<String>,
+    odometry_timeout: f64,
+    scanner_timeout: f64,
+    /// When the latest usable odometry and scan arrived, s on the VM's clock (0 for
+    /// those that arrived while connecting, which `connect` made sure were fresh).
+    odometry_at: f64,
+    scan_at: f64,
+    /// Holding the robot for a stale stream now, and how often it began.
+    stale: bool,
+    stale_holds: u64,
 }
 
 impl Ros2Robot {
@@ -201,6 +216,12 @@ impl Ros2Robot {
             base_frame: config.frames.base.clone(),
             mounts: Vec::new(),
             scan_frame: None,
+            odometry_timeout: config.odometry_timeout,
+            scanner_timeout: config.scanner_timeout,
+            odometry_at: 0.0,
+            scan_at: 0.0,
+            stale: false,
+            stale_holds: 0,
         };
         robot.wait_for_streams(config)?;
         Ok(robot)
@@ -224,9 +245,9 @@ impl Ros2Robot {
                 last_odometry = Some(Instant::now());
             }
             let odometry_ready =
-                self.motion.is_some() && last_odometry.is_some_and(|at| at.elapsed() <= FRESH_SCAN);
+                self.motion.is_some() && last_odometry.is_some_and(|at| at.elapsed() <= FRESH);
             let scan_ready = self.scanner.is_none()
-                || (self.scan.is_some() && last_scan.is_some_and(|at| at.elapsed() <= FRESH_SCAN));
+                || (self.scan.is_some() && last_scan.is_some_and(|at| at.elapsed() <= FRESH));
             if odometry_ready && scan_ready {
                 // A scanner off the robot's origin is placed by a transform, which
                 // comes with the robot's first `tf` or its latched `tf_static`.
@@ -243,12 +264,23 @@ impl Ros2Robot {
                     return Ok(());
                 }
             }
-            if start.elapsed() >= config.wait {
-                let (topic, what) = if self.motion.is_none() {
-                    (self.link.odom.topic(), "odometry (nav_msgs/Odometry)")
+            // Once both streams are up, only the (bounded) wait for the mount is left.
+            if start.elapsed() >= config.wait && !(odometry_ready && scan_ready) {
+                let (topic, what, seen) = if !odometry_ready {
+                    let odometry = "odometry (nav_msgs/Odometry)";
+                    (self.link.odom.topic(), odometry, self.motion.is_some())
                 } else {
-                    (self.link.scan.topic(), "scan (sensor_msgs/LaserScan)")
+                    let scan = "scan (sensor_msgs/LaserScan)";
+                    (self.link.scan.topic(), scan, self.scan.is_some())
                 };
+                if seen {
+                    return Err(LinkError(format!(
+                        "the robot's {what} on {topic} stopped while connecting: none came \
+                         in the last {} ms of {:.0} s",
+                        FRESH.as_millis(),
+                        config.wait.as_secs_f64()
+                    )));
+                }
                 return Err(LinkError(format!(
                     "no {what} on {topic} within {:.0} s in DDS domain {}: is the robot up, \
                      with ROS_DOMAIN_ID={} and namespace `{}`?",
@@ -302,6 +334,7 @@ impl Ros2Robot {
             }
             self.motion = Some(m);
             self.odometry_t = Some(now);
+            self.odometry_at = now;
         }
         let mut scan = None;
         let topic = self.link.scan.topic().clone();
@@ -342,6 +375,7 @@ impl Ros2Robot {
         if let (Some(m), Some(device)) = (scan, &self.scanner) {
             let mut s = convert::scan(&m, device);
             s.t = now;
+            self.scan_at = now;
             self.scan = Some(s);
             self.scan_range = f64::from(m.range_max).max(0.0);
         }
@@ -388,6 +422,27 @@ impl Ros2Robot {
         &self.twist
     }
 
+    /// Why the robot must stand: a stream older than its timeout.
+    fn stale_stream(&self) -> Option<String> {
+        let odometry = self.now - self.odometry_at;
+        if odometry > self.odometry_timeout {
+            return Some(format!(
+                "no odometry on {} for {odometry:.2} s (odometry_timeout {} s): the robot is held",
+                self.link.odom.topic(),
+                self.odometry_timeout
+            ));
+        }
+        let scan = self.now - self.scan_at;
+        if self.scanner.is_some() && scan > self.scanner_timeout {
+            return Some(format!(
+                "no scan on {} for {scan:.2} s (scanner_timeout {} s): the robot is held",
+                self.link.scan.topic(),
+                self.scanner_timeout
+            ));
+        }
+        None
+    }
+
     /// Where the scanner is on the robot (its scans' frame on the body frame), once a
     /// transform has said so.
     pub fn scanner_mount(&self) -> Option<Pose> {
@@ -413,6 +468,7 @@ impl Ros2Robot {
             scans: self.link.scan.counts(),
             battery: self.link.battery.counts(),
             odometry_unusable: self.odometry_unusable,
+            stale_holds: self.stale_holds,
             most_in_one_tick: [
                 self.link.odom.most_in_one_drain(),
                 self.link.scan.most_in_one_drain(),
@@ -450,6 +506,10 @@ impl Hal for Ros2Robot {
         }
         self.now = t;
         self.receive(t);
+        if self.twist != Twist::default() && self.stale_stream().is_some() {
+            self.twist = Twist::default();
+            return self.send();
+        }
         if self.sent_at.is_none_or(|at| t - at >= KEEPALIVE - 1e-9) {
             self.send()?;
         }
@@ -493,13 +553,28 @@ impl Hal for Ros2Robot {
         Ok(())
     }
 
+    /// Within the model's limits; and only zero while a stream is older than its
+    /// timeout, whatever the VM asks: the VM's supervisor watches a stream from its
+    /// second sample, and this holds the robot even for one that never got that far.
     fn set_motion(&mut self, speed: f64, curvature: f64) -> Result<(), HalError> {
-        let twist = convert::cmd_vel(speed, curvature, self.limits);
+        let stale = self.stale_stream();
+        let twist = match stale {
+            Some(_) => Twist::default(),
+            None => convert::cmd_vel(speed, curvature, self.limits),
+        };
         if twist != self.twist {
             self.twist = twist;
             self.send()?;
         }
-        Ok(())
+        let began = stale.is_some() && !self.stale;
+        self.stale = stale.is_some();
+        match stale {
+            Some(why) if began && speed != 0.0 => {
+                self.stale_holds += 1;
+                Err(HalError::Refused(why))
+            }
+            _ => Ok(()),
+        }
     }
 
     fn actuator(&mut self, id: &str, _value: f64) -> Result<(), HalError> {
