@@ -14,7 +14,7 @@ use std::sync::mpsc;
 use std::time::{Duration, Instant};
 
 use crate::live::Robots;
-use crate::live::engine::{Job, Status};
+use crate::live::engine::Status;
 use file::Member;
 
 /// How long a launched simulator may take to create its endpoints.
@@ -101,10 +101,8 @@ fn execute(args: &FleetArgs) -> Result<ExitCode, String> {
     let every = Duration::from_secs_f64(args.every);
     loop {
         std::thread::sleep(every);
-        let statuses = statuses(&fleet.robots);
-        let done = statuses
-            .iter()
-            .all(|(_, s)| s.as_ref().is_some_and(at_rest));
+        let statuses = fleet.robots.statuses(Duration::from_secs(10));
+        let done = statuses.iter().all(|(_, s)| s.as_ref().is_ok_and(at_rest));
         let out_of_time = start.elapsed().as_secs_f64() >= args.max_time;
         print!("{}", table(&statuses));
         let _ = std::io::stdout().flush();
@@ -119,34 +117,16 @@ fn execute(args: &FleetArgs) -> Result<ExitCode, String> {
     }
 }
 
-fn statuses(robots: &Robots) -> Vec<(String, Option<Status>)> {
-    let asked: Vec<_> = robots
-        .all()
-        .map(|(name, live)| {
-            let (reply, answer) = mpsc::channel();
-            let sent = live.jobs.send(Job::Status { reply }).is_ok();
-            (name.to_string(), sent.then_some(answer))
-        })
-        .collect();
-    asked
-        .into_iter()
-        .map(|(name, answer)| {
-            let status = answer.and_then(|a| a.recv_timeout(Duration::from_secs(10)).ok());
-            (name, status)
-        })
-        .collect()
-}
-
 /// A task that has nothing left to do, on a robot that has stopped.
 fn at_rest(s: &Status) -> bool {
     s.finished && s.speed.abs() < 1e-3
 }
 
-fn table(statuses: &[(String, Option<Status>)]) -> String {
+fn table(statuses: &[(&str, Result<Status, &str>)]) -> String {
     let mut out = String::from("robot        t s      x m     y m   h deg   v m/s  live  state\n");
     for (name, s) in statuses {
         match s {
-            Some(s) => out.push_str(&format!(
+            Ok(s) => out.push_str(&format!(
                 "{name:<10} {:>5.1} {:>7.2} {:>7.2} {:>7.1} {:>7.2} {:>5}  {}\n",
                 s.t,
                 s.pose.x,
@@ -156,7 +136,7 @@ fn table(statuses: &[(String, Option<Status>)]) -> String {
                 s.live.len(),
                 if at_rest(s) { "finished" } else { "running" }
             )),
-            None => out.push_str(&format!("{name:<10} (no answer: the robot has stopped)\n")),
+            Err(why) => out.push_str(&format!("{name:<10} (no status: {why})\n")),
         }
     }
     out

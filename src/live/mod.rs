@@ -176,6 +176,32 @@ impl Robots {
         }
     }
 
+    /// Every robot's status, asked of all at once and waited for up to `wait` each:
+    /// `Err` says why a robot gave none.
+    pub fn statuses(
+        &self,
+        wait: std::time::Duration,
+    ) -> Vec<(&str, Result<engine::Status, &'static str>)> {
+        let asked: Vec<_> = self
+            .all()
+            .map(|(name, live)| {
+                let (reply, answer) = mpsc::channel();
+                let sent = live.jobs.send(Job::Status { reply }).is_ok();
+                (name, sent.then_some(answer))
+            })
+            .collect();
+        asked
+            .into_iter()
+            .map(|(name, answer)| {
+                let status = match answer {
+                    None => Err("the robot has stopped"),
+                    Some(a) => a.recv_timeout(wait).map_err(|_| "the robot did not answer"),
+                };
+                (name, status)
+            })
+            .collect()
+    }
+
     fn listed(&self) -> String {
         self.names().collect::<Vec<_>>().join(", ")
     }

@@ -201,21 +201,9 @@ fn subscribe(
 
 /// `{"ok": true, "robots": {NAME: status, ...}}`: every robot's, asked at once.
 fn fleet_status(robots: &Robots) -> Map<String, Value> {
-    let asked: Vec<(&str, Result<mpsc::Receiver<_>, ()>)> = robots
-        .all()
-        .map(|(name, live)| {
-            let (reply, answer) = mpsc::channel();
-            let sent = live.jobs.send(Job::Status { reply }).map(|_| answer);
-            (name, sent.map_err(|_| ()))
-        })
-        .collect();
     let mut each = Map::new();
-    for (name, answer) in asked {
-        let status = match answer.map(|a| a.recv_timeout(ANSWER_WAIT)) {
-            Ok(Ok(s)) => reply::status(&s),
-            Ok(Err(_)) => protocol::error("the robot did not answer"),
-            Err(()) => protocol::error("the robot has stopped"),
-        };
+    for (name, status) in robots.statuses(ANSWER_WAIT) {
+        let status = status.map_or_else(protocol::error, |s| reply::status(&s));
         each.insert(name.to_string(), Value::Object(status));
     }
     let mut m = Map::new();

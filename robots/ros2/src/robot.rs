@@ -168,10 +168,6 @@ pub struct Ros2Robot {
     scan_frame: Option<String>,
     odometry_timeout: f64,
     scanner_timeout: f64,
-    /// When the latest usable odometry and scan arrived, s on the VM's clock (0 for
-    /// those that arrived while connecting, which `connect` made sure were fresh).
-    odometry_at: f64,
-    scan_at: f64,
     /// Holding the robot for a stale stream now, and how often it began.
     stale: bool,
     stale_holds: u64,
@@ -218,8 +214,6 @@ impl Ros2Robot {
             scan_frame: None,
             odometry_timeout: config.odometry_timeout,
             scanner_timeout: config.scanner_timeout,
-            odometry_at: 0.0,
-            scan_at: 0.0,
             stale: false,
             stale_holds: 0,
         };
@@ -334,7 +328,6 @@ impl Ros2Robot {
             }
             self.motion = Some(m);
             self.odometry_t = Some(now);
-            self.odometry_at = now;
         }
         let mut scan = None;
         let topic = self.link.scan.topic().clone();
@@ -375,7 +368,6 @@ impl Ros2Robot {
         if let (Some(m), Some(device)) = (scan, &self.scanner) {
             let mut s = convert::scan(&m, device);
             s.t = now;
-            self.scan_at = now;
             self.scan = Some(s);
             self.scan_range = f64::from(m.range_max).max(0.0);
         }
@@ -424,7 +416,9 @@ impl Ros2Robot {
 
     /// Why the robot must stand: a stream older than its timeout.
     fn stale_stream(&self) -> Option<String> {
-        let odometry = self.now - self.odometry_at;
+        // Arrival times on the VM's clock; what arrived while connecting (which
+        // `connect` made sure was fresh) counts as arriving at 0.
+        let odometry = self.now - self.odometry_t.unwrap_or(0.0);
         if odometry > self.odometry_timeout {
             return Some(format!(
                 "no odometry on {} for {odometry:.2} s (odometry_timeout {} s): the robot is held",
@@ -432,7 +426,7 @@ impl Ros2Robot {
                 self.odometry_timeout
             ));
         }
-        let scan = self.now - self.scan_at;
+        let scan = self.now - self.scan.as_ref().map_or(0.0, |s| s.t);
         if self.scanner.is_some() && scan > self.scanner_timeout {
             return Some(format!(
                 "no scan on {} for {scan:.2} s (scanner_timeout {} s): the robot is held",
