@@ -6,6 +6,7 @@ mod fleet;
 mod fmt;
 mod inputs;
 mod live;
+mod notice;
 mod replay;
 mod ros2;
 mod run;
@@ -63,9 +64,16 @@ enum Cmd {
     },
 }
 
-/// Exit codes: 0 clean (warnings allowed), 1 errors in the input, 2 usage or I/O errors.
+/// Exit codes: 0 clean (warnings allowed), 1 errors in the input, 2 usage or I/O errors;
+/// a run also 3, 4 or 5 (docs/run.md).
 pub const EXIT_ERRORS: u8 = 1;
 pub const EXIT_USAGE: u8 = 2;
+/// A run ended, but commands were refused or runtime errors happened.
+pub const EXIT_TROUBLE: u8 = 3;
+/// A run ended on a supervisor hold that did not clear.
+pub const EXIT_HELD: u8 = 4;
+/// A run stopped at `--max-time` with commands still live.
+pub const EXIT_MAX_TIME: u8 = 5;
 
 fn main() -> ExitCode {
     let cli = match Cli::try_parse() {

@@ -284,6 +284,22 @@ fn piped_lines_join_are_rejected_checked_stopped_and_resumed() {
 }
 
 #[test]
+fn a_refusal_is_told_above_the_prompt_with_its_code_and_way_out() {
+    let mut sh = Shell::piped(&["--robot", "moro", "--world", "office"]);
+    sh.expect("ILMR shell: moro in office");
+    // Half a metre to the side: no path the robot can turn gets there.
+    sh.keys("gotoxy(8.1,5.5)\n");
+    let told = sh.expect("way out: give a heading the robot can reach");
+    assert!(
+        told.contains("refused `gotoxy(8.1,5.5)`")
+            && told.contains("R0110): the path needs curvature"),
+        "{told}"
+    );
+    sh.keys("exit\n");
+    sh.expect("left the shell at t=");
+}
+
+#[test]
 fn blocks_are_collected_until_they_close() {
     let mut sh = Shell::piped(&[]);
     sh.keys("n = 0\nwhile(n < 3)\n  n = n + 1\nendwhile\n");

@@ -2,12 +2,14 @@
 //! the trace (and an MCAP file, a plot), shows progress and prints a summary.
 //!
 //! A run ends when no command is left, or when nothing is left but `if` guards that
-//! wait and the robot is at rest, or at `--max-time`; the summary says which.
+//! wait and endless readings and the robot is at rest, or when a supervisor hold has
+//! lasted `--hold-limit`, or at `--max-time`; the summary and the exit code say which.
 
 pub(crate) mod backend;
 mod mcap;
 mod progress;
 mod record;
+mod report;
 pub(crate) mod scenario;
 mod session;
 pub(crate) mod setup;
@@ -22,6 +24,7 @@ use crate::build::{Compiled, compile};
 use backend::{AnyRobot, Robot};
 use progress::Progress;
 use record::{Extra, Sink};
+use report::Report;
 use scenario::Scenario;
 use session::Session;
 use setup::{Backend, Choice, Setup};
@@ -65,6 +68,10 @@ pub struct RunArgs {
     /// Stop after this many seconds of logical time.
     #[arg(long, default_value_t = 600.0)]
     pub max_time: f64,
+    /// End the run when a supervisor hold (an obstacle too near, no scans, no answer
+    /// from the robot) has lasted this many seconds (`inf`: wait for it to clear).
+    #[arg(long, default_value_t = 30.0)]
+    pub hold_limit: f64,
     /// Keep to the wall clock: one tick every 10 ms (always, with `--robot ros2`).
     #[arg(long)]
     pub realtime: bool,
@@ -94,7 +101,7 @@ pub struct RunArgs {
 pub fn run(args: RunArgs) -> ExitCode {
     let mut reached = Reached::default();
     let (code, failure) = match execute(&args, &mut reached) {
-        Ok(Ran::Ended) => return ExitCode::SUCCESS,
+        Ok(Ran::Ended(code)) => return ExitCode::from(code),
         Ok(Ran::Rejected) => (
             crate::EXIT_ERRORS,
             "the task has errors; they were printed with the checker's diagnostics".to_string(),
@@ -126,7 +133,8 @@ struct Reached {
 }
 
 enum Ran {
-    Ended,
+    /// The task ran; the exit code says how it ended.
+    Ended(u8),
     /// The checker rejected the task.
     Rejected,
 }
@@ -134,6 +142,9 @@ enum Ran {
 fn execute(args: &RunArgs, reached: &mut Reached) -> Result<Ran, String> {
     if !(args.max_time.is_finite() && args.max_time >= 0.0) {
         return Err(format!("--max-time {} is not a time", args.max_time));
+    }
+    if args.hold_limit.is_nan() || args.hold_limit < 0.0 {
+        return Err(format!("--hold-limit {} is not a time", args.hold_limit));
     }
     if !(args.scan_every.is_finite() && args.scan_every > 0.0) {
         return Err(format!("--scan-every {} is not a period", args.scan_every));
@@ -253,6 +264,7 @@ fn drive<C: Clock>(
     let mut session = Session::new(parts.setup.backend == Backend::None);
     let mut extra = Extra::new(vm.module(), args.scan_every);
     let mut progress = Progress::on_terminal();
+    let mut report = Report::default();
     let mut next_line = 0;
     let max_ticks = (args.max_time / vm.config().period).round() as u64;
     let outcome = loop {
@@ -272,6 +284,10 @@ fn drive<C: Clock>(
         vm.tick();
         let events = vm.take_events();
         let overran = session.absorb(&events, extra.movement());
+        report.absorb(vm.module(), &events, |notice| {
+            progress.clear();
+            eprintln!("{notice}");
+        });
         let pose = vm.hal().true_pose();
         session.travel(pose);
         let scan = vm.hal_mut().new_scan();
@@ -289,7 +305,13 @@ fn drive<C: Clock>(
             m.tick(vm.module(), &events, scan.as_ref())?;
             m.ros2(vm.hal_mut().take_ros2_messages())?;
         }
-        progress.show(&vm, &session);
+        progress.show(&vm, &session, &report);
+        if report
+            .longest_hold(vm.time())
+            .is_some_and(|(_, held)| held >= args.hold_limit)
+        {
+            break Outcome::Held;
+        }
         let more_lines = next_line < scenario.lines.len();
         if more_lines || overran || !vm.hal().at_rest() {
             continue;
@@ -297,11 +319,21 @@ fn drive<C: Clock>(
         if vm.finished() {
             break Outcome::Finished;
         }
-        if vm.only_guards_waiting() {
+        if vm.activity().only_waiting() {
             break Outcome::Waiting;
         }
     };
     progress.clear();
+    vm.trace_last_pose();
+    let last = vm.take_events();
+    if parts.sink.wants_poses() {
+        for e in &last {
+            parts.sink.line(&ilmr_vm::render_event(vm.module(), e))?;
+        }
+    }
+    if let Some(m) = parts.mcap.as_mut() {
+        m.tick(vm.module(), &last, None)?;
+    }
     let plot = parts.sink.finish()?;
     if let Some(m) = parts.mcap {
         m.finish()?;
@@ -309,9 +341,11 @@ fn drive<C: Clock>(
     if let (Some(path), Some(record)) = (&args.plot, plot) {
         ilmr_plot::write_svg(&record, path)?;
     }
-    print!(
-        "{}",
-        summary::render(&session, &vm, outcome, args, parts.setup)
-    );
-    Ok(Ran::Ended)
+    let ended = summary::Ended {
+        outcome,
+        session: &session,
+        report: &report,
+    };
+    print!("{}", summary::render(&ended, &vm, args, parts.setup));
+    Ok(Ran::Ended(ended.exit_code()))
 }

@@ -8,6 +8,7 @@ use std::time::{Duration, Instant};
 use ilmr_vm::{Clock, Vm};
 
 use super::backend::{AnyRobot, Robot};
+use super::report::Report;
 use super::session::Session;
 
 const EVERY: Duration = Duration::from_millis(100);
@@ -29,12 +30,12 @@ impl Progress {
         }
     }
 
-    pub fn show<C: Clock>(&mut self, vm: &Vm<AnyRobot, C>, session: &Session) {
+    pub fn show<C: Clock>(&mut self, vm: &Vm<AnyRobot, C>, session: &Session, report: &Report) {
         if !self.enabled || self.last.is_some_and(|l| l.elapsed() < EVERY) {
             return;
         }
         self.last = Some(Instant::now());
-        let line = render(vm, session);
+        let line = render(vm, session, report);
         let mut err = std::io::stderr().lock();
         let _ = write!(err, "\r\x1b[2K{line}");
         let _ = err.flush();
@@ -49,7 +50,7 @@ impl Progress {
     }
 }
 
-fn render<C: Clock>(vm: &Vm<AnyRobot, C>, session: &Session) -> String {
+fn render<C: Clock>(vm: &Vm<AnyRobot, C>, session: &Session, report: &Report) -> String {
     let mut s = format!("t {:7.2} s", vm.time());
     if let Some(p) = vm.hal().true_pose() {
         s.push_str(&format!(
@@ -61,6 +62,15 @@ fn render<C: Clock>(vm: &Vm<AnyRobot, C>, session: &Session) -> String {
     }
     if let Some((v, _)) = vm.hal().true_motion() {
         s.push_str(&format!("  {v:5.2} m/s"));
+    }
+    // A hold comes first: the robot stands, and the commands after it say why not.
+    if let Some((h, held)) = report.longest_hold(vm.time()) {
+        s.push_str(&format!(
+            "  held {:.0} s ({}): {}",
+            held,
+            h.fault.name(),
+            h.message
+        ));
     }
     let text = |i: usize| {
         vm.module()

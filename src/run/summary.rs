@@ -1,36 +1,95 @@
 //! The summary printed when a run ends: how it ended, how long it took, what the
 //! commands did, and for a simulated robot where it was and how far it went.
 
+use ilmr_vm::runtime::safety::Code;
 use ilmr_vm::runtime::trace::fmt_num;
 use ilmr_vm::{Clock, Vm};
 
 use super::RunArgs;
 use super::backend::{AnyRobot, Robot};
+use super::report::Report;
 use super::session::Session;
 use super::setup::{Backend, Setup};
+use crate::{EXIT_HELD, EXIT_MAX_TIME, EXIT_TROUBLE};
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Outcome {
     /// No command is left.
     Finished,
-    /// Only waiting guards are left, and the robot is at rest.
+    /// Only waiting guards and endless readings are left, and the robot is at rest.
     Waiting,
+    /// A supervisor hold lasted `--hold-limit`.
+    Held,
     MaxTime,
 }
 
+/// How a run ended and what it met on the way.
+pub struct Ended<'a> {
+    pub outcome: Outcome,
+    pub session: &'a Session,
+    pub report: &'a Report,
+}
+
+impl Ended<'_> {
+    /// 0 when the task ended by itself untroubled; see `docs/run.md`.
+    pub fn exit_code(&self) -> u8 {
+        let k = &self.session.tally;
+        match self.outcome {
+            Outcome::Held => EXIT_HELD,
+            Outcome::MaxTime if !self.report.holds.is_empty() => EXIT_HELD,
+            Outcome::MaxTime => EXIT_MAX_TIME,
+            Outcome::Finished | Outcome::Waiting if k.refused + k.errors > 0 => EXIT_TROUBLE,
+            Outcome::Finished | Outcome::Waiting => 0,
+        }
+    }
+
+    fn how<C: Clock>(&self, vm: &Vm<AnyRobot, C>, args: &RunArgs) -> String {
+        let a = vm.activity();
+        let hold = self.report.longest_hold(vm.time()).map(|(h, held)| {
+            format!(
+                "{} {} since t={} ({} s): {}",
+                Code::Fault(h.fault).code(),
+                h.fault.name(),
+                fmt_num(h.since),
+                fmt_num(held),
+                h.message
+            )
+        });
+        match self.outcome {
+            Outcome::Finished => "finished: no command left".to_string(),
+            Outcome::Waiting if a.endless_readings > 0 => format!(
+                "finished: only {} endless reading(s) and {} waiting guard(s) left, robot at rest",
+                a.endless_readings, a.waiting_guards
+            ),
+            Outcome::Waiting => "finished: only waiting guards left, robot at rest".to_string(),
+            Outcome::Held => format!(
+                "held: gave up after --hold-limit {} s of a supervisor hold, {}",
+                fmt_num(args.hold_limit),
+                hold.unwrap_or_default()
+            ),
+            Outcome::MaxTime => {
+                let live = match hold {
+                    Some(hold) => format!("held, {hold}"),
+                    None => format!(
+                        "{} command(s) live",
+                        a.running_commands + a.queued_movements
+                    ),
+                };
+                format!("max-time: stopped at --max-time {}, {live}", args.max_time)
+            }
+        }
+    }
+}
+
 pub fn render<C: Clock>(
-    session: &Session,
+    ended: &Ended<'_>,
     vm: &Vm<AnyRobot, C>,
-    outcome: Outcome,
     args: &RunArgs,
     setup: &Setup,
 ) -> String {
     let t = fmt_num(vm.time());
-    let how = match outcome {
-        Outcome::Finished => "finished: no command left".to_string(),
-        Outcome::Waiting => "finished: only waiting guards left, robot at rest".to_string(),
-        Outcome::MaxTime => format!("max-time: stopped at --max-time {}", args.max_time),
-    };
+    let how = ended.how(vm, args);
+    let session = ended.session;
     let k = &session.tally;
     let mut s = format!("{}: {how}\n", args.task.display());
     let world = setup
@@ -88,6 +147,13 @@ pub fn render<C: Clock>(
         k.overruns,
         k.errors,
     ));
+    s.push_str(&format!("  holds           {}\n", ended.report.holds_begun));
+    if !ended.report.first.is_empty() {
+        s.push_str("  first notices\n");
+        for n in &ended.report.first {
+            s.push_str(&format!("    {n}\n"));
+        }
+    }
     if world.is_some() {
         s.push_str(&format!("  contacts        {}\n", vm.hal().contacts()));
     }
@@ -118,5 +184,6 @@ pub fn render<C: Clock>(
             k.lines_accepted, k.lines_rejected
         ));
     }
+    s.push_str(&format!("  exit            {}\n", ended.exit_code()));
     s
 }

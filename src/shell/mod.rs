@@ -24,6 +24,7 @@ use rustyline::{CompletionType, Config, Editor, ExternalPrinter};
 
 use crate::live::engine::{Job, LineAnswer, Outcome, Status};
 use crate::live::{Live, RobotArgs};
+use crate::notice::Detail;
 use complete::{ShellHelper, Words};
 use input::{Collector, Input, ShellCommand};
 
@@ -272,8 +273,17 @@ fn notices(
     std::thread::Builder::new()
         .name("ilmr-shell-notices".into())
         .spawn(move || {
+            let mut gate = crate::notice::Gate::default();
             for event in events {
-                if let Some(n) = show::notice(&event, watch.load(Ordering::SeqCst)) {
+                let Ok(event) = serde_json::from_str(&event) else {
+                    continue;
+                };
+                let detail = if watch.load(Ordering::SeqCst) {
+                    Detail::Watch
+                } else {
+                    Detail::Trouble
+                };
+                if let Some(n) = gate.pass(&event, detail) {
                     printer(n);
                 }
             }

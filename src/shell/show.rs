@@ -4,7 +4,6 @@
 use ilmr_compiler::render::{self, RenderFile, Style};
 use ilmr_stdlib::Field;
 use ilmr_vm::runtime::trace::fmt_num;
-use serde_json::Value;
 
 use crate::live::engine::{LineAnswer, Outcome, Status, VarState};
 
@@ -125,42 +124,6 @@ fn fields(v: &VarState) -> String {
     parts.join(", ")
 }
 
-/// A notice for an event line from the engine: refusals and runtime errors always,
-/// commands starting and ending when `watch` is on; `None` for the rest.
-pub fn notice(event: &str, watch: bool) -> Option<String> {
-    let v: Value = serde_json::from_str(event).ok()?;
-    let t = v["t"].as_f64().map(fmt_num).unwrap_or_default();
-    let text = v["text"].as_str();
-    let at = match (v["line"].as_u64(), text) {
-        (Some(_), Some(text)) => format!(" `{text}`"),
-        _ => String::new(),
-    };
-    match v["event"].as_str()? {
-        "end" if v["how"] == "refused" => Some(format!(
-            "[t={t}] refused{at}{}",
-            v["reason"]
-                .as_str()
-                .map(|r| format!(": {r}"))
-                .unwrap_or_default()
-        )),
-        "error" => Some(format!(
-            "[t={t}] error{at}: {}",
-            v["message"].as_str().unwrap_or("")
-        )),
-        "end" if watch => Some(format!(
-            "[t={t}] ended{at}: {}{}",
-            v["how"].as_str().unwrap_or(""),
-            if v["linked"] == true { " (linked)" } else { "" }
-        )),
-        "start" if watch => Some(format!("[t={t}] started{at}")),
-        "avoid" if watch => Some(format!(
-            "[t={t}] obstacle avoidance{at}: {}",
-            v["state"].as_str().unwrap_or("")
-        )),
-        _ => None,
-    }
-}
-
 pub const HELP: &str = "\
 Type ILMR lines: each is checked against the running task and, if it has no errors,
 joins it as a new block at once (diagnostics are shown otherwise, and nothing changes).
@@ -175,32 +138,3 @@ Shell commands:
   :quit     leave (also `exit`, `quit`, Ctrl-D); Ctrl-C drops what is being typed
 Tab completes commands, keywords, robot model names, variables and skills.
 ";
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn refusals_and_errors_are_always_noticed_the_rest_when_watching() {
-        let refused = r#"{"t":1.5,"event":"end","line":1,"text":"sensor(sonar)","how":"refused","reason":"no such sensor"}"#;
-        assert_eq!(
-            notice(refused, false).as_deref(),
-            Some("[t=1.5] refused `sensor(sonar)`: no such sensor")
-        );
-        let error = r#"{"t":2,"event":"error","message":"division by zero"}"#;
-        assert_eq!(
-            notice(error, false).as_deref(),
-            Some("[t=2] error: division by zero")
-        );
-        let ended =
-            r#"{"t":3,"event":"end","line":1,"text":"goahead(1)","how":"completed","linked":true}"#;
-        assert_eq!(notice(ended, false), None);
-        assert_eq!(
-            notice(ended, true).as_deref(),
-            Some("[t=3] ended `goahead(1)`: completed (linked)")
-        );
-        let pose = r#"{"t":3,"event":"pose","x":1,"y":2,"h":0,"v":0,"c":0,"source":"true"}"#;
-        assert_eq!(notice(pose, true), None);
-        assert_eq!(notice("not json", true), None);
-    }
-}

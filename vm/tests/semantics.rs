@@ -609,6 +609,49 @@ fn a_found_door_is_stored_and_compared_by_position() {
 }
 
 #[test]
+fn a_forever_search_is_an_endless_reading_a_task_may_end_on() {
+    let mut a = Asm::new();
+    let code = vec![
+        a.cmd(
+            "Door=sensor(scanner,door,left,forever)",
+            Command::Sensor,
+            &[A::W("scanner"), A::W("door"), A::W("left"), A::W("forever")],
+            Some("Door"),
+        ),
+        a.cmd(
+            "MyDoor=sensor(scanner,door)",
+            Command::Sensor,
+            &[A::W("scanner"), A::W("door")],
+            Some("MyDoor"),
+        ),
+    ];
+    let b = a.block(code);
+    let mut both = vm(a.task(&[b]), robot(), config());
+    both.tick();
+    let now = both.activity();
+    assert_eq!((now.running_commands, now.endless_readings), (2, 1));
+    assert!(
+        !now.only_waiting(),
+        "a search that ends by itself still runs"
+    );
+    let mut a = Asm::new();
+    let code = vec![a.cmd(
+        "Door=sensor(scanner,door,left,forever)",
+        Command::Sensor,
+        &[A::W("scanner"), A::W("door"), A::W("left"), A::W("forever")],
+        Some("Door"),
+    )];
+    let b = a.block(code);
+    let mut only = vm(a.task(&[b]), robot(), config());
+    only.tick();
+    only.tick();
+    let now = only.activity();
+    assert_eq!((now.running_commands, now.endless_readings), (1, 1));
+    assert!(now.only_waiting() && !now.only_guards_waiting());
+    assert!(!only.finished());
+}
+
+#[test]
 fn refusals_and_missing_data_become_variable_states() {
     let mut a = Asm::new();
     let code = vec![
@@ -881,6 +924,7 @@ fn activity_tells_when_only_waiting_guards_are_left() {
         now,
         ilmr_vm::Activity {
             running_commands: 1,
+            endless_readings: 0,
             queued_movements: 1,
             waiting_guards: 1,
             sleeping: 1,

@@ -14,6 +14,8 @@ pub struct Activity {
     /// searches, asynchronous operations (`init`, `manipulate`, `movemode`) and
     /// `speed(v,w)` waiting for its movement.
     pub running_commands: usize,
+    /// Of `running_commands`, the readings and searches with `forever`.
+    pub endless_readings: usize,
     /// Movement commands waiting for the reservation.
     pub queued_movements: usize,
     /// `if` guards that have not fired: they cost nothing until a variable they read
@@ -42,5 +44,16 @@ impl Activity {
             && self.issuing_blocks == 0
             && self.ready == 0
             && self.robot_at_rest
+    }
+
+    /// As [`Activity::only_guards_waiting`], but endless readings (`forever`) may
+    /// still run: they change variables only as the world changes, and nothing in
+    /// the task moves the robot any more.
+    pub fn only_waiting(&self) -> bool {
+        Activity {
+            running_commands: self.running_commands - self.endless_readings,
+            ..*self
+        }
+        .only_guards_waiting()
     }
 }

@@ -580,7 +580,9 @@ impl<H: Hal, C: Clock> Vm<H, C> {
     /// detection is skipped without touching its node; entries of ended commands are
     /// dropped when they come to outnumber the live ones.
     pub(super) fn step_active(&mut self) {
-        let live = self.nodes.classes[super::nodes::Class::Active as usize];
+        let c = &self.nodes.classes;
+        let live =
+            c[super::nodes::Class::Active as usize] + c[super::nodes::Class::Endless as usize];
         if self.active.len() > 2 * live + 64 {
             let nodes = &self.nodes;
             self.active.retain(|a| nodes.alive(a.node));

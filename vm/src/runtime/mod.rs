@@ -250,7 +250,10 @@ impl<H: Hal, C: Clock> Vm<H, C> {
         let c = &self.nodes.classes;
         let running_movement = usize::from(self.motion.head.is_some_and(|h| self.nodes.alive(h)));
         Activity {
-            running_commands: c[Class::Active as usize] + running_movement,
+            running_commands: c[Class::Active as usize]
+                + c[Class::Endless as usize]
+                + running_movement,
+            endless_readings: c[Class::Endless as usize],
             queued_movements: c[Class::Movement as usize].saturating_sub(running_movement),
             waiting_guards: c[Class::Guard as usize],
             sleeping: c[Class::Sleep as usize],
@@ -487,22 +490,42 @@ impl<H: Hal, C: Clock> Vm<H, C> {
         }
     }
 
+    /// Traces the pose the last tick read, unless that tick's pose sample did: a run
+    /// that ends between samples still ends on the pose it stopped at.
+    pub fn trace_last_pose(&mut self) {
+        let Some(last) = self.tick.checked_sub(1) else {
+            return;
+        };
+        let every = u64::from(self.cfg.pose_every);
+        if self.cfg.trace != TraceLevel::Full || (every > 0 && last.is_multiple_of(every)) {
+            return;
+        }
+        self.events.push(Event {
+            tick: last,
+            t: last as f64 * self.cfg.period,
+            stmt: None,
+            kind: self.pose_now(),
+        });
+    }
+
     fn pose_event(&mut self) {
+        let kind = self.pose_now();
+        self.push_event(None, kind);
+    }
+
+    fn pose_now(&self) -> EventKind {
         let (pose, truth) = match self.snap.true_pose {
             Some(p) => (p, true),
             None => (self.snap.pose, false),
         };
-        self.push_event(
-            None,
-            EventKind::Pose {
-                x: pose.x,
-                y: pose.y,
-                h: pose.h,
-                speed: self.snap.speed,
-                curvature: self.snap.curvature,
-                truth,
-            },
-        );
+        EventKind::Pose {
+            x: pose.x,
+            y: pose.y,
+            h: pose.h,
+            speed: self.snap.speed,
+            curvature: self.snap.curvature,
+            truth,
+        }
     }
 
     fn push_event(&mut self, stmt: Option<StmtId>, kind: EventKind) {

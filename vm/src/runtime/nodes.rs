@@ -209,10 +209,13 @@ pub(crate) enum Class {
     Movement,
     /// Readings, searches, asynchronous operations, `speed(v,w)`.
     Active,
+    /// Readings and searches with `forever`: they never end by themselves, so a task
+    /// left with only these (and guards) can only wait.
+    Endless,
 }
 
 impl Class {
-    pub const COUNT: usize = 6;
+    pub const COUNT: usize = 7;
 
     pub fn of(kind: &Kind) -> Option<Class> {
         Some(match kind {
@@ -226,6 +229,7 @@ impl Class {
             | Kind::Call { .. } => Class::Container,
             Kind::WaitTime | Kind::WaitVar { .. } => Class::Sleep,
             Kind::Movement { .. } => Class::Movement,
+            Kind::Sensor { forever: true, .. } => Class::Endless,
             Kind::Sensor { .. } | Kind::Async { .. } | Kind::SpeedAfter { .. } => Class::Active,
         })
     }
