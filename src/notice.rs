@@ -132,8 +132,9 @@ pub fn for_event(v: &Value, detail: Detail) -> Option<String> {
     }
 }
 
-/// What the supervisor's reaction does to the robot, as the operator sees it.
-fn reaction_verb(reaction: &str) -> &'static str {
+/// What the supervisor's reaction (its `name()`) does to the robot, as the operator
+/// sees it.
+pub fn reaction_verb(reaction: &str) -> &'static str {
     match reaction {
         "hold" => "held",
         "lockout" => "movement locked",

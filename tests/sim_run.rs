@@ -182,6 +182,36 @@ fn replay_draws_what_run_drew() {
 }
 
 #[test]
+fn the_mcap_log_says_what_each_refusal_and_fault_was_at_its_level() {
+    let task = scratch("mcap-held.ilmr");
+    std::fs::write(&task, "gotoxy(8.1,5.5)\nfollowwall(left)\n").unwrap();
+    let run = run_with_outputs("mcap-held", &["--hold-limit", "2", task.to_str().unwrap()]);
+    let _ = std::fs::remove_file(&task);
+    let logs: Vec<serde_json::Value> = mcap::MessageStream::new(&run.mcap)
+        .expect("an MCAP file")
+        .map(|m| m.expect("a message"))
+        .filter(|m| m.channel.topic == "/commands")
+        .map(|m| serde_json::from_slice(&m.data).expect("JSON"))
+        .collect();
+    let said = |start: &str| {
+        logs.iter()
+            .find(|v| v["message"].as_str().is_some_and(|m| m.starts_with(start)))
+            .unwrap_or_else(|| panic!("no `{start}` log in {logs:#?}"))
+    };
+    let held = said("held (R0206 obstacle_near): an obstacle");
+    assert_eq!(held["level"], 4, "a hold halts the robot: an error");
+    assert!(
+        held["message"]
+            .as_str()
+            .unwrap()
+            .contains("; way out: clear the way")
+    );
+    let refused = said("refused (R0110): the path needs curvature");
+    assert_eq!(refused["level"], 3, "a refusal is a warning");
+    assert_eq!(refused["line"], 1);
+}
+
+#[test]
 fn the_mcap_file_reads_back_with_foxglove_schemas() {
     let run = run_with_outputs("mcap", &["--max-time", "8", "examples/short_task.ilmr"]);
     let mut topics: std::collections::BTreeMap<String, (String, usize)> = Default::default();

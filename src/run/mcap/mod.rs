@@ -24,6 +24,7 @@ use std::path::{Path, PathBuf};
 
 use ilmr_sim::World;
 use ilmr_sim::geometry::Shape;
+use ilmr_vm::runtime::safety::{Code, Reaction};
 use ilmr_vm::{Event, EventKind, How, Module};
 use mcap::records::MessageHeader;
 use serde_json::{Value, json};
@@ -228,14 +229,18 @@ impl McapOut {
             EventKind::End {
                 how: How::Refused,
                 reason,
+                code,
                 ..
             } => (
                 3,
                 format!(
-                    "refused{}",
+                    "refused{}{}{}",
+                    code.map(|c| format!(" ({})", c.code())).unwrap_or_default(),
                     reason
                         .as_ref()
                         .map(|r| format!(": {r}"))
+                        .unwrap_or_default(),
+                    code.map(|c| format!("; way out: {}", c.help()))
                         .unwrap_or_default()
                 ),
             ),
@@ -249,6 +254,28 @@ impl McapOut {
             ),
             EventKind::Error { message } => (4, format!("error: {message}")),
             EventKind::Overrun { pending } => (3, format!("overrun, {pending} pending")),
+            EventKind::Fault { fault, message } => {
+                let reaction = fault.reaction();
+                let code = Code::Fault(*fault);
+                let level = match reaction {
+                    Reaction::Raise | Reaction::SlowDown => 3,
+                    _ => 4,
+                };
+                (
+                    level,
+                    format!(
+                        "{} ({} {}): {message}; way out: {}",
+                        crate::notice::reaction_verb(reaction.name()),
+                        code.code(),
+                        fault.name(),
+                        code.help()
+                    ),
+                )
+            }
+            EventKind::Recovered { fault } => (
+                2,
+                format!("cleared ({} {})", Code::Fault(*fault).code(), fault.name()),
+            ),
             other => (2, other.name().to_string()),
         };
         let message = match stmt {
