@@ -254,7 +254,7 @@ fn piped_lines_join_are_rejected_checked_stopped_and_resumed() {
     let moving = status_until(&mut sh, "the robot did not get going", |v| {
         number_after(v, "speed") > 0.1
     });
-    assert!(moving.contains("goahead(3)"), "{moving}");
+    assert!(moving.contains("<typed 1>:1  m = goahead(3)"), "{moving}");
     assert!(moving.contains("m  status 0"), "{moving}");
 
     sh.keys("stop\n");

@@ -79,7 +79,7 @@ pub struct VarState {
 /// A live command: its statement's text and where it came from.
 #[derive(Debug, Clone)]
 pub struct LiveCommand {
-    /// The task file or `<line N>`.
+    /// The task file or `<typed N>`, the Nth line typed.
     pub file: String,
     pub line: u32,
     pub text: String,

@@ -20,6 +20,9 @@ use crate::diagnostic::{Code, Diagnostic, FileId};
 use crate::parser;
 use crate::span::{LineIndex, Span};
 
+/// The start of a typed line's file name: `<typed 1>`, `<typed 2>`, ...
+pub const TYPED: &str = "<typed ";
+
 /// How a line is taken.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 pub struct LineOptions {
@@ -111,7 +114,9 @@ pub fn lower_line_warned(
         return Err(errors(checked));
     }
 
-    let path = format!("<line {}>", live.files.len() + 1);
+    // Named by the order lines were typed in, whatever files the task came with.
+    let typed = live.files.iter().filter(|f| f.starts_with(TYPED)).count();
+    let path = format!("{TYPED}{}>", typed + 1);
     let base_code = live.code.len();
     let module_file = b
         .new_file(&path)
