@@ -181,6 +181,63 @@ fn replay_draws_what_run_drew() {
     }
 }
 
+/// The ends of a task's movements in its trace: (line, t, x, linked).
+fn movement_ends(trace: &[u8]) -> Vec<(u64, f64, f64, bool)> {
+    let text = String::from_utf8(trace.to_vec()).unwrap();
+    let events: Vec<serde_json::Value> = text
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap())
+        .collect();
+    events
+        .iter()
+        .filter(|v| v["event"] == "mark" && v["at"] == "end")
+        .map(|v| {
+            let line = v["line"].as_u64().unwrap();
+            let end = events
+                .iter()
+                .find(|e| e["event"] == "end" && e["line"] == line)
+                .unwrap();
+            (
+                line,
+                v["t"].as_f64().unwrap(),
+                v["x"].as_f64().unwrap(),
+                end["linked"] == true,
+            )
+        })
+        .collect()
+}
+
+#[test]
+fn a_queued_movement_is_linked_and_wait_stops_on_the_point() {
+    // The figures docs/language.md quotes, within a centimetre and a tick.
+    let run_of = |name: &str, text: &str| {
+        let task = scratch(&format!("{name}.ilmr"));
+        std::fs::write(&task, text).unwrap();
+        let run = run_with_outputs(name, &["--world", "empty", task.to_str().unwrap()]);
+        let _ = std::fs::remove_file(&task);
+        movement_ends(&run.trace)
+    };
+    let close = |a: f64, b: f64, tolerance: f64| (a - b).abs() <= tolerance;
+    let linked = run_of("linked", "speed(0.4)\ngotoxy(2,0)\ngotoxy(3.5,1.5,90)\n");
+    assert_eq!(linked.len(), 2, "{linked:?}");
+    let ((_, t1, x1, l1), (_, t2, _, l2)) = (linked[0], linked[1]);
+    assert!(
+        l1 && close(x1, 1.50, 0.01) && close(t1, 4.17, 0.011),
+        "{linked:?}"
+    );
+    assert!(!l2 && close(t2, 11.50, 0.011), "{linked:?}");
+    let waited = run_of(
+        "waited",
+        "speed(0.4)\nm=gotoxy(2,0)\nwait(m)\ngotoxy(3.5,1.5,90)\n",
+    );
+    let ((_, t1, x1, l1), (_, t2, _, _)) = (waited[0], waited[1]);
+    assert!(
+        !l1 && close(x1, 2.00, 0.01) && close(t1, 5.60, 0.011),
+        "{waited:?}"
+    );
+    assert!(close(t2, 12.02, 0.011), "{waited:?}");
+}
+
 #[test]
 fn the_mcap_log_says_what_each_refusal_and_fault_was_at_its_level() {
     let task = scratch("mcap-held.ilmr");
