@@ -236,6 +236,11 @@ fn a_queued_movement_is_linked_and_wait_stops_on_the_point() {
         "{waited:?}"
     );
     assert!(close(t2, 12.02, 0.011), "{waited:?}");
+    // A successor that cannot start from the end of the path is refused before the
+    // running movement would link to it: that one drives to its end.
+    let refused = run_of("unlinked", "goahead(1)\ngotoxy(1.2,0.5)\n");
+    let first = refused.iter().find(|m| m.0 == 1).expect("goahead(1) ended");
+    assert!(!first.3 && close(first.2, 1.0, 0.01), "{refused:?}");
 }
 
 #[test]

@@ -194,14 +194,19 @@ impl<H: Hal, C: Clock> Vm<H, C> {
                 run.advance,
                 self.cfg.goal_tolerance,
             );
-        let link_now = linked
+        let near_end = linked
             && !obs_control
             && !stopped
             && run.path.remaining_from(run.k, &here)
                 <= self.cfg.link_distance.max(link_distance(v, &limits, dt));
-        if link_now {
-            self.motion.joined = Some(run.path.tail_from(run.k));
-        }
+        let tail = near_end.then(|| run.path.tail_from(run.k));
+        let link_now = match tail {
+            Some(tail) if self.successor_starts_from(&tail) => {
+                self.motion.joined = Some(tail);
+                true
+            }
+            _ => false,
+        };
         self.motion.v = v;
         self.motion.c = c;
         self.motion.sign = sign;

@@ -377,6 +377,43 @@ impl<H: Hal, C: Clock> Vm<H, C> {
         self.push_event(stmt_of(stmt), EventKind::Path { points });
     }
 
+    /// Whether a queued movement can start from the end of `tail`, the running
+    /// movement's remainder, before that one ends linked to it. Those that cannot
+    /// plan a path from there are refused now, as `start_next_movement` would refuse
+    /// them; when none is left, the running movement is not linked and drives to
+    /// its end, rather than ending early with nothing to take over its remainder.
+    pub(super) fn successor_starts_from(&mut self, tail: &Path) -> bool {
+        loop {
+            let next = self
+                .motion
+                .queue
+                .iter()
+                .copied()
+                .find(|r| self.nodes.alive(*r) && !self.nodes.get(r.idx).dying);
+            let Some(next) = next else {
+                return false;
+            };
+            let Kind::Movement { spec, command } = self.nodes.get(next.idx).kind else {
+                return true;
+            };
+            let planned = self.check_movement_allowed().and_then(|()| {
+                let path = self.plan_spec(spec, tail.end_pose())?.path;
+                if matches!(command, Command::GotoXY | Command::GotoRelXY) {
+                    let end = path.end_pose();
+                    self.check_target(end.x, end.y)?;
+                }
+                Ok(())
+            });
+            match planned {
+                Ok(()) => return true,
+                Err(refusal) => {
+                    self.motion.queue.retain(|r| *r != next);
+                    self.end_refused(next.idx, refusal);
+                }
+            }
+        }
+    }
+
     /// A successor is queued and nothing waits on the running movement's variable.
     fn can_link(&self, head: NodeRef) -> bool {
         let queued = self
