@@ -218,6 +218,9 @@ fn the_tutorials_planner_drives_serve() {
     let typo = &answers[2];
     assert_eq!(typo["ok"], false, "{typo}");
     assert_eq!(typo["diagnostics"][0]["code"], "E0301", "{typo}");
-    assert_eq!(typo["diagnostics"][0]["fix"]["replacement"], "goahead", "{typo}");
+    assert_eq!(
+        typo["diagnostics"][0]["fix"]["replacement"], "goahead",
+        "{typo}"
+    );
     assert_eq!(answers[3]["ok"], true, "{}", answers[3]);
 }

@@ -24,6 +24,7 @@ pub fn thin(
         t: (i + 1) as f64 * period,
         x: trace[i].x,
         y: trace[i].y,
+        h: trace[i].h,
         v: speeds.get(i).copied().unwrap_or(0.0),
         c: curvatures.get(i).copied().unwrap_or(0.0),
     };
@@ -81,6 +82,7 @@ impl Marks {
                 at,
                 x: p.x,
                 y: p.y,
+                h: p.h,
                 how,
             });
         }

@@ -29,6 +29,8 @@ pub struct Sample {
     pub t: f64,
     pub x: f64,
     pub y: f64,
+    /// Heading, radians.
+    pub h: f64,
     pub v: f64,
     pub c: f64,
 }
@@ -47,6 +49,8 @@ pub struct Mark {
     pub at: At,
     pub x: f64,
     pub y: f64,
+    /// Heading, radians.
+    pub h: f64,
     /// How an ended command ended (`completed`, `broken`, `refused`).
     pub how: Option<String>,
 }
@@ -103,6 +107,7 @@ impl RunRecord {
                 t: num(&v, "t")?,
                 x: num(&v, "x")?,
                 y: num(&v, "y")?,
+                h: num(&v, "h")?,
                 v: num(&v, "v")?,
                 c: num(&v, "c")?,
             }),
@@ -118,6 +123,7 @@ impl RunRecord {
                 },
                 x: num(&v, "x")?,
                 y: num(&v, "y")?,
+                h: num(&v, "h")?,
                 how: v["how"].as_str().map(str::to_string),
             }),
             "path" => self.refs.push(RefPath {

@@ -58,9 +58,57 @@ pub struct Reference {
     pub points: Vec<(f64, f64)>,
 }
 
+/// The robot's outline round its reference point (the point the pose is of), for
+/// footprints on the map.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Footprint {
+    pub length: f64,
+    pub width: f64,
+    /// From the rear edge forward to the reference point.
+    pub rear_overhang: f64,
+}
+
+impl Footprint {
+    /// The shipped robot a trace names (`moro`, `workpartner`); `None` for a model
+    /// given by its file, whose body the trace does not hold.
+    pub fn of_robot(name: &str) -> Option<Footprint> {
+        let kind = match name {
+            "moro" => ilmr_sim::RobotKind::Moro,
+            "workpartner" => ilmr_sim::RobotKind::Workpartner,
+            _ => return None,
+        };
+        let b = ilmr_sim::RobotConfig::for_kind(kind).body;
+        Some(Footprint {
+            length: b.length,
+            width: b.width,
+            rear_overhang: b.rear_overhang,
+        })
+    }
+
+    /// The outline's corners at pose (x, y, h), world frame: rear right, front right,
+    /// front left, rear left.
+    pub fn corners(&self, x: f64, y: f64, h: f64) -> [(f64, f64); 4] {
+        let (s, c) = h.sin_cos();
+        let at = |fwd: f64, left: f64| (x + fwd * c - left * s, y + fwd * s + left * c);
+        let (rear, front, half) = (
+            -self.rear_overhang,
+            self.length - self.rear_overhang,
+            self.width / 2.0,
+        );
+        [
+            at(rear, -half),
+            at(front, -half),
+            at(front, half),
+            at(rear, half),
+        ]
+    }
+}
+
 /// Where the map's legend sits.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Corner {
+    /// The corner of the map with the fewest trajectory samples and marks in it.
+    Quietest,
     UpperLeft,
     UpperRight,
     LowerLeft,
@@ -79,6 +127,11 @@ pub struct Figure {
     pub marks: Vec<Mark>,
     /// Speed and curvature of every track over time, below the map (Figure 54).
     pub time_series: bool,
+    /// The robot's footprint and heading, drawn where each movement started and at
+    /// the time ticks; none when `None`.
+    pub body: Option<Footprint>,
+    /// Ticks along the first track at round times, labelled in seconds.
+    pub time_ticks: bool,
     pub legend: Corner,
 }
 
@@ -93,6 +146,8 @@ impl Figure {
             tracks: Vec::new(),
             marks: Vec::new(),
             time_series: false,
+            body: None,
+            time_ticks: false,
             legend: Corner::UpperRight,
         }
     }
@@ -121,6 +176,12 @@ impl Figure {
         });
         figure.marks = record.marks.clone();
         figure.time_series = true;
+        figure.time_ticks = true;
+        figure.legend = Corner::Quietest;
+        figure.body = record
+            .header
+            .as_ref()
+            .and_then(|h| Footprint::of_robot(&h.robot));
         Ok(figure)
     }
 
@@ -156,6 +217,7 @@ mod tests {
                 t: i as f64,
                 x,
                 y,
+                h: 0.0,
                 v: 0.3,
                 c: 0.0,
             })

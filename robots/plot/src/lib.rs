@@ -14,12 +14,13 @@
 
 mod data;
 mod figure;
+mod labels;
 mod map;
 mod render;
 mod series;
 
 pub use data::{At, Header, Mark, RefPath, RunRecord, Sample};
-pub use figure::{Colour, Corner, Figure, Reference, Scenery, Track};
+pub use figure::{Colour, Corner, Figure, Footprint, Reference, Scenery, Track};
 pub use render::WIDTH;
 
 use std::path::Path;
@@ -60,6 +61,87 @@ mod tests {
         // Dashes: more line pieces than the run without the path.
         let pieces = |svg: &str| svg.matches("<polyline").count() + svg.matches("<line").count();
         assert!(pieces(&with) > pieces(&without) + 3);
+    }
+
+    /// MoRo in the office: two movements whose marks fall on one point (line 6 ends
+    /// where line 11 starts, and line 11 ends there too), standing still at the end.
+    const OFFICE_RUN: &str = r#"{"t":0,"event":"run","task":"t.ilmr","robot":"moro","world":"office","seed":0,"start":{"x":8,"y":5,"h":0}}
+{"t":0,"event":"mark","line":6,"text":"goahead(1)","at":"start","x":8,"y":5,"h":0}
+{"t":0,"event":"pose","x":8,"y":5,"h":0,"v":0,"c":0.3,"source":"true"}
+{"t":1,"event":"pose","x":8.4,"y":5,"h":0,"v":0.4,"c":0.2,"source":"true"}
+{"t":2,"event":"pose","x":8.8,"y":5,"h":0,"v":0.4,"c":0.1,"source":"true"}
+{"t":2.5,"event":"mark","line":6,"text":"goahead(1)","at":"end","x":9,"y":5,"h":0,"how":"completed"}
+{"t":2.5,"event":"mark","line":11,"text":"goahead(0)","at":"start","x":9,"y":5,"h":0}
+{"t":2.5,"event":"mark","line":11,"text":"goahead(0)","at":"end","x":9,"y":5,"h":0,"how":"completed"}
+{"t":3,"event":"pose","x":9,"y":5,"h":0,"v":0,"c":0.9,"source":"true"}
+{"t":4,"event":"pose","x":9,"y":5,"h":0,"v":0,"c":0.9,"source":"true"}
+"#;
+
+    /// The `<text>` elements of an SVG: (x, y, text).
+    fn texts(svg: &str) -> Vec<(i32, i32, String)> {
+        svg.split("<text")
+            .skip(1)
+            .filter_map(|t| {
+                let attr = |name: &str| {
+                    let at = t.find(&format!(" {name}=\""))? + name.len() + 3;
+                    t[at..].split('"').next()?.parse::<f64>().ok()
+                };
+                let body = t.split_once('>')?.1.split("</text>").next()?;
+                Some((attr("x")? as i32, attr("y")? as i32, body.trim().to_string()))
+            })
+            .collect()
+    }
+
+    #[test]
+    fn a_run_shows_footprints_world_legend_and_apart_labels() {
+        let svg = render_svg(&RunRecord::from_jsonl(OFFICE_RUN).expect("a trace")).expect("drawn");
+        for entry in ["wall", "obstacle, box", "door (opening)", "robot footprint", "time along the trajectory"] {
+            assert!(svg.contains(entry), "the legend has {entry}");
+        }
+        let labels = texts(&svg);
+        let find = |text: &str| {
+            labels
+                .iter()
+                .filter(|(_, _, t)| t == text)
+                .map(|&(x, y, _)| (x, y))
+                .collect::<Vec<_>>()
+        };
+        // Line 6's end and line 11's end share one label; line 11's start has its own,
+        // away from line 6's start label.
+        assert_eq!(find("6, 11").len(), 1, "{labels:?}");
+        let (start6, start11) = (find("6"), find("11"));
+        assert_eq!((start6.len(), start11.len()), (1, 1), "{labels:?}");
+        let map_labels: Vec<&(i32, i32, String)> = labels
+            .iter()
+            .filter(|(.., t)| ["6", "11", "6, 11", "1 s", "2 s", "3-4 s"].contains(&t.as_str()))
+            .collect();
+        assert_eq!(map_labels.len(), 6, "{labels:?}");
+        for (i, a) in map_labels.iter().enumerate() {
+            for b in &map_labels[i + 1..] {
+                let apart = (a.0 - b.0).abs() >= 12 || (a.1 - b.1).abs() >= 12;
+                assert!(apart, "{a:?} and {b:?} overlap");
+            }
+        }
+    }
+
+    #[test]
+    fn curvature_is_drawn_only_while_the_robot_moves() {
+        let svg = render_svg(&RunRecord::from_jsonl(OFFICE_RUN).expect("a trace")).expect("drawn");
+        // The curvature panel's y axis reaches to the largest curvature drawn: 0.2
+        // while moving, not the 0.9 of the wheel turned while standing. Its labels
+        // follow its title and the time axis's: the y values, rising, then the times.
+        let labels: Vec<String> = texts(&svg).into_iter().map(|(.., t)| t).collect();
+        let panel = labels
+            .iter()
+            .position(|l| l == "curvature (1/m)")
+            .expect("a curvature panel");
+        let values: Vec<f64> = labels[panel + 2..]
+            .iter()
+            .map_while(|l| l.parse::<f64>().ok())
+            .collect();
+        let rising = values.windows(2).take_while(|w| w[1] > w[0]).count() + 1;
+        let top = values[..rising].iter().copied().fold(f64::MIN, f64::max);
+        assert!((0.2..0.5).contains(&top), "{labels:?}");
     }
 
     #[test]

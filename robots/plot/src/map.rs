@@ -6,9 +6,10 @@ use ilmr_sim::geometry::Shape;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
-use crate::data::At;
+use crate::data::{At, Sample};
 use crate::err;
-use crate::figure::{Colour, Corner, Figure};
+use crate::figure::{Colour, Corner, Figure, Footprint};
+use crate::labels::{self, Placer};
 
 /// Room left round what the robot did, metres.
 const MARGIN: f64 = 2.0;
@@ -27,6 +28,15 @@ const OBSTACLE: RGBColor = RGBColor(150, 150, 150);
 const HIT: RGBColor = RGBColor(200, 40, 40);
 const START: RGBColor = RGBColor(0, 130, 60);
 const END: RGBColor = RGBColor(190, 90, 0);
+const DOOR: RGBColor = RGBColor(175, 125, 60);
+const FOOTPRINT: RGBColor = RGBColor(110, 130, 165);
+const TICK: RGBColor = RGBColor(90, 90, 90);
+/// Round intervals of time ticks, seconds; the first that gives at most
+/// [`MAX_TICKS`] ticks is used.
+const TICK_STEPS: [f64; 10] = [1.0, 2.0, 5.0, 10.0, 20.0, 30.0, 60.0, 120.0, 300.0, 600.0];
+const MAX_TICKS: f64 = 10.0;
+/// Marks closer than this, pixels, share a label.
+const SAME_PLACE: i32 = 4;
 
 fn rgb(c: Colour) -> RGBColor {
     RGBColor(c.0, c.1, c.2)
@@ -135,6 +145,7 @@ pub fn draw<DB: DrawingBackend>(
     for s in &figure.scenery {
         draw_world(&mut chart, &s.world, s.tint.map(rgb))?;
     }
+    world_legend(&mut chart, figure)?;
     if !figure.hits.is_empty() {
         chart
             .draw_series(
@@ -151,6 +162,34 @@ pub fn draw<DB: DrawingBackend>(
             .legend(|(x, y)| Circle::new((x + 10, y), 2, HIT.filled()));
     }
     let mut legend = Legend::default();
+    for t in &figure.tracks {
+        let colour = rgb(t.colour);
+        let series = chart
+            .draw_series(LineSeries::new(
+                t.samples.iter().map(|p| (p.x, p.y)),
+                colour.stroke_width(2),
+            ))
+            .map_err(err)?;
+        if let Some(label) = legend.first(&t.label) {
+            series.label(label).legend(move |(x, y)| {
+                PathElement::new([(x, y), (x + 20, y)], colour.stroke_width(2))
+            });
+        }
+    }
+    let ticks = if figure.time_ticks {
+        figure
+            .tracks
+            .first()
+            .map(|t| time_ticks(&t.samples))
+            .unwrap_or_default()
+    } else {
+        Vec::new()
+    };
+    if let Some(body) = figure.body {
+        draw_footprints(&mut chart, figure, body, &ticks)?;
+    }
+    // The references go over the trajectories, thin and dashed, so that the path the
+    // robot was to follow shows where it drove on it.
     for r in &figure.references {
         let colour = rgb(r.colour);
         let series = chart
@@ -167,28 +206,26 @@ pub fn draw<DB: DrawingBackend>(
             });
         }
     }
-    for t in &figure.tracks {
-        let colour = rgb(t.colour);
-        let series = chart
-            .draw_series(LineSeries::new(
-                t.samples.iter().map(|p| (p.x, p.y)),
-                colour.stroke_width(2),
-            ))
-            .map_err(err)?;
-        if let Some(label) = legend.first(&t.label) {
-            series.label(label).legend(move |(x, y)| {
-                PathElement::new([(x, y), (x + 20, y)], colour.stroke_width(2))
-            });
-        }
+    let mut placer = Placer::default();
+    let marks = visible_marks(figure);
+    for m in &marks {
+        placer.block(chart.backend_coord(&(m.x, m.y)), 6);
     }
-    if !figure.marks.is_empty() {
-        draw_marks(&mut chart, figure)?;
+    for (_, s) in &ticks {
+        placer.block(chart.backend_coord(&(s.x, s.y)), 3);
+    }
+    if !marks.is_empty() {
+        draw_marks(&mut chart, &marks, &mut placer)?;
+    }
+    if !ticks.is_empty() {
+        draw_ticks(&mut chart, &ticks, &mut placer)?;
     }
     chart
         .configure_series_labels()
         .background_style(WHITE.mix(0.85))
         .border_style(RGBColor(180, 180, 180))
         .position(match figure.legend {
+            Corner::Quietest => quietest(figure, view),
             Corner::UpperLeft => SeriesLabelPosition::UpperLeft,
             Corner::UpperRight => SeriesLabelPosition::UpperRight,
             Corner::LowerLeft => SeriesLabelPosition::LowerLeft,
@@ -197,6 +234,45 @@ pub fn draw<DB: DrawingBackend>(
         .draw()
         .map_err(err)?;
     Ok(())
+}
+
+/// Share of the map's width and height the legend's corner is taken to cover.
+const LEGEND_SHARE: (f64, f64) = (0.35, 0.4);
+
+/// The corner whose legend would cover the fewest trajectory samples and marks.
+fn quietest(figure: &Figure, view: &View) -> SeriesLabelPosition {
+    let points: Vec<(f64, f64)> = figure
+        .tracks
+        .iter()
+        .flat_map(|t| t.samples.iter().map(|s| (s.x, s.y)))
+        .chain(figure.marks.iter().map(|m| (m.x, m.y)))
+        .collect();
+    let (w, h) = (view.x.1 - view.x.0, view.y.1 - view.y.0);
+    let in_corner = |right: bool, upper: bool| {
+        let xs = if right {
+            (view.x.1 - LEGEND_SHARE.0 * w, view.x.1)
+        } else {
+            (view.x.0, view.x.0 + LEGEND_SHARE.0 * w)
+        };
+        let ys = if upper {
+            (view.y.1 - LEGEND_SHARE.1 * h, view.y.1)
+        } else {
+            (view.y.0, view.y.0 + LEGEND_SHARE.1 * h)
+        };
+        points
+            .iter()
+            .filter(|(x, y)| (xs.0..=xs.1).contains(x) && (ys.0..=ys.1).contains(y))
+            .count()
+    };
+    [
+        (SeriesLabelPosition::UpperRight, true, true),
+        (SeriesLabelPosition::UpperLeft, false, true),
+        (SeriesLabelPosition::LowerRight, true, false),
+        (SeriesLabelPosition::LowerLeft, false, false),
+    ]
+    .into_iter()
+    .min_by_key(|(_, right, upper)| in_corner(*right, *upper))
+    .map_or(SeriesLabelPosition::UpperRight, |(p, ..)| p)
 }
 
 /// The labels already in the legend: paths that share a label (the trials of one
@@ -249,6 +325,14 @@ fn draw_world<DB: DrawingBackend>(
     chart
         .draw_series(solids.into_iter().map(|(p, c)| Polygon::new(p, c.filled())))
         .map_err(err)?;
+    let door = tint.unwrap_or(DOOR);
+    chart
+        .draw_series(
+            w.doors
+                .iter()
+                .map(|d| PathElement::new([v(d.jambs.0), v(d.jambs.1)], door.stroke_width(3))),
+        )
+        .map_err(err)?;
     let outlines = w
         .targets
         .iter()
@@ -276,36 +360,218 @@ fn circle(c: (f64, f64), r: f64) -> Vec<(f64, f64)> {
         .collect()
 }
 
-/// Circles where movements started and crosses where they ended, each labelled with
-/// its line; starts are labelled above, ends below, so a linked pair (one's end is
-/// the next one's start) stays readable.
+/// The marks drawn: every start, and every end but refusals (a refused movement
+/// never moved).
+fn visible_marks(figure: &Figure) -> Vec<&crate::data::Mark> {
+    figure
+        .marks
+        .iter()
+        .filter(|m| m.at == At::Start || m.how.as_deref() != Some("refused"))
+        .collect()
+}
+
+/// Circles where movements started and crosses where they ended. Each is labelled
+/// with its source line, starts first, in a free place round it (`labels`); marks of
+/// one kind at one place share a label (`4, 12`).
 fn draw_marks<DB: DrawingBackend>(
+    chart: &mut Chart<'_, DB>,
+    marks: &[&crate::data::Mark],
+    placer: &mut Placer,
+) -> Result<(), String> {
+    let font = ("sans-serif", labels::FONT).into_font();
+    for (at, colour) in [(At::Start, START), (At::End, END)] {
+        let kind: Vec<&crate::data::Mark> = marks.iter().copied().filter(|m| m.at == at).collect();
+        let pixels: Vec<(i32, i32)> = kind
+            .iter()
+            .map(|m| chart.backend_coord(&(m.x, m.y)))
+            .collect();
+        let mut texts = Vec::new();
+        for group in labels::group(&pixels, SAME_PLACE) {
+            let mut lines: Vec<u32> = group.iter().map(|&i| kind[i].line).collect();
+            lines.dedup();
+            let text = lines
+                .iter()
+                .map(u32::to_string)
+                .collect::<Vec<_>>()
+                .join(", ");
+            let size = (labels::width(&text), labels::FONT as i32);
+            let first = group[0];
+            let offset = placer
+                .place(pixels[first], size)
+                .unwrap_or((-size.0 / 2, if at == At::Start { -20 } else { 8 }));
+            texts.push(((kind[first].x, kind[first].y), text, offset));
+        }
+        let series = chart
+            .draw_series(kind.iter().map(|m| {
+                EmptyElement::at((m.x, m.y))
+                    + match at {
+                        At::Start => Circle::new((0, 0), 5, colour.stroke_width(2)).into_dyn(),
+                        At::End => Cross::new((0, 0), 5, colour.stroke_width(2)).into_dyn(),
+                    }
+            }))
+            .map_err(err)?;
+        match at {
+            At::Start => series
+                .label("movement started (source line)")
+                .legend(|(x, y)| Circle::new((x + 10, y), 5, START.stroke_width(2))),
+            At::End => series
+                .label("movement ended (source line)")
+                .legend(|(x, y)| Cross::new((x + 10, y), 5, END.stroke_width(2))),
+        };
+        chart
+            .draw_series(texts.into_iter().map(|(p, text, offset)| {
+                EmptyElement::at(p) + Text::new(text, offset, font.clone().color(&colour))
+            }))
+            .map_err(err)?;
+    }
+    Ok(())
+}
+
+/// The first track's samples at round times, with their times: at most
+/// [`MAX_TICKS`] of them, none at 0 (the start is marked already).
+fn time_ticks(samples: &[Sample]) -> Vec<(f64, Sample)> {
+    let end = samples.last().map_or(0.0, |s| s.t);
+    let Some(step) = TICK_STEPS.iter().copied().find(|s| end / s <= MAX_TICKS) else {
+        return Vec::new();
+    };
+    let mut out = Vec::new();
+    let mut next = step;
+    for s in samples {
+        if s.t + 1e-9 >= next {
+            out.push((next, *s));
+            next += step;
+        }
+    }
+    out
+}
+
+/// A dot on the track at each tick, labelled `20 s` where there is room; ticks at
+/// one place (the robot stood) share a label, `60-540 s`.
+fn draw_ticks<DB: DrawingBackend>(
+    chart: &mut Chart<'_, DB>,
+    ticks: &[(f64, Sample)],
+    placer: &mut Placer,
+) -> Result<(), String> {
+    let font = ("sans-serif", labels::FONT - 2).into_font();
+    let pixels: Vec<(i32, i32)> = ticks
+        .iter()
+        .map(|(_, s)| chart.backend_coord(&(s.x, s.y)))
+        .collect();
+    let mut texts = Vec::new();
+    for group in labels::group(&pixels, SAME_PLACE) {
+        let (first, last) = (group[0], group[group.len() - 1]);
+        let text = if first == last {
+            format!("{} s", ticks[first].0)
+        } else {
+            format!("{}-{} s", ticks[first].0, ticks[last].0)
+        };
+        let size = (labels::width(&text), labels::FONT as i32 - 2);
+        if let Some(offset) = placer.place(pixels[first], size) {
+            let s = ticks[first].1;
+            texts.push(((s.x, s.y), text, offset));
+        }
+    }
+    chart
+        .draw_series(
+            ticks
+                .iter()
+                .map(|(_, s)| Circle::new((s.x, s.y), 2, TICK.filled())),
+        )
+        .map_err(err)?
+        .label("time along the trajectory")
+        .legend(|(x, y)| Circle::new((x + 10, y), 2, TICK.filled()));
+    chart
+        .draw_series(texts.into_iter().map(|(p, text, offset)| {
+            EmptyElement::at(p) + Text::new(text, offset, font.clone().color(&TICK))
+        }))
+        .map_err(err)?;
+    Ok(())
+}
+
+/// The robot's outline where each movement started, and at the time ticks where it
+/// stands clear of the outlines drawn already; its front edge drawn heavier, so the
+/// heading shows.
+fn draw_footprints<DB: DrawingBackend>(
+    chart: &mut Chart<'_, DB>,
+    figure: &Figure,
+    body: Footprint,
+    ticks: &[(f64, Sample)],
+) -> Result<(), String> {
+    let starts = figure
+        .marks
+        .iter()
+        .filter(|m| m.at == At::Start)
+        .map(|m| ((m.x, m.y, m.h), true));
+    let at_ticks = ticks.iter().map(|(_, s)| ((s.x, s.y, s.h), false));
+    let mut drawn: Vec<(f64, f64, f64)> = Vec::new();
+    let (mut outlines, mut fronts) = (Vec::new(), Vec::new());
+    for ((x, y, h), start) in starts.chain(at_ticks) {
+        let same =
+            |&(px, py, ph): &(f64, f64, f64)| (px - x).hypot(py - y) < 0.1 && (ph - h).abs() < 0.2;
+        let crowded = |&(px, py, _): &(f64, f64, f64)| (px - x).hypot(py - y) < body.length;
+        if drawn.iter().any(same) || (!start && drawn.iter().any(crowded)) {
+            continue;
+        }
+        drawn.push((x, y, h));
+        let c = body.corners(x, y, h);
+        outlines.push(vec![c[2], c[3], c[0], c[1]]);
+        fronts.push(vec![c[1], c[2]]);
+    }
+    chart
+        .draw_series(
+            outlines
+                .into_iter()
+                .map(|o| PathElement::new(o, FOOTPRINT.stroke_width(1))),
+        )
+        .map_err(err)?
+        .label("robot footprint (front edge heavy)")
+        .legend(|(x, y)| Rectangle::new([(x, y - 4), (x + 20, y + 4)], FOOTPRINT.stroke_width(1)));
+    chart
+        .draw_series(
+            fronts
+                .into_iter()
+                .map(|f| PathElement::new(f, FOOTPRINT.stroke_width(3))),
+        )
+        .map_err(err)?;
+    Ok(())
+}
+
+/// Legend entries for what the worlds hold (untinted: tinted worlds tell figures'
+/// worlds apart, and their legend is the tracks').
+fn world_legend<DB: DrawingBackend>(
     chart: &mut Chart<'_, DB>,
     figure: &Figure,
 ) -> Result<(), String> {
-    let font = ("sans-serif", 13).into_font();
-    let starts = figure.marks.iter().filter(|m| m.at == At::Start);
-    let ends = figure
-        .marks
-        .iter()
-        .filter(|m| m.at == At::End && m.how.as_deref() != Some("refused"));
-    chart
-        .draw_series(starts.map(|m| {
-            EmptyElement::at((m.x, m.y))
-                + Circle::new((0, 0), 5, START.stroke_width(2))
-                + Text::new(format!("{}", m.line), (-4, -20), font.clone().color(&START))
-        }))
-        .map_err(err)?
-        .label("movement started (source line)")
-        .legend(|(x, y)| Circle::new((x + 10, y), 5, START.stroke_width(2)));
-    chart
-        .draw_series(ends.map(|m| {
-            EmptyElement::at((m.x, m.y))
-                + Cross::new((0, 0), 5, END.stroke_width(2))
-                + Text::new(format!("{}", m.line), (-4, 8), font.clone().color(&END))
-        }))
-        .map_err(err)?
-        .label("movement ended (source line)")
-        .legend(|(x, y)| Cross::new((x + 10, y), 5, END.stroke_width(2)));
+    let plain = || {
+        figure
+            .scenery
+            .iter()
+            .filter(|s| s.tint.is_none())
+            .map(|s| &s.world)
+    };
+    let walls = plain().any(|w| !w.walls.is_empty());
+    let solids = plain().any(|w| !w.obstacles.is_empty() || !w.pickup_boxes.is_empty());
+    let doors = plain().any(|w| !w.doors.is_empty());
+    if walls {
+        chart
+            .draw_series(std::iter::empty::<Circle<(f64, f64), u32>>())
+            .map_err(err)?
+            .label("wall")
+            .legend(|(x, y)| Rectangle::new([(x, y - 3), (x + 20, y + 3)], WALL.filled()));
+    }
+    if solids {
+        chart
+            .draw_series(std::iter::empty::<Circle<(f64, f64), u32>>())
+            .map_err(err)?
+            .label("obstacle, box")
+            .legend(|(x, y)| Rectangle::new([(x, y - 4), (x + 20, y + 4)], OBSTACLE.filled()));
+    }
+    if doors {
+        chart
+            .draw_series(std::iter::empty::<Circle<(f64, f64), u32>>())
+            .map_err(err)?
+            .label("door (opening)")
+            .legend(|(x, y)| PathElement::new([(x, y), (x + 20, y)], DOOR.stroke_width(3)));
+    }
     Ok(())
 }

@@ -9,6 +9,9 @@ use crate::err;
 use crate::figure::Figure;
 
 const START: RGBColor = RGBColor(0, 130, 60);
+/// Below this speed, m/s, the robot is stopping or standing (the VM's arrival speed):
+/// its curvature is the wheel's angle, not a path's, and is not drawn.
+const MOVING: f64 = 0.05;
 
 #[derive(Debug, Clone, Copy)]
 pub enum Quantity {
@@ -21,6 +24,18 @@ impl Quantity {
         match self {
             Quantity::Speed => "speed (m/s)",
             Quantity::Curvature => "curvature (1/m)",
+        }
+    }
+
+    /// The runs of samples drawn as lines: all of them for speed; for curvature only
+    /// those while the robot moves.
+    fn drawn(self, samples: &[Sample]) -> Vec<&[Sample]> {
+        match self {
+            Quantity::Speed => vec![samples],
+            Quantity::Curvature => samples
+                .split(|s| s.v.abs() < MOVING)
+                .filter(|run| !run.is_empty())
+                .collect(),
         }
     }
 
@@ -39,7 +54,11 @@ pub fn draw<DB: DrawingBackend>(
 ) -> Result<(), String> {
     let samples = || figure.tracks.iter().flat_map(|t| t.samples.iter());
     let t_end = samples().map(|p| p.t).fold(1.0, f64::max);
-    let (lo, hi) = samples()
+    let (lo, hi) = figure
+        .tracks
+        .iter()
+        .flat_map(|t| q.drawn(&t.samples))
+        .flatten()
         .map(|s| q.of(s))
         .fold((0.0f64, 0.0f64), |(lo, hi), v| (lo.min(v), hi.max(v)));
     let pad = ((hi - lo) * 0.1).max(0.05);
@@ -67,12 +86,14 @@ pub fn draw<DB: DrawingBackend>(
         .map_err(err)?;
     for track in &figure.tracks {
         let c = track.colour;
-        chart
-            .draw_series(LineSeries::new(
-                track.samples.iter().map(|s| (s.t, q.of(s))),
-                RGBColor(c.0, c.1, c.2).stroke_width(2),
-            ))
-            .map_err(err)?;
+        for piece in q.drawn(&track.samples) {
+            chart
+                .draw_series(LineSeries::new(
+                    piece.iter().map(|s| (s.t, q.of(s))),
+                    RGBColor(c.0, c.1, c.2).stroke_width(2),
+                ))
+                .map_err(err)?;
+        }
     }
     Ok(())
 }
