@@ -15,7 +15,7 @@ use crate::span::Span;
 /// The block ends of ILMR, with the spellings that mean them once case, spaces, `_`
 /// and `-` are dropped.
 const BLOCK_ENDS: &[(&str, &[&str])] = &[
-    ("endif", &["endif"]),
+    ("endif", &["endif", "fi"]),
     ("endwhile", &["endwhile", "endloop", "wend"]),
     ("checkend", &["checkend", "endcheck"]),
 ];
@@ -69,6 +69,19 @@ pub fn block_end<'s>(
         .with_fix(format!("replace with `{end}`"), span, end);
         return Some((line, d));
     }
+    if joined == "end" {
+        let d = Diagnostic::new(
+            Code::Syntax,
+            file,
+            span,
+            format!("`{written}` alone ends no block in ILMR"),
+        )
+        .with_label("which block does this end?")
+        .with_help(
+            "an `if` ends with `endif`, a `while` with `endwhile`, a `check` with `checkend`",
+        );
+        return Some((Line::Stmt(crate::ast::StmtKind::Error), d));
+    }
     if SKILL_ENDS.contains(&joined.as_str()) {
         let d = Diagnostic::new(
             Code::Syntax,
@@ -89,7 +102,12 @@ fn could_be_block_end(&(token, span): &(Token, Span), source: &str) -> bool {
     let starts =
         |word: &[u8]| text.len() >= word.len() && text[..word.len()].eq_ignore_ascii_case(word);
     match token {
-        Token::Ident => starts(b"end") || starts(b"check") || starts(b"wend"),
+        Token::Ident => {
+            starts(b"end")
+                || starts(b"check")
+                || starts(b"wend")
+                || text.eq_ignore_ascii_case(b"fi")
+        }
         Token::Check => true,
         _ => false,
     }
@@ -369,8 +387,11 @@ mod tests {
         assert_eq!(ended("end sub").as_deref(), Some(""));
         assert_eq!(ended("endif"), None);
         assert_eq!(ended("ENDIF"), None);
-        assert_eq!(ended("end"), None);
+        assert_eq!(ended("fi").as_deref(), Some("endif"));
         assert_eq!(ended("end_if = 3"), None);
+        // `end` alone could end any block: said so, with no fix to pick one.
+        let (_, d) = block_end(&lex("end").tokens, "end", FileId(0)).expect("diagnosed");
+        assert!(d.fix.is_none() && d.help.as_deref().is_some_and(|h| h.contains("endwhile")));
         assert_eq!(ended("endpoint(1)"), None);
     }
 

@@ -141,7 +141,10 @@ mod tests {
         let free = (0..100).map_while(|_| p.place((50, 50), size)).count();
         assert!((8..=8 * RINGS as usize).contains(&free), "{free} places");
         assert_eq!(p.place((50, 50), size), None, "and then none");
-        assert!(p.place((500, 50), size).is_some(), "elsewhere there is room");
+        assert!(
+            p.place((500, 50), size).is_some(),
+            "elsewhere there is room"
+        );
     }
 
     #[test]

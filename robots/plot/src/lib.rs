@@ -87,7 +87,11 @@ mod tests {
                     t[at..].split('"').next()?.parse::<f64>().ok()
                 };
                 let body = t.split_once('>')?.1.split("</text>").next()?;
-                Some((attr("x")? as i32, attr("y")? as i32, body.trim().to_string()))
+                Some((
+                    attr("x")? as i32,
+                    attr("y")? as i32,
+                    body.trim().to_string(),
+                ))
             })
             .collect()
     }
@@ -95,7 +99,13 @@ mod tests {
     #[test]
     fn a_run_shows_footprints_world_legend_and_apart_labels() {
         let svg = render_svg(&RunRecord::from_jsonl(OFFICE_RUN).expect("a trace")).expect("drawn");
-        for entry in ["wall", "obstacle, box", "door (opening)", "robot footprint", "time along the trajectory"] {
+        for entry in [
+            "wall",
+            "obstacle, box",
+            "door (opening)",
+            "robot footprint",
+            "time along the trajectory",
+        ] {
             assert!(svg.contains(entry), "the legend has {entry}");
         }
         let labels = texts(&svg);
