@@ -148,8 +148,10 @@ fn generated_tasks_run_on_both_simulated_robots() {
                 skills.to_str().expect("utf-8 temp path"),
                 task.to_str().expect("utf-8 temp path"),
             ]);
+            // It ran, however it ended: cleanly (0), with refusals (3), on a hold (4)
+            // or at --max-time (5); never rejected (1, 2) or crashed.
             assert!(
-                code == 0 && !stderr.contains("panicked"),
+                matches!(code, 0 | 3 | 4 | 5) && !stderr.contains("panicked"),
                 "seed {seed} on {robot}: exit {code}\n{}\n{stdout}\n{stderr}",
                 g.task
             );

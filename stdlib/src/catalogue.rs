@@ -102,6 +102,7 @@ const fn spec(
         syntax: Syntax::Call,
         movement,
         holds_block: false,
+        needs_device: None,
         grammar,
         forms,
         summary,
@@ -113,6 +114,11 @@ const fn spec(
 
 const fn holds_block(mut s: CommandSpec) -> CommandSpec {
     s.holds_block = true;
+    s
+}
+
+const fn needs_device(mut s: CommandSpec, device: &'static str) -> CommandSpec {
+    s.needs_device = Some(device);
     s
 }
 
@@ -960,28 +966,31 @@ pub static CATALOGUE: [CommandSpec; Command::COUNT] = [
         &["actuator(brake,on)", "actuator(leg1,90)"],
         "4.5.4",
     ),
-    spec(
-        Command::Manipulate,
-        "manipulate",
-        "Manipulate",
-        Action,
-        false,
-        "manipulate ::= \"manipulate\" \"(\" param \")\"\nparam ::= take | leave | getball | giveball",
-        &[form(
-            &[param(
+    needs_device(
+        spec(
+            Command::Manipulate,
+            "manipulate",
+            "Manipulate",
+            Action,
+            false,
+            "manipulate ::= \"manipulate\" \"(\" param \")\"\nparam ::= take | leave | getball | giveball",
+            &[form(
+                &[param(
+                    "task",
+                    keyword(&["take", "leave", "getball", "giveball"]),
+                    Occurs::One,
+                    "the manipulation sequence to start",
+                )],
+                1,
+                VarKind::Status,
                 "task",
-                keyword(&["take", "leave", "getball", "giveball"]),
-                Occurs::One,
-                "the manipulation sequence to start",
             )],
-            1,
-            VarKind::Status,
-            "task",
-        )],
-        "Starts a manipulation sequence and ends when the manipulator reports it done.",
-        "ILMR only triggers the sequence; an external process controls the manipulator.",
-        &["manipulate(take)"],
-        "4.5.4",
+            "Starts a manipulation sequence and ends when the manipulator reports it done.",
+            "ILMR only triggers the sequence; an external process controls the manipulator.",
+            &["manipulate(take)"],
+            "4.5.4",
+        ),
+        "manipulator",
     ),
     holds_block(spec(
         Command::Init,

@@ -28,6 +28,11 @@ pub fn reference_markdown() -> String {
             if spec.holds_block {
                 facts.push("holds the rest of its block until it ends".into());
             }
+            if let Some(device) = spec.needs_device {
+                facts.push(format!(
+                    "needs a `{device}` in the robot model's [SENSORSANDACTUATORS] (E0407 otherwise)"
+                ));
+            }
             let _ = writeln!(out, "*{}*\n", facts.join("; "));
             for form in spec.forms {
                 let _ = writeln!(

@@ -302,6 +302,9 @@ pub struct CommandSpec {
     pub movement: bool,
     /// Holds the rest of its own block back until it ends (guide: wait and init).
     pub holds_block: bool,
+    /// A device the robot model must list in `[SENSORSANDACTUATORS]` for the command
+    /// to be possible on that robot (`manipulate` needs a `manipulator`).
+    pub needs_device: Option<&'static str>,
     /// The BNF as the dissertation gives it (with this project's decisions applied).
     pub grammar: &'static str,
     pub forms: &'static [Form],

@@ -454,9 +454,24 @@ impl<'g> Program<'g> {
 
     /// A command of the catalogue, generated from one of its forms.
     fn call(&mut self, depth: usize) {
-        let total: usize = CALLS.iter().map(|(_, w)| w).sum();
+        // A command needing a device some robot lacks (`manipulate` on MoRo) would not
+        // check clean on that robot: it is not drawn.
+        let facts = &self.g.facts;
+        let has = |d: &str| {
+            facts.sensors.iter().any(|(n, _)| n.eq_ignore_ascii_case(d))
+                || facts
+                    .actuators
+                    .iter()
+                    .any(|(n, ..)| n.eq_ignore_ascii_case(d))
+        };
+        let calls: Vec<(Command, usize)> = CALLS
+            .iter()
+            .copied()
+            .filter(|(c, _)| c.spec().needs_device.is_none_or(has))
+            .collect();
+        let total: usize = calls.iter().map(|(_, w)| w).sum();
         let mut roll = self.rng.below(total);
-        let command = CALLS
+        let command = calls
             .iter()
             .find(|(_, w)| {
                 if roll < *w {

@@ -594,6 +594,10 @@ impl<'a, 'm> Walker<'a, 'm> {
                 return None;
             }
             self.resolved(call.name.span, Resolved::Command(command));
+            if let Some(device) = spec.needs_device.filter(|d| self.model.device(d).is_none()) {
+                self.diagnostics
+                    .push(self.missing_device(spec.name, device, call.name.span));
+            }
             let at = call.args.as_ref().map_or(call.name.span, |a| a.span);
             let m = self.cx().match_forms(spec, call.args.as_ref(), at);
             let kind = args::produced(spec, m.form);
@@ -664,6 +668,26 @@ impl<'a, 'm> Walker<'a, 'm> {
     }
 
     /// The command or skill a misspelt call most likely meant.
+    /// E0407 for a command whose device the robot lacks, naming what it has instead.
+    fn missing_device(&self, command: &str, device: &str, at: Span) -> Diagnostic {
+        let has: Vec<&str> = self.model.devices.iter().map(|d| d.name.as_str()).collect();
+        Diagnostic::new(
+            Code::Unsupported,
+            self.unit.file,
+            at,
+            format!(
+                "robot `{}` has no `{device}`: `{command}` cannot run on it",
+                self.model.name
+            ),
+        )
+        .with_label(format!("needs a `{device}` in [SENSORSANDACTUATORS]"))
+        .with_help(format!(
+            "`{}` has {}; run it on a robot whose model has a `{device}`",
+            self.model.name,
+            has.join(", ")
+        ))
+    }
+
     fn call_suggestion(&self, name: &str) -> Option<&str> {
         let candidates = Command::all()
             .filter(|c| c.spec().syntax == Syntax::Call)

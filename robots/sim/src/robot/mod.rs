@@ -359,7 +359,7 @@ impl Hal for SimRobot {
                 }
             }
             AsyncOp::Manipulate(task) => {
-                if !workpartner {
+                if self.model.device("manipulator").is_none() {
                     return Err(HalError::Unsupported(format!(
                         "{task:?}: this robot has no manipulator"
                     )));

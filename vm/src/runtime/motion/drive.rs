@@ -3,7 +3,7 @@
 //! drives round an obstacle), the predictive curvature controller, the speed
 //! profile, arrival and linking.
 
-use ilmr_hal::Hal;
+use ilmr_hal::{Hal, HalError};
 use ilmr_motion::controller::{
     self, ControlInput, ControllerParams, SpeedLimits, has_arrived, link_distance, next_speed,
     stop_in,
@@ -218,9 +218,16 @@ impl<H: Hal, C: Clock> Vm<H, C> {
 
         let sent = self.hal.set_motion(sign * v, c);
         self.motion.unsent = sent.is_err();
-        if let Err(e) = sent {
-            let stmt = stmt_of(self.nodes.get(head.idx).stmt);
-            self.error(stmt, format!("setting speed and curvature failed: {e}"));
+        match sent {
+            // A robot that refuses motion while the supervisor holds it says what the
+            // hold already said (a ROS 2 base holding for the same stale scan): the
+            // hold is told and counted, not an error of the task.
+            Err(HalError::Refused(_)) if self.supervisor.holding() => {}
+            Err(e) => {
+                let stmt = stmt_of(self.nodes.get(head.idx).stmt);
+                self.error(stmt, format!("setting speed and curvature failed: {e}"));
+            }
+            Ok(()) => {}
         }
         let node = *self.nodes.get(head.idx);
         if node.bind != NONE {

@@ -5,7 +5,7 @@
 //! `stop` and the supervisor's holds brake the running movement the same way in
 //! `drive.rs`. Nothing sets the speed setpoint to 0 in one step.
 
-use ilmr_hal::Hal;
+use ilmr_hal::{Hal, HalError};
 use ilmr_motion::controller::next_speed;
 
 use crate::runtime::Vm;
@@ -34,8 +34,11 @@ impl<H: Hal, C: Clock> Vm<H, C> {
         };
         let sent = self.hal.set_motion(speed, curvature);
         self.motion.unsent = sent.is_err();
-        if let Err(e) = sent {
-            self.error(None, format!("braking the robot failed: {e}"));
+        match sent {
+            // As in `step_motion`: the supervisor's hold already says why.
+            Err(HalError::Refused(_)) if self.supervisor.holding() => {}
+            Err(e) => self.error(None, format!("braking the robot failed: {e}")),
+            Ok(()) => {}
         }
     }
 }
