@@ -128,6 +128,8 @@ codes! {
         "The pattern is found in more than one statement; the break will end all of them that are live. Make it longer if one was meant.";
     RobotModel = "W0801", Warning, "robot model problem",
         "The robot model file is missing or has lines that could not be read; defaults are used in their place.";
+    FrozenLoop = "W0901", Warning, "loop that cannot end by itself",
+        "A `while` whose condition reads only variables that nothing can change while the loop runs: no statement in its body changes them, no command is bound to them, and no assignment can run at the same time (after the loop in its block, in a guard, in another block or a skill). Only the assignments made before the loop, one after another, set them, so the condition never turns false and the loop runs until a `break` ends it or a typed line changes the variable. Figure 27's `claps=0` / `while(claps<2)` / `clap_hands` / `endwhile` is one: count in the body (`claps = claps + 1`).";
     UnusedVariable = "W0502", Warning, "variable never used",
         "A variable is bound but nothing reads it. Its command still runs.";
 }

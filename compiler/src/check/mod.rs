@@ -9,6 +9,7 @@ pub mod constants;
 mod expr;
 mod fold;
 mod keywords;
+mod loops;
 mod names;
 mod scope;
 mod skills;
@@ -290,6 +291,7 @@ pub fn analyze_with<'s>(sources: &'s [Source], model: &RobotModel, detail: Detai
     }
 
     breaks::check_patterns(&files, &skills, &mut diagnostics);
+    loops::check_frozen_loops(&files, &mut diagnostics);
     unused_variables(&files, &units, &mut diagnostics);
 
     diagnostics.sort_by_key(|d| (d.file, d.span.start, d.code));

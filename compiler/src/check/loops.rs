@@ -1,0 +1,205 @@
+//! Loops that cannot end by themselves (W0901): a `while` whose condition reads only
+//! variables that nothing can change while it runs. Figure 27's inner loop is one:
+//! `claps=0` / `while(claps<2)` / `clap_hands` / `endwhile` claps for ever.
+//!
+//! A variable can change while a loop runs when a command is bound to it (a reading
+//! follows its sensor, a movement's `dist` grows, a status turns 1), when a command
+//! names it as an argument (`savepos(p)`, `record(p)`), or when an assignment to it can
+//! run at the same time as the loop or inside it: in the loop's body, after the loop in
+//! its block (a `while` does not hold its block back), in a guard, another block or a
+//! skill. Only the assignments issued before the loop, one after another in its own
+//! block and the blocks round it, are over when it starts. Lines typed while the task
+//! runs could still change the variable; the help says so.
+
+use rustc_hash::{FxHashMap, FxHashSet};
+
+use crate::ast::{Block, Expr, ExprKind, Stmt, StmtKind};
+use crate::check::FileEntry;
+use crate::diagnostic::{Code, Diagnostic, FileId};
+use crate::span::Span;
+
+/// How a variable is written, over the whole program.
+#[derive(Default)]
+struct Writes {
+    /// A command binds it or names it: it can change at any time.
+    by_command: bool,
+    /// Where it is assigned.
+    assigned: Vec<(FileId, Span)>,
+}
+
+pub fn check_frozen_loops(files: &[FileEntry<'_>], diags: &mut Vec<Diagnostic>) {
+    let mut any_loop = false;
+    for entry in files {
+        entry.tree.for_each_stmt(&mut |s: &Stmt<'_>| {
+            any_loop |= matches!(s.kind, StmtKind::While { .. });
+        });
+    }
+    if !any_loop {
+        return;
+    }
+    let writes = writes(files);
+    // A library's skills are checked where they are called; their loops are the
+    // library's business.
+    for (i, entry) in files.iter().enumerate().filter(|(_, e)| !e.library) {
+        let file = FileId(i as u32);
+        let mut walk = Walk {
+            file,
+            text: entry.text,
+            writes: &writes,
+            before: Vec::new(),
+            issued: FxHashSet::default(),
+            diags,
+        };
+        walk.blocks(&entry.tree.blocks);
+        for skill in &entry.tree.skills {
+            walk.blocks(&skill.blocks);
+        }
+    }
+}
+
+fn key(name: &str) -> String {
+    name.to_lowercase()
+}
+
+fn writes(files: &[FileEntry<'_>]) -> FxHashMap<String, Writes> {
+    let mut writes: FxHashMap<String, Writes> = FxHashMap::default();
+    for (i, entry) in files.iter().enumerate() {
+        let file = FileId(i as u32);
+        entry.tree.for_each_stmt(&mut |s: &Stmt<'_>| match &s.kind {
+            StmtKind::Call { bind, call } => {
+                let named =
+                    call.args
+                        .iter()
+                        .flat_map(|a| a.items.iter())
+                        .filter_map(|arg| match arg {
+                            crate::ast::Arg::Positional(Expr {
+                                kind: ExprKind::Name(n),
+                                ..
+                            }) => Some(n.text),
+                            _ => None,
+                        });
+                for name in bind.iter().map(|b| b.text).chain(named) {
+                    writes.entry(key(name)).or_default().by_command = true;
+                }
+            }
+            StmtKind::While { bind: Some(b), .. } => {
+                writes.entry(key(b.text)).or_default().by_command = true;
+            }
+            StmtKind::Assign { target, value } => {
+                // `v = Skill` or `v = command` bound bare: a command's variable.
+                let bare = matches!(value.kind, ExprKind::Name(_));
+                let w = writes.entry(key(target.text)).or_default();
+                w.assigned.push((file, s.span));
+                w.by_command |= bare;
+            }
+            _ => {}
+        });
+    }
+    writes
+}
+
+struct Walk<'a, 'd> {
+    file: FileId,
+    text: &'a str,
+    writes: &'a FxHashMap<String, Writes>,
+    /// Assignments issued, one after another, before the statement being looked at;
+    /// `issued` holds the same for lookups, so a long block stays linear.
+    before: Vec<Span>,
+    issued: FxHashSet<Span>,
+    diags: &'d mut Vec<Diagnostic>,
+}
+
+impl Walk<'_, '_> {
+    fn blocks(&mut self, blocks: &[Block<'_>]) {
+        for block in blocks {
+            let outer = self.before.len();
+            for stmt in &block.stmts {
+                match &stmt.kind {
+                    StmtKind::Assign { .. } => {
+                        self.before.push(stmt.span);
+                        self.issued.insert(stmt.span);
+                    }
+                    StmtKind::If(c) => self.blocks(&c.body),
+                    StmtKind::While { body, .. } => {
+                        self.frozen(stmt, &body.cond);
+                        self.blocks(&body.body);
+                    }
+                    // Never runs.
+                    StmtKind::Check { .. } => {}
+                    _ => {}
+                }
+            }
+            for span in self.before.drain(outer..) {
+                self.issued.remove(&span);
+            }
+        }
+    }
+
+    /// W0901 when no variable of the loop's condition can change while it runs.
+    fn frozen(&mut self, stmt: &Stmt<'_>, cond: &Expr<'_>) {
+        let mut names = Vec::new();
+        names_in(cond, &mut names);
+        if names.is_empty() {
+            return;
+        }
+        let mut set_before = Vec::new();
+        let mut variables = Vec::new();
+        for name in &names {
+            // Never written: a model constant, or an unbound name the checker reports
+            // itself.
+            let Some(w) = self.writes.get(&key(name)) else {
+                continue;
+            };
+            variables.push(*name);
+            let only_before = !w.by_command
+                && w.assigned
+                    .iter()
+                    .all(|&(file, span)| file == self.file && self.issued.contains(&span));
+            if !only_before {
+                return;
+            }
+            set_before.extend(w.assigned.iter().map(|&(_, span)| span));
+        }
+        if variables.is_empty() {
+            return;
+        }
+        let mut listed: Vec<&str> = Vec::new();
+        for n in &variables {
+            if !listed.iter().any(|l| l.eq_ignore_ascii_case(n)) {
+                listed.push(n);
+            }
+        }
+        let quoted: Vec<String> = listed.iter().map(|n| format!("`{n}`")).collect();
+        let what = quoted.join(", ");
+        let mut d = Diagnostic::new(
+            Code::FrozenLoop,
+            self.file,
+            stmt.span,
+            format!(
+                "`{}` never ends by itself: nothing changes {what} while it runs",
+                stmt.span.slice(self.text)
+            ),
+        )
+        .with_label(format!("{what} only set before the loop"))
+        .with_help(format!(
+            "change {what} in the loop's body (`{0} = {0} + 1`), or end the loop with `break`; otherwise only a line typed while the task runs could change it",
+            listed[0]
+        ));
+        for span in set_before {
+            d = d.with_secondary(self.file, span, "set here, before the loop starts");
+        }
+        self.diags.push(d);
+    }
+}
+
+fn names_in<'s>(e: &Expr<'s>, out: &mut Vec<&'s str>) {
+    match &e.kind {
+        ExprKind::Name(n) => out.push(n.text),
+        ExprKind::Neg(inner) => names_in(inner, out),
+        ExprKind::Binary { lhs, rhs, .. } | ExprKind::Compare { lhs, rhs, .. } => {
+            names_in(lhs, out);
+            names_in(rhs, out);
+        }
+        ExprKind::Number(_) | ExprKind::Error => {}
+    }
+}
