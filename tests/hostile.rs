@@ -253,6 +253,7 @@ fn the_limits_table_quotes_the_constants() {
         ("MAX_SCENARIO_BYTES", mib(ilmr_files::MAX_SCENARIO_BYTES)),
         ("MAX_MODULE_BYTES", mib(ilmr_files::MAX_MODULE_BYTES)),
         ("MAX_TRACE_BYTES", mib(ilmr_files::MAX_TRACE_BYTES)),
+        ("MAX_MCAP_BYTES", mib(ilmr_files::MAX_MCAP_BYTES)),
         ("MAX_HISTORY_BYTES", mib(ilmr_files::MAX_HISTORY_BYTES)),
         ("MAX_FLEET_BYTES", mib(ilmr_files::MAX_FLEET_BYTES)),
         (

@@ -83,6 +83,7 @@ pub struct Vm<H: Hal, C: Clock> {
     /// Interactive blocks waiting for a priority block to end.
     pending: Vec<u32>,
     events: Vec<Event>,
+    coalesce: trace::Coalesce,
     ops_left: u32,
     /// Lower-case statement texts for `break(pattern)`.
     lower: Vec<String>,
@@ -174,6 +175,7 @@ impl<H: Hal, C: Clock> Vm<H, C> {
             priority: None,
             pending: Vec::new(),
             events: Vec::new(),
+            coalesce: trace::Coalesce::default(),
             ops_left: 0,
             lower,
             scratch: Vec::new(),
@@ -509,12 +511,8 @@ impl<H: Hal, C: Clock> Vm<H, C> {
         if self.cfg.trace == TraceLevel::Off {
             return;
         }
-        self.events.push(Event {
-            tick: self.tick,
-            t: self.time(),
-            stmt,
-            kind,
-        });
+        let e = Event::new(self.tick, self.time(), stmt, kind);
+        self.coalesce.push(&mut self.events, e);
     }
 
     fn error(&mut self, stmt: Option<StmtId>, message: String) {
