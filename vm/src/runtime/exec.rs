@@ -363,15 +363,10 @@ impl<H: Hal, C: Clock> Vm<H, C> {
                 self.bind_issue(bind, s);
                 let child = self.nodes.alloc(blk, s, bind, Kind::WaitTime);
                 let ticks = (secs.max(0.0) / self.cfg.period).round() as u64;
-                self.timer_seq += 1;
                 // `wait(1e26)` checks (a non-negative time) and its tick count saturates;
                 // it must wait for ever, not overflow the tick or wrap round to now.
-                self.timers.push(std::cmp::Reverse((
-                    self.tick.saturating_add(ticks.max(1)),
-                    self.timer_seq,
-                    child.idx,
-                    child.epoch,
-                )));
+                self.timers
+                    .set(self.tick.saturating_add(ticks.max(1)), child);
                 self.hold(blk, child);
             }
             Op::WaitVar { var, bind } => {

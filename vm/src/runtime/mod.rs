@@ -9,11 +9,12 @@ mod exec;
 mod motion;
 mod nodes;
 pub mod safety;
+mod timers;
 pub mod trace;
 pub mod vars;
 mod watch;
 
-use std::collections::{BTreeMap, BinaryHeap, VecDeque};
+use std::collections::{BTreeMap, VecDeque};
 
 use ilmr_hal::{Hal, KnownMap, Snapshot};
 
@@ -71,9 +72,8 @@ pub struct Vm<H: Hal, C: Clock> {
     /// detections match each.
     search_keys: Vec<(u32, u32)>,
     key_hit: Vec<bool>,
-    /// `(due tick, sequence, node)` in a min-heap; stale entries are skipped.
-    timers: BinaryHeap<std::cmp::Reverse<(u64, u64, u32, u32)>>,
-    timer_seq: u64,
+    /// The `wait(seconds)` wake-ups; stale entries (a node ended early) are skipped.
+    timers: timers::Timers,
     motion: Motion,
     followers: Vec<Follower>,
     paths: BTreeMap<String, Vec<(f64, f64)>>,
@@ -167,8 +167,7 @@ impl<H: Hal, C: Clock> Vm<H, C> {
             active: Vec::new(),
             search_keys: Vec::new(),
             key_hit: Vec::new(),
-            timers: BinaryHeap::new(),
-            timer_seq: 0,
+            timers: timers::Timers::default(),
             followers: Vec::new(),
             paths: BTreeMap::new(),
             recording: None,
@@ -307,7 +306,7 @@ impl<H: Hal, C: Clock> Vm<H, C> {
             + self.active.capacity() * size_of::<Active>()
             + self.ready.capacity() * size_of::<exec::Ready>()
             + self.woken.capacity() * size_of::<vars::Woken>()
-            + self.timers.capacity() * size_of::<(u64, u64, u32, u32)>()
+            + self.timers.footprint()
             + self.followers.capacity() * size_of::<Follower>()
     }
 
@@ -450,16 +449,13 @@ impl<H: Hal, C: Clock> Vm<H, C> {
     }
 
     fn fire_timers(&mut self) {
-        while let Some(std::cmp::Reverse((due, _, idx, epoch))) = self.timers.peek().copied() {
-            if due > self.tick {
-                break;
-            }
-            self.timers.pop();
-            let r = NodeRef { idx, epoch };
+        let due = self.timers.due(self.tick);
+        for &r in &due {
             if self.nodes.alive(r) {
-                self.end_node(idx, vars::How::Completed, false, None, true);
+                self.end_node(r.idx, vars::How::Completed, false, None, true);
             }
         }
+        self.timers.done(due);
     }
 
     fn step_followers(&mut self) {
