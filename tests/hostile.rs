@@ -207,7 +207,7 @@ fn the_limits_are_where_the_docs_say() {
 /// The limits table of docs/reliability.md quotes the constants the code uses.
 #[test]
 fn the_limits_table_quotes_the_constants() {
-    use ilmr_compiler::limits;
+    use ilmr_compiler::{limits, render};
     use ilmr_sim::world::limits as world;
     let reliability = std::fs::read_to_string(root().join("docs/reliability.md")).unwrap();
     let table: Vec<&str> = reliability
@@ -250,6 +250,22 @@ fn the_limits_table_quotes_the_constants() {
             "COMPILER_STACK",
             format!("{} MB", limits::COMPILER_STACK >> 20),
         ),
+        (
+            "LONG_LINE",
+            format!("longer than {} characters", render::LONG_LINE),
+        ),
+        (
+            "AROUND_LABEL",
+            format!("{} characters each side", render::AROUND_LABEL),
+        ),
+        (
+            "MAX_WINDOWS",
+            format!("at most {} such", render::MAX_WINDOWS),
+        ),
+        (
+            "LONG_MESSAGE",
+            format!("longer than {} characters", render::LONG_MESSAGE),
+        ),
         ("MAX_SOURCE_BYTES", mib(ilmr_files::MAX_SOURCE_BYTES)),
         (
             "MAX_ROBOT_MODEL_BYTES",
@@ -259,6 +275,7 @@ fn the_limits_table_quotes_the_constants() {
         ("MAX_SCENARIO_BYTES", mib(ilmr_files::MAX_SCENARIO_BYTES)),
         ("MAX_MODULE_BYTES", mib(ilmr_files::MAX_MODULE_BYTES)),
         ("MAX_TRACE_BYTES", mib(ilmr_files::MAX_TRACE_BYTES)),
+        ("MAX_MCAP_BYTES", mib(ilmr_files::MAX_MCAP_BYTES)),
         ("MAX_HISTORY_BYTES", mib(ilmr_files::MAX_HISTORY_BYTES)),
         ("MAX_FLEET_BYTES", mib(ilmr_files::MAX_FLEET_BYTES)),
         (

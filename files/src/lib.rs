@@ -36,6 +36,10 @@ pub const MAX_MODULE_BYTES: u64 = 64 * MIB;
 /// A trace of `ilmrc run` (JSON Lines), read back by `ilmrc replay`: hours of
 /// simulated time with pose samples and scans.
 pub const MAX_TRACE_BYTES: u64 = 256 * MIB;
+/// An `--mcap` file `ilmrc run` writes (never read here): it stops growing there, with
+/// a last log message that says so, as a trace stops at [`MAX_TRACE_BYTES`]. Four
+/// times the trace's room, for every scan is in it.
+pub const MAX_MCAP_BYTES: u64 = 1024 * MIB;
 /// A `--scenario` file (JSON): taught paths and timed lines.
 pub const MAX_SCENARIO_BYTES: u64 = 16 * MIB;
 /// The shell's `--history` file: rustyline keeps the last 100 lines.

@@ -11,11 +11,16 @@
 //!
 //! Headings are radians, as in the VM's `pose` events. A world read from a file is
 //! carried whole (`world_toml`); a shipped one by its name.
+//!
+//! A trace file stops growing at [`MAX_TRACE_BYTES`], what `ilmrc replay` reads: its
+//! last line is then a `truncated` event, and stderr says so once. The run goes on
+//! (a robot is not stopped because its log is full).
 
 use std::fs::File;
 use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
 
+use ilmr_files::MAX_TRACE_BYTES;
 use ilmr_hal::Pose;
 use ilmr_vm::runtime::trace::fmt_num;
 use ilmr_vm::{Event, EventKind, Module};
@@ -28,8 +33,76 @@ use ilmr_plot::RunRecord;
 /// Where the trace lines go: the `--trace` file, and the record the plot is drawn
 /// from (built from the very lines `ilmrc replay` reads, so both draw the same).
 pub struct Sink {
-    file: Option<(PathBuf, BufWriter<File>)>,
+    file: Option<TraceFile>,
     record: Option<RunRecord>,
+}
+
+/// Room kept under the cap for the `truncated` line, so that the whole file stays
+/// within it.
+const TRUNCATED_ROOM: u64 = 256;
+
+struct TraceFile {
+    path: PathBuf,
+    out: BufWriter<File>,
+    written: u64,
+    cap: u64,
+    /// The cap was reached: nothing more is written.
+    full: bool,
+}
+
+impl TraceFile {
+    fn line(&mut self, line: &str) -> Result<(), String> {
+        if self.full {
+            return Ok(());
+        }
+        let len = line.len() as u64 + 1;
+        let fail = |e: std::io::Error, path: &Path| {
+            format!("cannot write trace `{}`: {e}", path.display())
+        };
+        if self.written + len + TRUNCATED_ROOM > self.cap {
+            self.full = true;
+            let note = truncated_line(line_time(line), self.cap);
+            writeln!(self.out, "{note}").map_err(|e| fail(e, &self.path))?;
+            self.written += note.len() as u64 + 1;
+            eprintln!(
+                "warning: the trace `{}` reached {}, its limit (MAX_TRACE_BYTES); the rest of the run is not in it",
+                self.path.display(),
+                size(self.cap)
+            );
+            return Ok(());
+        }
+        writeln!(self.out, "{line}").map_err(|e| fail(e, &self.path))?;
+        self.written += len;
+        Ok(())
+    }
+}
+
+/// The `truncated` event that ends a trace cut at its cap.
+fn truncated_line(t: &str, cap: u64) -> String {
+    format!(
+        "{{\"t\":{t},\"event\":\"truncated\",\"limit\":{cap},\"message\":\"the trace reached {}, its limit (MAX_TRACE_BYTES); the rest of the run is not in it\"}}",
+        size(cap)
+    )
+}
+
+fn size(bytes: u64) -> String {
+    if bytes >= 1 << 20 && bytes.is_multiple_of(1 << 20) {
+        format!("{} MiB", bytes >> 20)
+    } else {
+        format!("{bytes} bytes")
+    }
+}
+
+/// The time of a trace line: every line starts `{"t":` and a number.
+fn line_time(line: &str) -> &str {
+    line.strip_prefix("{\"t\":")
+        .and_then(|rest| rest.split(',').next())
+        .filter(|t| {
+            !t.is_empty()
+                && t.bytes()
+                    .all(|b| b.is_ascii_digit() || b == b'.' || b == b'-' || b == b'e')
+        })
+        .unwrap_or("0")
 }
 
 fn create(path: &Path, what: &str) -> Result<File, String> {
@@ -38,8 +111,18 @@ fn create(path: &Path, what: &str) -> Result<File, String> {
 
 impl Sink {
     pub fn open(trace: Option<&Path>, plot: Option<&Path>) -> Result<Sink, String> {
+        Sink::capped(trace, plot, MAX_TRACE_BYTES)
+    }
+
+    fn capped(trace: Option<&Path>, plot: Option<&Path>, cap: u64) -> Result<Sink, String> {
         let file = match trace {
-            Some(p) => Some((p.to_path_buf(), BufWriter::new(create(p, "trace")?))),
+            Some(p) => Some(TraceFile {
+                path: p.to_path_buf(),
+                out: BufWriter::new(create(p, "trace")?),
+                written: 0,
+                cap,
+                full: false,
+            }),
             None => None,
         };
         if let Some(p) = plot {
@@ -56,9 +139,8 @@ impl Sink {
     }
 
     pub fn line(&mut self, line: &str) -> Result<(), String> {
-        if let Some((path, w)) = self.file.as_mut() {
-            writeln!(w, "{line}")
-                .map_err(|e| format!("cannot write trace `{}`: {e}", path.display()))?;
+        if let Some(f) = self.file.as_mut() {
+            f.line(line)?;
         }
         if let Some(r) = self.record.as_mut() {
             r.absorb(line)?;
@@ -68,9 +150,10 @@ impl Sink {
 
     /// Flushes the trace; returns the record for the plot.
     pub fn finish(self) -> Result<Option<RunRecord>, String> {
-        if let Some((path, mut w)) = self.file {
-            w.flush()
-                .map_err(|e| format!("cannot write trace `{}`: {e}", path.display()))?;
+        if let Some(mut f) = self.file {
+            f.out
+                .flush()
+                .map_err(|e| format!("cannot write trace `{}`: {e}", f.path.display()))?;
         }
         Ok(self.record)
     }
@@ -225,4 +308,50 @@ fn scan_line(scan: &WorldScan) -> String {
         fmt_num(o.y),
         fmt_num(o.h)
     )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_trace_stops_at_its_cap_with_a_truncated_line() {
+        let dir = std::env::temp_dir().join(format!("ilmr-trace-cap-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).expect("temp dir");
+        let path = dir.join("t.jsonl");
+        let cap = 4096;
+        let mut sink = Sink::capped(Some(&path), None, cap).expect("open");
+        for i in 0..1000 {
+            let line = format!("{{\"t\":{}.5,\"event\":\"issue\",\"line\":{i}}}", i);
+            sink.line(&line).expect("a full trace is no error");
+        }
+        sink.finish().expect("finish");
+        let text = std::fs::read_to_string(&path).expect("read back");
+        let _ = std::fs::remove_dir_all(&dir);
+        assert!(text.len() as u64 <= cap, "{} bytes", text.len());
+        assert!(
+            text.len() as u64 > cap - TRUNCATED_ROOM - 64,
+            "{} bytes",
+            text.len()
+        );
+        let lines: Vec<&str> = text.lines().collect();
+        let last = lines.last().expect("lines");
+        let kept = lines.len() - 1;
+        assert_eq!(
+            *last,
+            format!(
+                "{{\"t\":{kept}.5,\"event\":\"truncated\",\"limit\":4096,\"message\":\"the trace reached 4096 bytes, its limit (MAX_TRACE_BYTES); the rest of the run is not in it\"}}"
+            )
+        );
+        assert!(lines[..kept].iter().all(|l| l.contains("\"issue\"")));
+        let v: serde_json::Value = serde_json::from_str(last).expect("JSON");
+        assert_eq!(v["event"], "truncated");
+    }
+
+    #[test]
+    fn the_time_of_a_line_is_its_first_key() {
+        assert_eq!(line_time(r#"{"t":12.34,"event":"pose"}"#), "12.34");
+        assert_eq!(line_time(r#"{"t":0,"event":"run"}"#), "0");
+        assert_eq!(line_time("not a trace line"), "0");
+    }
 }

@@ -290,6 +290,70 @@ fn a_budget_overrun_suspends_the_block_but_not_the_movement() {
     insta::assert_snapshot!(head);
 }
 
+/// A tight loop keeps one `issue`, `start` and `var` event per statement a tick, with
+/// the last value and how many there were: the trace grows with the ticks, not with the
+/// loop's iterations, and no write goes uncounted.
+#[test]
+fn a_tight_loop_keeps_one_event_per_statement_and_variable_a_tick() {
+    let mut a = Asm::new();
+    let body = vec![a.while_(
+        "while(x>-1)",
+        &[X::V("x"), X::N(-1.0), X::Op(ExprOp::Gt)],
+        None,
+        |a| vec![a.assign("x=x+1", "x", &[X::V("x"), X::N(1.0), X::Op(ExprOp::Add)])],
+    )];
+    let b = a.block(body);
+    let mut vm = vm(a.task(&[b]), robot(), config());
+    vm.run_for(2.0);
+    let events = vm.events();
+    let ticks = vm.ticks();
+    assert!(
+        events.len() as u64 <= 4 * ticks + 4,
+        "{} events in {ticks} ticks",
+        events.len()
+    );
+    let count = |name: &str| -> u64 {
+        events
+            .iter()
+            .filter(|e| e.kind.name() == name)
+            .map(|e| u64::from(e.count))
+            .sum()
+    };
+    let x = vm.var("x").expect("x").value;
+    assert!(
+        x > 100.0 * ticks as f64,
+        "the loop ran many times a tick: {x}"
+    );
+    assert_eq!(count("var") as f64, x, "every write of x is counted");
+    assert_eq!(
+        count("issue") as f64,
+        x + 1.0,
+        "the while once, and every issue of x=x+1"
+    );
+    assert_eq!(count("overrun"), ticks, "each tick's overrun is kept");
+    let last_start = events.iter().rev().find(|e| e.kind.name() == "start");
+    let Some(ilmr_vm::EventKind::Start { iteration }) = last_start.map(|e| &e.kind) else {
+        panic!("no start event");
+    };
+    assert_eq!(
+        iteration.map(f64::from),
+        Some(x),
+        "the last iteration is the one kept"
+    );
+    let last_var = trace(&vm)
+        .lines()
+        .rev()
+        .find(|l| l.contains("\"event\":\"var\""))
+        .map(str::to_string)
+        .expect("a var line");
+    assert!(
+        last_var.starts_with(
+            "{\"t\":1.99,\"event\":\"var\",\"line\":2,\"text\":\"x=x+1\",\"var\":\"x\""
+        ) && last_var.contains(&format!(",\"value\":{x},\"count\":")),
+        "the tick's last value and its count: {last_var}"
+    );
+}
+
 #[test]
 fn stop_halts_the_robot_and_cont_resumes_the_movement() {
     let mut a = Asm::new();

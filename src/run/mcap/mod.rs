@@ -13,6 +13,9 @@
 //! Everything is in frame `world`; log time is the run's logical time, so the file is
 //! the same for the same task, robot, world and seed.
 //!
+//! The file stops growing at [`MAX_MCAP_BYTES`]: its last message is then a log line
+//! on `/commands` that says so, stderr says so once, and the run goes on.
+//!
 //! A run on a ROS 2 robot also records the robot's topics as they went over the link
 //! (`odom`, `scan`, `battery_state` taken, `cmd_vel` sent), with ROS 2's schemas
 //! (`ros2msg`) and samples (`cdr`), as rosbag2 does; its `scan` stands for `/scan`.
@@ -22,6 +25,7 @@ use std::fs::File;
 use std::io::BufWriter;
 use std::path::{Path, PathBuf};
 
+use ilmr_files::MAX_MCAP_BYTES;
 use ilmr_sim::World;
 use ilmr_sim::geometry::Shape;
 use ilmr_vm::runtime::safety::{Code, Reaction};
@@ -90,7 +94,19 @@ pub struct McapOut {
     task: String,
     /// Reference paths written so far: the next one's entity id.
     paths: u32,
+    /// Bytes the messages take so far (records, message indexes); the schemas and the
+    /// summary fit in [`CLOSING_ROOM`].
+    written: u64,
+    cap: u64,
+    /// The cap was reached: no more messages are written.
+    full: bool,
 }
+
+/// What one message costs beyond its data: the record's opcode, length and header,
+/// and its entry in the chunk's message index.
+const MESSAGE_OVERHEAD: u64 = 1 + 8 + 22 + 16;
+/// Room kept under the cap for the schemas, the last message and the summary.
+const CLOSING_ROOM: u64 = 256 * 1024;
 
 fn stamp(t: f64) -> Value {
     let ns = nanos(t);
@@ -115,6 +131,16 @@ impl McapOut {
         world: Option<&LoadedWorld>,
         task: &Path,
         ros2: bool,
+    ) -> Result<McapOut, String> {
+        McapOut::capped(path, world, task, ros2, MAX_MCAP_BYTES)
+    }
+
+    fn capped(
+        path: &Path,
+        world: Option<&LoadedWorld>,
+        task: &Path,
+        ros2: bool,
+        cap: u64,
     ) -> Result<McapOut, String> {
         let file = File::create(path)
             .map_err(|e| format!("cannot write MCAP `{}`: {e}", path.display()))?;
@@ -144,6 +170,9 @@ impl McapOut {
             sequence: 0,
             task: task.display().to_string(),
             paths: 0,
+            written: 0,
+            cap,
+            full: false,
         };
         if let Some(w) = world {
             out.write(Topic::World, 0.0, &scene(&w.world))?;
@@ -151,10 +180,54 @@ impl McapOut {
         Ok(out)
     }
 
+    /// Whether a message of `data` bytes still fits; at the first that does not, the
+    /// closing log message is written instead and nothing fits after it.
+    fn fits(&mut self, t: f64, data: usize) -> Result<bool, String> {
+        if self.full {
+            return Ok(false);
+        }
+        let cost = data as u64 + MESSAGE_OVERHEAD;
+        if self.written + cost + CLOSING_ROOM <= self.cap {
+            self.written += cost;
+            return Ok(true);
+        }
+        self.full = true;
+        let message = format!(
+            "the MCAP file reached {} MiB, its limit (MAX_MCAP_BYTES); the rest of the run is not in it",
+            self.cap >> 20
+        );
+        eprintln!("warning: `{}`: {message}", self.path.display());
+        let log = json!({
+            "timestamp": stamp(t),
+            "level": 3,
+            "message": message,
+            "name": "ilmr",
+            "file": self.task,
+            "line": 0,
+        });
+        if let Some(channel_id) = self.channels[Topic::Commands as usize] {
+            self.put(channel_id, t, &log)?;
+        }
+        Ok(false)
+    }
+
     fn write(&mut self, topic: Topic, t: f64, message: &Value) -> Result<(), String> {
         let Some(channel_id) = self.channels[topic as usize] else {
             return Ok(());
         };
+        let data = serde_json::to_vec(message).map_err(|e| e.to_string())?;
+        if !self.fits(t, data.len())? {
+            return Ok(());
+        }
+        self.put_bytes(channel_id, t, &data)
+    }
+
+    fn put(&mut self, channel_id: u16, t: f64, message: &Value) -> Result<(), String> {
+        let data = serde_json::to_vec(message).map_err(|e| e.to_string())?;
+        self.put_bytes(channel_id, t, &data)
+    }
+
+    fn put_bytes(&mut self, channel_id: u16, t: f64, data: &[u8]) -> Result<(), String> {
         self.sequence += 1;
         let header = MessageHeader {
             channel_id,
@@ -162,9 +235,8 @@ impl McapOut {
             log_time: nanos(t),
             publish_time: nanos(t),
         };
-        let data = serde_json::to_vec(message).map_err(|e| e.to_string())?;
         self.writer
-            .write_to_known_channel(&header, &data)
+            .write_to_known_channel(&header, data)
             .map_err(|e| format!("cannot write MCAP `{}`: {e}", self.path.display()))
     }
 
@@ -301,6 +373,9 @@ impl McapOut {
     /// them, so Foxglove and rosbag2 readers decode them as a bag's.
     pub fn ros2(&mut self, records: Vec<ilmr_ros2::robot::Recorded>) -> Result<(), String> {
         for r in records {
+            if !self.fits(r.t, r.sample.len())? {
+                continue;
+            }
             let channel = match self.ros2_channels.get(&r.topic) {
                 Some(&c) => c,
                 None => {
@@ -459,11 +534,8 @@ mod tests {
             std::env::temp_dir().join(format!("ilmr-mcap-paths-{}.mcap", std::process::id()));
         let module = empty_module();
         let mut out = McapOut::create(&path, None, Path::new("t.ilmr"), false).expect("create");
-        let event = |t: f64, points: Vec<(f64, f64)>| Event {
-            tick: (t * 100.0) as u64,
-            t,
-            stmt: None,
-            kind: EventKind::Path { points },
+        let event = |t: f64, points: Vec<(f64, f64)>| {
+            Event::new((t * 100.0) as u64, t, None, EventKind::Path { points })
         };
         let events = [
             event(0.5, vec![(0.0, 0.0), (1.5, 0.0)]),
@@ -501,5 +573,55 @@ mod tests {
                 {"x": 2.5, "y": 1.0, "z": 0.0}
             ])
         );
+    }
+
+    #[test]
+    fn a_file_stops_at_its_cap_with_a_closing_log_message() {
+        let path = std::env::temp_dir().join(format!("ilmr-mcap-cap-{}.mcap", std::process::id()));
+        let module = empty_module();
+        let cap = 1 << 20;
+        let mut out =
+            McapOut::capped(&path, None, Path::new("t.ilmr"), false, cap).expect("create");
+        for i in 0..20_000u32 {
+            let t = f64::from(i) * 0.01;
+            let pose = Event::new(
+                u64::from(i),
+                t,
+                None,
+                EventKind::Pose {
+                    x: t,
+                    y: 0.5,
+                    h: 0.1,
+                    speed: 0.4,
+                    curvature: 0.0,
+                    truth: true,
+                },
+            );
+            out.tick(&module, &[pose], None)
+                .expect("a full file is no error");
+        }
+        out.finish().expect("finish");
+        let bytes = std::fs::read(&path).expect("read back");
+        let _ = std::fs::remove_file(&path);
+        assert!(bytes.len() as u64 <= cap, "{} bytes", bytes.len());
+        assert!(bytes.len() as u64 > cap / 2, "{} bytes", bytes.len());
+        let messages: Vec<_> = mcap::MessageStream::new(&bytes)
+            .expect("an MCAP file")
+            .map(|m| m.expect("a message"))
+            .collect();
+        let last = messages.last().expect("messages");
+        assert_eq!(last.channel.topic, "/commands");
+        let v: Value = serde_json::from_slice(&last.data).expect("JSON");
+        assert_eq!(
+            v["message"],
+            json!(
+                "the MCAP file reached 1 MiB, its limit (MAX_MCAP_BYTES); the rest of the run is not in it"
+            )
+        );
+        let poses = messages
+            .iter()
+            .filter(|m| m.channel.topic == "/pose")
+            .count();
+        assert!(poses > 1000 && poses < 20_000, "{poses} poses kept");
     }
 }

@@ -363,15 +363,10 @@ impl<H: Hal, C: Clock> Vm<H, C> {
                 self.bind_issue(bind, s);
                 let child = self.nodes.alloc(blk, s, bind, Kind::WaitTime);
                 let ticks = (secs.max(0.0) / self.cfg.period).round() as u64;
-                self.timer_seq += 1;
                 // `wait(1e26)` checks (a non-negative time) and its tick count saturates;
                 // it must wait for ever, not overflow the tick or wrap round to now.
-                self.timers.push(std::cmp::Reverse((
-                    self.tick.saturating_add(ticks.max(1)),
-                    self.timer_seq,
-                    child.idx,
-                    child.epoch,
-                )));
+                self.timers
+                    .set(self.tick.saturating_add(ticks.max(1)), child);
                 self.hold(blk, child);
             }
             Op::WaitVar { var, bind } => {
@@ -489,9 +484,40 @@ impl<H: Hal, C: Clock> Vm<H, C> {
     /// Evaluates an expression on the fixed stack.
     pub(super) fn eval(&mut self, id: ExprId) -> Result<f64, &'static str> {
         let ops = self.module.expr_ops(id);
+        self.ops_left = self.ops_left.saturating_sub(ops.len() as u32);
+        // The shapes most statements have (`c<100`, `c+1`, `0.01`), without the stack;
+        // the same arithmetic and comparisons as the general loop below.
+        let operand = |op: &ExprOp| match *op {
+            ExprOp::Const(c) => Some(self.module.consts.get(c.index()).copied().unwrap_or(0.0)),
+            ExprOp::Field(v, f) => Some(self.vars.field(v.0, f)),
+            _ => None,
+        };
+        match ops {
+            [x] => {
+                if let Some(v) = operand(x) {
+                    return Ok(v);
+                }
+            }
+            [x, y, op] => {
+                if let (Some(a), Some(b)) = (operand(x), operand(y)) {
+                    match *op {
+                        ExprOp::Add => return Ok(a + b),
+                        ExprOp::Sub => return Ok(a - b),
+                        ExprOp::Mul => return Ok(a * b),
+                        ExprOp::Div | ExprOp::Neg | ExprOp::PosEq(..) => {}
+                        ExprOp::Const(_) | ExprOp::Field(..) => {}
+                        cmp => {
+                            if let Some(c) = Cmp::of(cmp) {
+                                return Ok(f64::from(u8::from(c.holds(a, b))));
+                            }
+                        }
+                    }
+                }
+            }
+            _ => {}
+        }
         let mut sp = 0usize;
         let tol = self.cfg.position_tolerance;
-        self.ops_left = self.ops_left.saturating_sub(ops.len() as u32);
         for op in ops {
             let v = match *op {
                 ExprOp::Const(c) => self.module.consts.get(c.index()).copied().unwrap_or(0.0),

@@ -9,11 +9,12 @@ mod exec;
 mod motion;
 mod nodes;
 pub mod safety;
+mod timers;
 pub mod trace;
 pub mod vars;
 mod watch;
 
-use std::collections::{BTreeMap, BinaryHeap, VecDeque};
+use std::collections::{BTreeMap, VecDeque};
 
 use ilmr_hal::{Hal, KnownMap, Snapshot};
 
@@ -71,9 +72,8 @@ pub struct Vm<H: Hal, C: Clock> {
     /// detections match each.
     search_keys: Vec<(u32, u32)>,
     key_hit: Vec<bool>,
-    /// `(due tick, sequence, node)` in a min-heap; stale entries are skipped.
-    timers: BinaryHeap<std::cmp::Reverse<(u64, u64, u32, u32)>>,
-    timer_seq: u64,
+    /// The `wait(seconds)` wake-ups; stale entries (a node ended early) are skipped.
+    timers: timers::Timers,
     motion: Motion,
     followers: Vec<Follower>,
     paths: BTreeMap<String, Vec<(f64, f64)>>,
@@ -83,6 +83,7 @@ pub struct Vm<H: Hal, C: Clock> {
     /// Interactive blocks waiting for a priority block to end.
     pending: Vec<u32>,
     events: Vec<Event>,
+    coalesce: trace::Coalesce,
     ops_left: u32,
     /// Lower-case statement texts for `break(pattern)`.
     lower: Vec<String>,
@@ -166,14 +167,14 @@ impl<H: Hal, C: Clock> Vm<H, C> {
             active: Vec::new(),
             search_keys: Vec::new(),
             key_hit: Vec::new(),
-            timers: BinaryHeap::new(),
-            timer_seq: 0,
+            timers: timers::Timers::default(),
             followers: Vec::new(),
             paths: BTreeMap::new(),
             recording: None,
             priority: None,
             pending: Vec::new(),
             events: Vec::new(),
+            coalesce: trace::Coalesce::default(),
             ops_left: 0,
             lower,
             scratch: Vec::new(),
@@ -308,7 +309,7 @@ impl<H: Hal, C: Clock> Vm<H, C> {
             + self.active.capacity() * size_of::<Active>()
             + self.ready.capacity() * size_of::<exec::Ready>()
             + self.woken.capacity() * size_of::<vars::Woken>()
-            + self.timers.capacity() * size_of::<(u64, u64, u32, u32)>()
+            + self.timers.footprint()
             + self.followers.capacity() * size_of::<Follower>()
     }
 
@@ -451,16 +452,13 @@ impl<H: Hal, C: Clock> Vm<H, C> {
     }
 
     fn fire_timers(&mut self) {
-        while let Some(std::cmp::Reverse((due, _, idx, epoch))) = self.timers.peek().copied() {
-            if due > self.tick {
-                break;
-            }
-            self.timers.pop();
-            let r = NodeRef { idx, epoch };
+        let due = self.timers.due(self.tick);
+        for &r in &due {
             if self.nodes.alive(r) {
-                self.end_node(idx, vars::How::Completed, false, None, true);
+                self.end_node(r.idx, vars::How::Completed, false, None, true);
             }
         }
+        self.timers.done(due);
     }
 
     fn step_followers(&mut self) {
@@ -528,16 +526,19 @@ impl<H: Hal, C: Clock> Vm<H, C> {
         }
     }
 
+    /// Inlined so that, with the trace off, a statement pays one comparison for it.
+    #[inline]
     fn push_event(&mut self, stmt: Option<StmtId>, kind: EventKind) {
         if self.cfg.trace == TraceLevel::Off {
             return;
         }
-        self.events.push(Event {
-            tick: self.tick,
-            t: self.time(),
-            stmt,
-            kind,
-        });
+        self.record_event(stmt, kind);
+    }
+
+    #[inline(never)]
+    fn record_event(&mut self, stmt: Option<StmtId>, kind: EventKind) {
+        let e = Event::new(self.tick, self.time(), stmt, kind);
+        self.coalesce.push(&mut self.events, e);
     }
 
     fn error(&mut self, stmt: Option<StmtId>, message: String) {

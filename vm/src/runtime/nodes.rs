@@ -187,7 +187,7 @@ impl Node {
 }
 
 /// A node index with the generation it had, so stale references are detected.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
 pub(crate) struct NodeRef {
     pub idx: u32,
     pub epoch: u32,

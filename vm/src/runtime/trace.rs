@@ -1,5 +1,12 @@
 //! Typed trace events and their JSON Lines rendering:
 //! `{"t":0.01,"event":"start","line":3,"text":"goahead(1.2)"}` then event-specific keys.
+//!
+//! A tick keeps one `issue` and one `start` event per statement and one `var` event
+//! per variable and statement ([`Coalesce`]): a repeat joins the first, which then
+//! carries the last value (or `while` iteration) and how many there were (`count`).
+//! A tight loop runs thousands of statements a tick; without this its trace grew by
+//! megabytes a second. The events of a tick are then bounded by the program's size,
+//! not by the tick's budget.
 
 use std::fmt::Write;
 
@@ -68,6 +75,84 @@ pub struct Event {
     pub t: f64,
     pub stmt: Option<StmtId>,
     pub kind: EventKind,
+    /// How many events of this tick this one stands for (1 unless [`Coalesce`] joined
+    /// repeats into it).
+    pub count: u32,
+}
+
+impl Event {
+    /// One event, standing for itself.
+    pub fn new(tick: u64, t: f64, stmt: Option<StmtId>, kind: EventKind) -> Event {
+        Event {
+            tick,
+            t,
+            stmt,
+            kind,
+            count: 1,
+        }
+    }
+}
+
+/// What makes two events of one tick the same for [`Coalesce`]: the kind, the
+/// statement, and for `var` the variable and the fields that changed (a status
+/// change is news of its own, not one more write of the value).
+type Key = (u8, u32, u32);
+
+fn coalesce_key(e: &Event) -> Option<Key> {
+    let stmt = e.stmt.map_or(u32::MAX, |s| s.0);
+    match &e.kind {
+        EventKind::Issue => Some((0, stmt, 0)),
+        EventKind::Start { .. } => Some((1, stmt, 0)),
+        EventKind::Var { var, changed, .. } => Some((2 | changed.0 << 2, stmt, var.0)),
+        _ => None,
+    }
+}
+
+/// Joins repeats of `issue`, `start` and `var` events within a tick into the first
+/// (see the module's documentation). Other events are never joined: an `end` or an
+/// `overrun` each say something of their own, and both are bounded per tick by the
+/// live commands and blocks.
+#[derive(Debug, Default)]
+pub struct Coalesce {
+    tick: u64,
+    /// Where in the event buffer the first event of each key of `tick` is.
+    first: rustc_hash::FxHashMap<Key, usize>,
+}
+
+impl Coalesce {
+    /// Appends `e` to `events`, or joins it into the same event earlier in its tick.
+    pub fn push(&mut self, events: &mut Vec<Event>, e: Event) {
+        let Some(key) = coalesce_key(&e) else {
+            events.push(e);
+            return;
+        };
+        if self.tick != e.tick {
+            self.first.clear();
+            self.tick = e.tick;
+        }
+        // The buffer may have been taken since: the index must still hold this
+        // tick's event of the same key.
+        if let Some(first) = self
+            .first
+            .get(&key)
+            .and_then(|&i| events.get_mut(i))
+            .filter(|f| f.tick == e.tick && coalesce_key(f) == Some(key))
+        {
+            first.count = first.count.saturating_add(e.count);
+            match (&mut first.kind, e.kind) {
+                (EventKind::Start { iteration }, EventKind::Start { iteration: last }) => {
+                    *iteration = last;
+                }
+                (EventKind::Var { record, .. }, EventKind::Var { record: last, .. }) => {
+                    *record = last;
+                }
+                _ => {}
+            }
+            return;
+        }
+        self.first.insert(key, events.len());
+        events.push(e);
+    }
 }
 
 impl EventKind {
@@ -288,6 +373,9 @@ pub fn render_event(m: &Module, e: &Event) -> String {
             json_str(&mut o, message);
         }
     }
+    if e.count > 1 {
+        let _ = write!(o, ",\"count\":{}", e.count);
+    }
     o.push('}');
     o
 }
@@ -352,14 +440,14 @@ mod tests {
     #[test]
     fn a_path_event_lists_its_points() {
         let m = crate::bytecode::ModuleBuilder::new().into_extended().0;
-        let e = Event {
-            tick: 3,
-            t: 0.03,
-            stmt: None,
-            kind: EventKind::Path {
+        let e = Event::new(
+            3,
+            0.03,
+            None,
+            EventKind::Path {
                 points: vec![(1.0, 2.0), (3.25, -0.5)],
             },
-        };
+        );
         assert_eq!(
             render_event(&m, &e),
             r#"{"t":0.03,"event":"path","points":[[1,2],[3.25,-0.5]]}"#
