@@ -53,7 +53,12 @@ impl Session {
             let stmt = e.stmt.map(|s| s.index());
             if let Some(i) = stmt.filter(|i| movement.get(*i).copied().unwrap_or(false)) {
                 match e.kind {
-                    EventKind::Issue => self.queued.push(i),
+                    // A movement issued again and again in one tick is one event
+                    // with a count (the trace's coalescing).
+                    EventKind::Issue => {
+                        self.queued
+                            .extend(std::iter::repeat_n(i, e.count.max(1) as usize));
+                    }
                     EventKind::Start { .. } => {
                         if let Some(q) = self.queued.iter().position(|&s| s == i) {
                             self.queued.remove(q);

@@ -498,12 +498,9 @@ impl<H: Hal, C: Clock> Vm<H, C> {
         if self.cfg.trace != TraceLevel::Full || (every > 0 && last.is_multiple_of(every)) {
             return;
         }
-        self.events.push(Event {
-            tick: last,
-            t: last as f64 * self.cfg.period,
-            stmt: None,
-            kind: self.pose_now(),
-        });
+        let kind = self.pose_now();
+        self.events
+            .push(Event::new(last, last as f64 * self.cfg.period, None, kind));
     }
 
     fn pose_event(&mut self) {
