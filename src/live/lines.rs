@@ -1,0 +1,209 @@
+//! The thread that compiles incoming ILMR text, so that the tick never waits for it: it
+//! checks and lowers each line against its own copy of the running module and hands
+//! the engine a [`Fragment`] to join, which costs the engine the line's size, not its
+//! compiling. The copy follows the module: every fragment the engine joins is
+//! appended to it, those of this thread and those the engine joined itself (the
+//! emergency stop).
+
+use std::sync::mpsc::{Receiver, Sender};
+
+use ilmr_compiler::lower::{LineOptions, lower_line_warned};
+use ilmr_model::RobotModel;
+use ilmr_vm::bytecode::Fragment;
+use ilmr_vm::{Module, ModuleBuilder};
+
+use super::engine::{Job, LineAnswer, Outcome};
+use super::guard::guarded;
+use super::reply::Reply;
+
+/// Times a line is lowered again when the module changed under it (an emergency stop
+/// joined meanwhile); more means the copy lost step, and the line is refused.
+const ATTEMPTS: usize = 3;
+
+/// Text for this thread, forwarded by the engine in the order the front ends sent it.
+pub enum Work {
+    Line {
+        text: String,
+        reply: Reply<LineAnswer>,
+    },
+    Check {
+        text: String,
+        reply: Reply<LineAnswer>,
+    },
+}
+
+/// What this thread made of a text, for the engine to join (or not), answer and
+/// publish. Only `live` builds one.
+pub struct Lowered {
+    pub(super) text: String,
+    pub(super) outcome: Outcome,
+    /// What to join: an accepted line's.
+    pub(super) fragment: Option<Fragment>,
+    /// Whether subscribers see a `line` event (not for a check).
+    pub(super) publish: bool,
+    pub(super) reply: Reply<LineAnswer>,
+    /// Where the engine says what became of `fragment`.
+    pub(super) verdict: Option<Sender<Verdict>>,
+}
+
+pub(super) enum Verdict {
+    Joined(Fragment),
+    /// The module changed since the copy this was lowered against: lower again.
+    Stale(Reply<LineAnswer>),
+    /// Answered as failed; nothing joined.
+    Refused,
+}
+
+pub(super) struct Compiler {
+    copy: Module,
+    model: RobotModel,
+    engine: Sender<Job>,
+    /// Fragments the engine joined on its own.
+    news: Receiver<Fragment>,
+}
+
+impl Compiler {
+    pub(super) fn new(
+        copy: Module,
+        model: RobotModel,
+        engine: Sender<Job>,
+        news: Receiver<Fragment>,
+    ) -> Compiler {
+        Compiler {
+            copy,
+            model,
+            engine,
+            news,
+        }
+    }
+
+    /// Runs until the engine stops forwarding work.
+    pub(super) fn run(mut self, work: Receiver<Work>) {
+        for item in work {
+            let alive = match item {
+                Work::Line { text, reply } => self.line(text, reply),
+                Work::Check { text, reply } => {
+                    self.catch_up();
+                    let outcome = guarded("checking the line", || self.lower(&text).0)
+                        .unwrap_or_else(Outcome::Failed);
+                    self.hand_over(text, outcome, None, false, reply, None)
+                }
+            };
+            if !alive {
+                return;
+            }
+        }
+    }
+
+    /// Lowers `text` and has the engine join it; `false` once the engine is gone.
+    fn line(&mut self, text: String, mut reply: Reply<LineAnswer>) -> bool {
+        for _ in 0..ATTEMPTS {
+            self.catch_up();
+            let (outcome, fragment) = guarded("compiling the line", || self.lower(&text))
+                .unwrap_or_else(|why| (Outcome::Failed(why), None));
+            let Some(fragment) = fragment else {
+                return self.hand_over(text, outcome, None, true, reply, None);
+            };
+            let (verdict, heard) = std::sync::mpsc::channel();
+            if !self.hand_over(
+                text.clone(),
+                outcome,
+                Some(fragment),
+                true,
+                reply,
+                Some(verdict),
+            ) {
+                return false;
+            }
+            match heard.recv() {
+                Ok(Verdict::Joined(fragment)) => {
+                    self.follow(&fragment);
+                    return true;
+                }
+                Ok(Verdict::Refused) => return true,
+                Ok(Verdict::Stale(back)) => reply = back,
+                Err(_) => return false,
+            }
+        }
+        let why = "the running task kept changing while the line was compiled; send it again";
+        self.hand_over(text, Outcome::Failed(why.into()), None, true, reply, None)
+    }
+
+    fn hand_over(
+        &self,
+        text: String,
+        outcome: Outcome,
+        fragment: Option<Fragment>,
+        publish: bool,
+        reply: Reply<LineAnswer>,
+        verdict: Option<Sender<Verdict>>,
+    ) -> bool {
+        let lowered = Lowered {
+            text,
+            outcome,
+            fragment,
+            publish,
+            reply,
+            verdict,
+        };
+        self.engine.send(Job::Lowered(Box::new(lowered))).is_ok()
+    }
+
+    /// The outcome of `text` against the copy, and what it adds when accepted.
+    fn lower(&self, text: &str) -> (Outcome, Option<Fragment>) {
+        let mut b = ModuleBuilder::extending(&self.copy);
+        let mut warnings = Vec::new();
+        let options = LineOptions { robotless: false };
+        match lower_line_warned(text, &mut b, &self.model, options, &mut warnings) {
+            Ok(start) => match b.finish_fragment(&start) {
+                Ok(fragment) => (Outcome::Accepted { warnings }, Some(fragment)),
+                Err(e) => (
+                    Outcome::Failed(format!("the line was not joined: {e}")),
+                    None,
+                ),
+            },
+            Err(diagnostics) => (Outcome::Rejected { diagnostics }, None),
+        }
+    }
+
+    fn catch_up(&mut self) {
+        while let Ok(fragment) = self.news.try_recv() {
+            self.follow(&fragment);
+        }
+    }
+
+    fn follow(&mut self, fragment: &Fragment) {
+        if let Err(e) = self.copy.append(fragment) {
+            // The engine joined it, so this cannot be; if it is, lines come back stale
+            // and are refused rather than joined against a wrong copy.
+            eprintln!("error: the line compiler lost step with the running task: {e}");
+        }
+    }
+}
+
+/// What `module` gained since it had `base`, as the fragment that would add it.
+pub(super) fn added_since(module: &Module, base: ilmr_vm::bytecode::Counts) -> Fragment {
+    fn tail<T: Clone>(v: &[T], from: u32) -> Vec<T> {
+        v.get(from as usize..).unwrap_or_default().to_vec()
+    }
+    let added = Module {
+        header: Default::default(),
+        files: tail(&module.files, base.files),
+        stmts: tail(&module.stmts, base.stmts),
+        consts: tail(&module.consts, base.consts),
+        names: tail(&module.names, base.names),
+        globals: tail(&module.globals, base.globals),
+        units: tail(&module.units, base.units),
+        main: module.main,
+        blocks: tail(&module.blocks, base.blocks),
+        code: tail(&module.code, base.code),
+        args: tail(&module.args, base.args),
+        exprs: tail(&module.exprs, base.exprs),
+        expr_code: tail(&module.expr_code, base.expr_code),
+    };
+    Fragment {
+        base,
+        added,
+        start: Vec::new(),
+    }
+}
