@@ -399,6 +399,12 @@ fn an_accepted_line_brings_its_warnings() {
 #[path = "fuzz/serve_garbage.rs"]
 mod serve_garbage;
 
+#[path = "serve/flood.rs"]
+mod flood;
+
+#[path = "serve/exhaustion.rs"]
+mod exhaustion;
+
 #[test]
 fn a_blank_line_is_answered_so_a_planner_never_waits_for_nothing() {
     let server = Server::start(&[]);

@@ -223,9 +223,8 @@ impl Engine {
                     Err(RecvTimeoutError::Disconnected) => return,
                 }
             }
-            while let Ok(job) = jobs.try_recv() {
-                self.handle(job);
-            }
+            // Jobs that come now wait for the tick: a flood of them (each cheap, now
+            // that lines are compiled elsewhere) must not hold the tick back.
             self.emergency_stop();
             self.tick();
         }

@@ -40,6 +40,10 @@ const READ_CHUNK: usize = 4096;
 const READ_AHEAD: usize = 4;
 /// A line buffer larger than this is given back once empty (after a large line).
 const KEEP_BUFFER: usize = 64 << 10;
+/// The kernel's send and receive buffers of a client's socket (it doubles them):
+/// fixed, so that a client that does not read holds this much of the kernel's memory
+/// rather than the megabytes autotuning would give it.
+const SOCKET_BUFFER: usize = 64 << 10;
 /// How long a closing client's last lines may take to go out.
 const GOODBYE_WAIT: Duration = Duration::from_secs(1);
 
@@ -54,6 +58,9 @@ enum Item {
 pub async fn serve(stream: TcpStream, place: Arc<Place>, robots: Arc<Robots>, timeouts: Timeouts) {
     let conn = place.conn;
     let _ = stream.set_nodelay(true);
+    let socket = socket2::SockRef::from(&stream);
+    let _ = socket.set_send_buffer_size(SOCKET_BUFFER);
+    let _ = socket.set_recv_buffer_size(SOCKET_BUFFER);
     let (read, write) = stream.into_split();
     let outbox = Arc::new(Outbox::default());
     let mut writer = tokio::spawn(write_out(write, Arc::clone(&outbox), Arc::clone(&place)));

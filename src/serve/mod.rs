@@ -209,3 +209,76 @@ async fn accept_all(listener: tokio::net::TcpListener, robots: Arc<Robots>, time
         });
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::admit::EVICT_AFTER;
+    use super::outbox::EVENT_BUDGET_BYTES;
+    use super::*;
+
+    /// The limits tables of docs/reliability.md and docs/serve.md quote the constants.
+    #[test]
+    fn the_docs_quote_the_limits() {
+        let reliability = include_str!("../../docs/reliability.md");
+        let serve = include_str!("../../docs/serve.md");
+        let row = |name: &str| {
+            reliability
+                .lines()
+                .find(|l| l.starts_with('|') && l.contains(name))
+                .unwrap_or_else(|| panic!("no row of docs/reliability.md names {name}"))
+        };
+        let quoted = [
+            ("MAX_CLIENTS", format!("{MAX_CLIENTS} clients")),
+            ("RESERVED_PLACES", format!("{RESERVED_PLACES} places")),
+            ("EVICT_AFTER", format!("silent {} s", EVICT_AFTER.as_secs())),
+            (
+                "REQUEST_TIMEOUT",
+                format!("{} s", REQUEST_TIMEOUT.as_secs()),
+            ),
+            ("IDLE_TIMEOUT", format!("{} s", IDLE_TIMEOUT.as_secs())),
+            (
+                "EVENT_BUDGET_BYTES",
+                format!("{} KiB", EVENT_BUDGET_BYTES >> 10),
+            ),
+        ];
+        for (name, value) in quoted {
+            assert!(
+                row(name).contains(&value),
+                "the row of {name} does not say {value}"
+            );
+            assert!(
+                serve.contains(&value),
+                "docs/serve.md does not say {value} ({name})"
+            );
+        }
+    }
+
+    #[test]
+    fn timeouts_must_be_positive_and_finite() {
+        let args = |request: Option<f64>, idle: Option<f64>| ServeArgs {
+            live: RobotArgs {
+                robot: "moro".into(),
+                model: None,
+                world: None,
+                start: None,
+                seed: 0,
+                skills: None,
+                task: None,
+                ros2: crate::ros2::Ros2Args::default(),
+            },
+            fleet: None,
+            listen: "127.0.0.1:0".into(),
+            request_timeout: request,
+            idle_timeout: idle,
+        };
+        let t = timeouts(&args(None, Some(2.5))).expect("valid");
+        assert_eq!(
+            (t.request, t.idle),
+            (REQUEST_TIMEOUT, Duration::from_millis(2500))
+        );
+        for bad in [0.0, -1.0, f64::NAN, f64::INFINITY, 1e9] {
+            assert!(timeouts(&args(Some(bad), None)).is_err(), "{bad}");
+            assert!(timeouts(&args(None, Some(bad))).is_err(), "{bad}");
+        }
+    }
+}
