@@ -171,6 +171,49 @@ fn measure(flood: &Flood, samples: usize) -> Figures {
     }
 }
 
+/// The server's resident memory, KiB.
+fn rss_kib(server: &Server) -> u64 {
+    std::fs::read_to_string(format!("/proc/{}/status", server.child.id()))
+        .ok()
+        .and_then(|s| {
+            s.lines()
+                .find_map(|l| l.strip_prefix("VmRSS:"))
+                .and_then(|v| v.split_whitespace().next()?.parse().ok())
+        })
+        .unwrap_or(0)
+}
+
+/// What a client that spoke once and then idles costs the server (64 of them, the
+/// places there are), and how long a newcomer waits after 1,000 silent connections.
+fn places() {
+    let server = start();
+    Client::connect(&server.addr).ask(r#"{"status": true}"#);
+    std::thread::sleep(Duration::from_millis(200));
+    let before = rss_kib(&server);
+    let idle: Vec<Client> = (0..64)
+        .map(|_| {
+            let mut c = Client::connect(&server.addr);
+            c.ask(r#"{"status": true}"#);
+            c
+        })
+        .collect();
+    std::thread::sleep(Duration::from_millis(200));
+    let per_client = (rss_kib(&server).saturating_sub(before)) as f64 / 64.0;
+    drop(idle);
+    let silent: Vec<TcpStream> = (0..1000)
+        .map(|_| TcpStream::connect(&server.addr).expect("connect"))
+        .collect();
+    let asked = Instant::now();
+    let answer = Client::connect(&server.addr).ask(r#"{"status": true}"#);
+    let newcomer_ms = asked.elapsed().as_secs_f64() * 1e3;
+    assert_eq!(answer["ok"], true);
+    drop(silent);
+    println!(
+        "resident memory per idle client: {per_client:.1} KiB; a newcomer after 1,000 \
+         silent connections answered in {newcomer_ms:.1} ms"
+    );
+}
+
 fn main() {
     // `cargo bench` passes `--bench`; nothing else is taken.
     let samples: usize = std::env::var("ILMR_FLOOD_SAMPLES")
@@ -204,6 +247,7 @@ fn main() {
             request: r#"{"status": true}"#.into(),
         },
     ];
+    places();
     println!(
         "| flood | stop acknowledged, ms (median / max of {samples}) | longest tick gap, ms | flood answers | simulated s per wall s |"
     );

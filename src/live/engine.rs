@@ -373,7 +373,7 @@ impl Engine {
         let mut back = None;
         if let Some(fragment) = fragment {
             match self.vm.add_block(&fragment) {
-                Ok(()) => back = Some(Verdict::Joined(fragment)),
+                Ok(()) => back = Some(Verdict::Joined(Box::new(fragment))),
                 Err(VmError::Module(ModuleError::StaleFragment)) => {
                     if let Some(v) = verdict {
                         let _ = v.send(Verdict::Stale(reply));
@@ -555,7 +555,7 @@ mod tests {
     use crate::build::Compiled;
 
     /// MoRo in the empty world with no task, as `serve` starts without `--task`.
-    fn engine() -> Engine {
+    pub(super) fn engine() -> Engine {
         let args = super::super::RobotArgs {
             robot: "moro".into(),
             model: None,
@@ -609,5 +609,117 @@ mod tests {
             e.vm.tick();
         }
         assert_eq!(e.vm.var("n").map(|r| r.value), Some(2.0));
+    }
+}
+
+#[cfg(test)]
+mod compiler_tests {
+    use std::sync::mpsc;
+
+    use super::tests as tests_support;
+    use super::*;
+    use crate::live::lines::Compiler;
+
+    /// An engine with its line compiler on a thread, and the queue the compiler hands
+    /// its work back on (the engine's, read here one job at a time).
+    fn engine_with_compiler() -> (Engine, Receiver<Job>, Arc<EmergencyStop>) {
+        let mut e = tests_support::engine();
+        let (jobs, queue) = mpsc::channel();
+        let (work, to_compile) = mpsc::channel();
+        let (news, heard) = mpsc::channel();
+        let stop = Arc::new(EmergencyStop::default());
+        let compiler = Compiler::new(e.vm.module().clone(), e.model.clone(), jobs, heard);
+        std::thread::spawn(move || compiler.run(to_compile));
+        e = e.with_compiler(work, news, Arc::clone(&stop));
+        (e, queue, stop)
+    }
+
+    fn next(queue: &Receiver<Job>) -> Job {
+        queue
+            .recv_timeout(Duration::from_secs(20))
+            .unwrap_or_else(|_| panic!("the line compiler answered"))
+    }
+
+    #[test]
+    fn a_line_lowered_before_an_emergency_stop_is_lowered_again_and_joined() {
+        let (mut e, queue, stop) = engine_with_compiler();
+        let (reply, answer) = mpsc::channel();
+        e.handle(Job::Line {
+            text: "n = 1".into(),
+            reply: reply.into(),
+        });
+        let lowered = next(&queue);
+        // The stop joins between the lowering and the join: the fragment is stale.
+        let (acked, ack) = mpsc::channel();
+        stop.raise(acked.into());
+        e.emergency_stop();
+        e.handle(lowered);
+        assert!(
+            answer.try_recv().is_err(),
+            "a stale line is not answered yet"
+        );
+        let again = next(&queue);
+        e.handle(again);
+        let joined = answer
+            .recv_timeout(Duration::from_secs(20))
+            .expect("an answer");
+        assert!(
+            matches!(joined.outcome, Outcome::Accepted { .. }),
+            "{joined:?}"
+        );
+        for _ in 0..TICKS_TO_BRAKE {
+            assert!(ack.try_recv().is_err(), "acknowledged before the ramp");
+            e.tick();
+        }
+        let acked = ack.try_recv().expect("the stop's acknowledgement");
+        assert!(
+            matches!(acked.outcome, Outcome::Accepted { .. }),
+            "{acked:?}"
+        );
+        assert_eq!(e.vm.var("n").map(|r| r.value), Some(1.0));
+        // The compiler's copy followed both: the next line lowers against it at once.
+        let (reply, answer) = mpsc::channel();
+        e.handle(Job::Line {
+            text: "n = n + 1".into(),
+            reply: reply.into(),
+        });
+        let lowered = next(&queue);
+        e.handle(lowered);
+        let joined = answer
+            .recv_timeout(Duration::from_secs(20))
+            .expect("an answer");
+        assert!(
+            matches!(joined.outcome, Outcome::Accepted { .. }),
+            "{joined:?}"
+        );
+        e.tick();
+        assert_eq!(e.vm.var("n").map(|r| r.value), Some(2.0));
+    }
+
+    #[test]
+    fn a_rejected_line_and_a_check_change_nothing() {
+        let (mut e, queue, _) = engine_with_compiler();
+        let before = e.vm.module().counts();
+        let (reply, answer) = mpsc::channel();
+        e.handle(Job::Line {
+            text: "goahed(1)".into(),
+            reply: reply.into(),
+        });
+        e.handle(next(&queue));
+        let a = answer
+            .recv_timeout(Duration::from_secs(20))
+            .expect("an answer");
+        assert!(matches!(a.outcome, Outcome::Rejected { .. }), "{a:?}");
+        let (reply, answer) = mpsc::channel();
+        e.handle(Job::Check {
+            text: "goahead(1)".into(),
+            reply: reply.into(),
+        });
+        e.handle(next(&queue));
+        let a = answer
+            .recv_timeout(Duration::from_secs(20))
+            .expect("an answer");
+        assert!(matches!(a.outcome, Outcome::Accepted { .. }), "{a:?}");
+        assert_eq!(e.vm.module().counts(), before);
     }
 }

@@ -47,7 +47,7 @@ pub struct Lowered {
 }
 
 pub(super) enum Verdict {
-    Joined(Fragment),
+    Joined(Box<Fragment>),
     /// The module changed since the copy this was lowered against: lower again.
     Stale(Reply<LineAnswer>),
     /// Answered as failed; nothing joined.
