@@ -30,8 +30,9 @@ impl EmergencyStop {
         self.raised.store(true, Ordering::SeqCst);
     }
 
-    /// The waiting raisers, when a stop was asked for since the last look.
-    pub(super) fn take(&self) -> Option<Vec<Reply<LineAnswer>>> {
+    /// The waiting raisers, when a stop was asked for since the last look (the
+    /// engine's, before every tick).
+    pub fn take(&self) -> Option<Vec<Reply<LineAnswer>>> {
         if !self.raised.swap(false, Ordering::SeqCst) {
             return None;
         }

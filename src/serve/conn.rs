@@ -518,3 +518,109 @@ async fn write_out(mut socket: OwnedWriteHalf, outbox: Arc<Outbox>, place: Arc<P
         outbox.wrote(answers);
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::live::engine::Outcome;
+    use crate::live::stop::EmergencyStop;
+
+    fn accepted(t: f64) -> LineAnswer {
+        LineAnswer {
+            t,
+            outcome: Outcome::Accepted {
+                warnings: Vec::new(),
+            },
+        }
+    }
+
+    /// A robot whose jobs and stops the test answers itself, so that a request can be
+    /// made to wait as long as the test likes.
+    #[test]
+    fn a_stop_behind_a_waiting_request_is_raised_at_once_and_answered_in_its_place() {
+        let runtime = tokio::runtime::Builder::new_current_thread()
+            .enable_all()
+            .build()
+            .expect("a runtime");
+        let (jobs, queue) = std::sync::mpsc::channel();
+        let stop = Arc::new(EmergencyStop::default());
+        let live = Live {
+            jobs,
+            stop: Arc::clone(&stop),
+            model: crate::inputs::load_robot_model("moro").expect("MoRo"),
+            world: "none".into(),
+        };
+        let robots = Arc::new(Robots::one(live));
+        runtime.block_on(async move {
+            let listener = tokio::net::TcpListener::bind("127.0.0.1:0")
+                .await
+                .expect("a loopback port");
+            let addr = listener.local_addr().expect("its address");
+            let server = tokio::spawn(async move {
+                let (stream, _) = listener.accept().await.expect("a client");
+                let registry = super::super::admit::Registry::default();
+                let place = registry.admit(1).expect("a place");
+                serve(stream, place, robots, Timeouts::default()).await;
+            });
+            let mut client = TcpStream::connect(addr).await.expect("connect");
+            client
+                .write_all(b"{\"ilmr\": \"n = 1\", \"id\": 1}\n{\"stop\": true, \"id\": 2}\n")
+                .await
+                .expect("send");
+            // The line waits for a robot that does not answer; the stop is raised anyway.
+            let deadline = Instant::now() + Duration::from_secs(10);
+            let early = loop {
+                if let Some(waiting) = stop.take() {
+                    break waiting;
+                }
+                assert!(Instant::now() < deadline, "the stop was not raised at once");
+                tokio::time::sleep(Duration::from_millis(5)).await;
+            };
+            let Ok(Job::Line { text, reply }) = queue.try_recv() else {
+                panic!("the line waits in the robot's queue");
+            };
+            assert_eq!(text, "n = 1");
+            for r in early {
+                r.send(accepted(1.0));
+            }
+            reply.send(accepted(2.0));
+            // In its place the stop is raised again (a `cont` before it cannot undo it).
+            let deadline = Instant::now() + Duration::from_secs(10);
+            let again = loop {
+                if let Some(waiting) = stop.take() {
+                    break waiting;
+                }
+                assert!(
+                    Instant::now() < deadline,
+                    "the stop was not raised in its place"
+                );
+                tokio::time::sleep(Duration::from_millis(5)).await;
+            };
+            for r in again {
+                r.send(accepted(3.0));
+            }
+            let mut answers = String::new();
+            let mut chunk = [0u8; 1024];
+            while answers.matches('\n').count() < 2 {
+                let n = tokio::time::timeout(Duration::from_secs(10), client.read(&mut chunk))
+                    .await
+                    .expect("the answers in time")
+                    .expect("read");
+                assert!(n > 0, "closed early: {answers}");
+                answers.push_str(&String::from_utf8_lossy(&chunk[..n]));
+            }
+            let lines: Vec<Value> = answers
+                .lines()
+                .map(|l| serde_json::from_str(l).expect("JSON"))
+                .collect();
+            assert_eq!((&lines[0]["id"], &lines[0]["t"]), (&json(1), &json(2)));
+            assert_eq!((&lines[1]["id"], &lines[1]["t"]), (&json(2), &json(3)));
+            drop(client);
+            let _ = tokio::time::timeout(Duration::from_secs(10), server).await;
+        });
+    }
+
+    fn json(n: i32) -> Value {
+        Value::from(n)
+    }
+}
