@@ -7,7 +7,8 @@
 //! gap between two ticks (`longest_tick_gap` in `status`). A fresh server per flood,
 //! so each gap is that flood's.
 //!
-//! `cargo bench -p ilmrc --bench serve_flood` (ILMR_FLOOD_SAMPLES, default 5).
+//! `cargo bench -p ilmrc --bench serve_flood` (ILMR_FLOOD_SAMPLES, default 5;
+//! ILMR_SERVE_BIN, another `ilmrc` to measure, e.g. one built from an older commit).
 
 use std::io::{BufRead, BufReader, Write};
 use std::net::TcpStream;
@@ -31,7 +32,9 @@ impl Drop for Server {
 }
 
 fn start() -> Server {
-    let mut child = Command::new(env!("CARGO_BIN_EXE_ilmrc"))
+    let exe =
+        std::env::var("ILMR_SERVE_BIN").unwrap_or_else(|_| env!("CARGO_BIN_EXE_ilmrc").into());
+    let mut child = Command::new(exe)
         .args(["serve", "--listen", "127.0.0.1:0", "--world", "empty"])
         .stdout(Stdio::piped())
         .stderr(Stdio::null())
@@ -68,16 +71,23 @@ impl Client {
     }
 
     fn ask(&mut self, request: &str) -> Value {
+        self.try_ask(request)
+            .expect("an answer before the server closes the connection")
+    }
+
+    /// The answer, or `None` once the server has closed the connection.
+    fn try_ask(&mut self, request: &str) -> Option<Value> {
         self.stream
             .write_all(format!("{request}\n").as_bytes())
-            .expect("send");
+            .ok()?;
         loop {
             let mut line = String::new();
-            let n = self.reader.read_line(&mut line).expect("an answer");
-            assert!(n > 0, "the server closed the connection");
+            if self.reader.read_line(&mut line).ok()? == 0 {
+                return None;
+            }
             let v: Value = serde_json::from_str(&line).expect("JSON");
             if v.get("event").is_none() {
-                return v;
+                return Some(v);
             }
         }
     }
@@ -89,7 +99,7 @@ impl Client {
     }
 
     fn wait_for(&mut self, ok: impl Fn(f64) -> bool) {
-        let deadline = Instant::now() + Duration::from_secs(30);
+        let deadline = Instant::now() + Duration::from_secs(300);
         while !ok(self.speed()) {
             assert!(Instant::now() < deadline, "the robot did not get there");
             std::thread::sleep(Duration::from_millis(20));
@@ -119,10 +129,10 @@ fn measure(flood: &Flood, samples: usize) -> Figures {
     let server = start();
     let mut driver = Client::connect(&server.addr);
     assert_eq!(
-        driver.ask(r#"{"ilmr": "speed(0.4)\ngoahead(100000)"}"#)["ok"],
+        driver.ask(r#"{"ilmr": "speed(0.4)\ngoahead(1000)"}"#)["ok"],
         true
     );
-    driver.wait_for(|v| v > 0.39);
+    driver.wait_for(|v| v > 0.3);
     let running = Arc::new(AtomicBool::new(true));
     let answered = Arc::new(AtomicU64::new(0));
     let flooders: Vec<_> = (0..flood.clients)
@@ -131,8 +141,7 @@ fn measure(flood: &Flood, samples: usize) -> Figures {
             let (running, answered) = (Arc::clone(&running), Arc::clone(&answered));
             let request = flood.request.clone();
             std::thread::spawn(move || {
-                while running.load(Ordering::SeqCst) {
-                    c.ask(&request);
+                while running.load(Ordering::SeqCst) && c.try_ask(&request).is_some() {
                     answered.fetch_add(1, Ordering::SeqCst);
                 }
             })
@@ -153,7 +162,7 @@ fn measure(flood: &Flood, samples: usize) -> Figures {
         assert_eq!(ack["ok"], true, "{ack}");
         driver.wait_for(|v| v.abs() < 1e-3);
         assert_eq!(driver.ask(r#"{"cont": true}"#)["ok"], true);
-        driver.wait_for(|v| v > 0.39);
+        driver.wait_for(|v| v > 0.3);
     }
     let status = driver.ask(r#"{"status": true}"#);
     let sim = status["t"].as_f64().unwrap_or(0.0) - t0;
@@ -198,7 +207,7 @@ fn places() {
         })
         .collect();
     std::thread::sleep(Duration::from_millis(200));
-    let per_client = (rss_kib(&server).saturating_sub(before)) as f64 / 64.0;
+    let grown = rss_kib(&server).saturating_sub(before);
     drop(idle);
     let silent: Vec<TcpStream> = (0..1000)
         .map(|_| TcpStream::connect(&server.addr).expect("connect"))
@@ -206,11 +215,11 @@ fn places() {
     let asked = Instant::now();
     let answer = Client::connect(&server.addr).ask(r#"{"status": true}"#);
     let newcomer_ms = asked.elapsed().as_secs_f64() * 1e3;
-    assert_eq!(answer["ok"], true);
     drop(silent);
     println!(
-        "resident memory per idle client: {per_client:.1} KiB; a newcomer after 1,000 \
-         silent connections answered in {newcomer_ms:.1} ms"
+        "resident memory of 64 idle clients: {grown} KiB; a newcomer after 1,000 \
+         silent connections answered in {newcomer_ms:.1} ms ({})",
+        answer.get("error").unwrap_or(&answer["ok"])
     );
 }
 

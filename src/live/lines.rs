@@ -16,6 +16,11 @@ use super::engine::{Job, LineAnswer, Outcome};
 use super::guard::guarded;
 use super::reply::Reply;
 
+/// How much the line compiler's thread gives way (its `nice`, 0 to 19): under a flood
+/// of lines on a busy machine the scheduler runs the VM's thread, and the network's,
+/// before it, so that the tick and the emergency stop keep their time.
+const COMPILER_NICENESS: i32 = 10;
+
 /// Times a line is lowered again when the module changed under it (an emergency stop
 /// joined meanwhile); more means the copy lost step, and the line is refused.
 const ATTEMPTS: usize = 3;
@@ -79,6 +84,7 @@ impl Compiler {
 
     /// Runs until the engine stops forwarding work.
     pub(super) fn run(mut self, work: Receiver<Work>) {
+        give_way();
         for item in work {
             let alive = match item {
                 Work::Line { text, reply } => self.line(text, reply),
@@ -180,6 +186,24 @@ impl Compiler {
         }
     }
 }
+
+/// Lowers this thread's priority to `COMPILER_NICENESS`; where that cannot be done the
+/// thread runs as it is, only less politely.
+#[cfg(target_os = "linux")]
+fn give_way() {
+    // SAFETY: two system calls about this thread only; nothing is read or written
+    // through a pointer.
+    let rc = unsafe {
+        let tid = libc::gettid();
+        libc::setpriority(libc::PRIO_PROCESS, tid as libc::id_t, COMPILER_NICENESS)
+    };
+    if rc != 0 {
+        eprintln!("warning: the line compiler could not lower its priority");
+    }
+}
+
+#[cfg(not(target_os = "linux"))]
+fn give_way() {}
 
 /// What `module` gained since it had `base`, as the fragment that would add it.
 pub(super) fn added_since(module: &Module, base: ilmr_vm::bytecode::Counts) -> Fragment {

@@ -525,6 +525,10 @@ mod tests {
     use crate::live::engine::Outcome;
     use crate::live::stop::EmergencyStop;
 
+    /// A bound on a connection's task, far below a thread's stack (2 MiB, of which a
+    /// thread touches tens of KiB).
+    const CONNECTION_TASK_BYTES: usize = 16 << 10;
+
     fn accepted(t: f64) -> LineAnswer {
         LineAnswer {
             t,
@@ -560,7 +564,15 @@ mod tests {
                 let (stream, _) = listener.accept().await.expect("a client");
                 let registry = super::super::admit::Registry::default();
                 let place = registry.admit(1).expect("a place");
-                serve(stream, place, robots, Timeouts::default()).await;
+                let connection = serve(stream, place, robots, Timeouts::default());
+                // What a client costs besides its socket: this task (the 4 KiB read
+                // chunk included), its writer's and the buffers it has filled.
+                let size = std::mem::size_of_val(&connection);
+                assert!(
+                    size < CONNECTION_TASK_BYTES,
+                    "a connection's task is {size} B"
+                );
+                connection.await;
             });
             let mut client = TcpStream::connect(addr).await.expect("connect");
             client
