@@ -12,9 +12,7 @@ use std::sync::mpsc::Sender;
 use std::time::{Duration, Instant};
 
 use serde_json::{Map, Value};
-use tokio::io::{AsyncReadExt, AsyncWriteExt};
-use tokio::net::TcpStream;
-use tokio::net::tcp::{OwnedReadHalf, OwnedWriteHalf};
+use tokio::io::{AsyncRead, AsyncReadExt, AsyncWrite, AsyncWriteExt, ReadHalf, WriteHalf};
 use tokio::sync::{mpsc, oneshot};
 
 use super::Timeouts;
@@ -40,10 +38,6 @@ const READ_CHUNK: usize = 4096;
 const READ_AHEAD: usize = 4;
 /// A line buffer larger than this is given back once empty (after a large line).
 const KEEP_BUFFER: usize = 64 << 10;
-/// The kernel's send and receive buffers of a client's socket (it doubles them):
-/// fixed, so that a client that does not read holds this much of the kernel's memory
-/// rather than the megabytes autotuning would give it.
-const SOCKET_BUFFER: usize = 64 << 10;
 /// How long a closing client's last lines may take to go out.
 const GOODBYE_WAIT: Duration = Duration::from_secs(1);
 
@@ -54,14 +48,16 @@ enum Item {
 }
 
 /// Serves one client until it closes, breaks a limit, times out or is evicted.
-/// Never touches a robot except through its jobs and its emergency stop.
-pub async fn serve(stream: TcpStream, place: Arc<Place>, robots: Arc<Robots>, timeouts: Timeouts) {
+/// Never touches a robot except through its jobs and its emergency stop. The stream
+/// is a TCP socket today, and any byte stream (a TLS session) as well: whatever the
+/// stream must do before the first request (a handshake) counts against the request
+/// timeout once it is done inside `read`.
+pub async fn serve<S>(stream: S, place: Arc<Place>, robots: Arc<Robots>, timeouts: Timeouts)
+where
+    S: AsyncRead + AsyncWrite + Send + 'static,
+{
     let conn = place.conn;
-    let _ = stream.set_nodelay(true);
-    let socket = socket2::SockRef::from(&stream);
-    let _ = socket.set_send_buffer_size(SOCKET_BUFFER);
-    let _ = socket.set_recv_buffer_size(SOCKET_BUFFER);
-    let (read, write) = stream.into_split();
+    let (read, write) = tokio::io::split(stream);
     let outbox = Arc::new(Outbox::default());
     let mut writer = tokio::spawn(write_out(write, Arc::clone(&outbox), Arc::clone(&place)));
     let (items, queue) = mpsc::channel(READ_AHEAD);
@@ -120,8 +116,8 @@ fn fmt_secs(d: Duration) -> String {
 
 /// Frames request lines and hands them on. The first request must end within
 /// `request` of connecting and every line within `request` of its first byte.
-async fn read_lines(
-    mut read: OwnedReadHalf,
+async fn read_lines<S: AsyncRead>(
+    mut read: ReadHalf<S>,
     items: mpsc::Sender<Item>,
     busy: &AtomicUsize,
     robots: &Robots,
@@ -486,7 +482,11 @@ async fn subscribe_all(conn: u64, robots: &Robots, outbox: &Arc<Outbox>) -> Map<
 
 /// Writes what the outbox holds, in order, until it is closed and empty or the
 /// client is gone. Every line written is a sign the client uses its place.
-async fn write_out(mut socket: OwnedWriteHalf, outbox: Arc<Outbox>, place: Arc<Place>) {
+async fn write_out<S: AsyncWrite>(
+    mut socket: WriteHalf<S>,
+    outbox: Arc<Outbox>,
+    place: Arc<Place>,
+) {
     let mut bytes: Vec<u8> = Vec::new();
     loop {
         let Some(batch) = outbox.take() else {
@@ -574,7 +574,7 @@ mod tests {
                 );
                 connection.await;
             });
-            let mut client = TcpStream::connect(addr).await.expect("connect");
+            let mut client = tokio::net::TcpStream::connect(addr).await.expect("connect");
             client
                 .write_all(b"{\"ilmr\": \"n = 1\", \"id\": 1}\n{\"stop\": true, \"id\": 2}\n")
                 .await

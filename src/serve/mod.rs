@@ -24,6 +24,10 @@ pub use admit::{MAX_CLIENTS, RESERVED_PLACES};
 pub const REQUEST_TIMEOUT: Duration = Duration::from_secs(10);
 /// A client with no request and nothing written to it for this long is closed.
 pub const IDLE_TIMEOUT: Duration = Duration::from_secs(120);
+/// The kernel's send and receive buffers of a client's socket (it doubles them):
+/// fixed, so that a client that does not read holds this much of the kernel's memory
+/// rather than the megabytes autotuning would give it.
+const SOCKET_BUFFER_BYTES: usize = 64 << 10;
 /// The longest `--request-timeout` or `--idle-timeout`: a day.
 const MAX_TIMEOUT_SECS: f64 = 86_400.0;
 
@@ -200,6 +204,10 @@ async fn accept_all(listener: tokio::net::TcpListener, robots: Arc<Robots>, time
             let _ = stream.try_write(format!("{refusal}\n").as_bytes());
             continue;
         };
+        let _ = stream.set_nodelay(true);
+        let socket = socket2::SockRef::from(&stream);
+        let _ = socket.set_send_buffer_size(SOCKET_BUFFER_BYTES);
+        let _ = socket.set_recv_buffer_size(SOCKET_BUFFER_BYTES);
         let robots = Arc::clone(&robots);
         let registry = Arc::clone(&registry);
         tokio::spawn(async move {
