@@ -34,12 +34,23 @@ const ANSWER_WAIT: Duration = Duration::from_secs(60);
 /// idle client costs besides its task.
 const READ_CHUNK: usize = 4096;
 /// Requests read ahead of the one being answered, so that a `stop` behind them is
-/// seen; their bytes are bounded by `MAX_LINE` each.
+/// seen.
 const READ_AHEAD: usize = 4;
+/// Bytes of requests waiting to be answered past which no more are read: a client
+/// holds at most this, its one line in progress and the one being answered.
+const READ_AHEAD_BYTES: usize = 64 << 10;
 /// A line buffer larger than this is given back once empty (after a large line).
 const KEEP_BUFFER: usize = 64 << 10;
 /// How long a closing client's last lines may take to go out.
 const GOODBYE_WAIT: Duration = Duration::from_secs(1);
+
+/// The requests read and not yet answered.
+#[derive(Default)]
+struct Pending {
+    requests: AtomicUsize,
+    bytes: AtomicUsize,
+    answered: tokio::sync::Notify,
+}
 
 enum Item {
     Line(Vec<u8>),
@@ -61,11 +72,11 @@ where
     let outbox = Arc::new(Outbox::default());
     let mut writer = tokio::spawn(write_out(write, Arc::clone(&outbox), Arc::clone(&place)));
     let (items, queue) = mpsc::channel(READ_AHEAD);
-    let busy = AtomicUsize::new(0);
+    let pending = Pending::default();
     let work = async {
         tokio::join!(
-            read_lines(read, items, &busy, &robots, &place, timeouts.request),
-            answer_requests(queue, conn, &robots, &outbox, &busy),
+            read_lines(read, items, &pending, &robots, &place, timeouts.request),
+            answer_requests(queue, conn, &robots, &outbox, &pending),
         );
     };
     let ended = tokio::select! {
@@ -119,7 +130,7 @@ fn fmt_secs(d: Duration) -> String {
 async fn read_lines<S: AsyncRead>(
     mut read: ReadHalf<S>,
     items: mpsc::Sender<Item>,
-    busy: &AtomicUsize,
+    pending: &Pending,
     robots: &Robots,
     place: &Place,
     request: Duration,
@@ -136,9 +147,10 @@ async fn read_lines<S: AsyncRead>(
             let line: Vec<u8> = buf.drain(..=end).collect();
             begun = (!buf.is_empty()).then(Instant::now);
             place.spoke();
-            if busy.fetch_add(1, Ordering::SeqCst) > 0 {
+            if pending.requests.fetch_add(1, Ordering::SeqCst) > 0 {
                 stop_at_once(&line, robots);
             }
+            pending.bytes.fetch_add(line.len(), Ordering::SeqCst);
             if items.send(Item::Line(line)).await.is_err() {
                 return;
             }
@@ -150,6 +162,11 @@ async fn read_lines<S: AsyncRead>(
         }
         if buf.is_empty() && buf.capacity() > KEEP_BUFFER {
             buf = Vec::new();
+        }
+        // Between lines, a client whose requests wait is not read further. (Within a
+        // line, its timeout runs on.)
+        while buf.is_empty() && pending.bytes.load(Ordering::SeqCst) > READ_AHEAD_BYTES {
+            pending.answered.notified().await;
         }
         let read_some = read.read(&mut chunk);
         let got = match begun {
@@ -207,7 +224,7 @@ async fn answer_requests(
     conn: u64,
     robots: &Robots,
     outbox: &Arc<Outbox>,
-    busy: &AtomicUsize,
+    pending: &Pending,
 ) {
     while let Some(item) = queue.recv().await {
         match item {
@@ -218,7 +235,9 @@ async fn answer_requests(
                 while outbox.answers_waiting() > 0 {
                     outbox.until_written().await;
                 }
-                busy.fetch_sub(1, Ordering::SeqCst);
+                pending.requests.fetch_sub(1, Ordering::SeqCst);
+                pending.bytes.fetch_sub(bytes.len(), Ordering::SeqCst);
+                pending.answered.notify_one();
             }
             Item::Close(why) => {
                 outbox.answer(protocol::answer(protocol::error(&why), None));
