@@ -373,7 +373,7 @@ impl Engine {
         let mut back = None;
         if let Some(fragment) = fragment {
             match self.vm.add_block(&fragment) {
-                Ok(()) => back = Some(Verdict::Joined(Box::new(fragment))),
+                Ok(()) => back = Some(Verdict::Joined),
                 Err(VmError::Module(ModuleError::StaleFragment)) => {
                     if let Some(v) = verdict {
                         let _ = v.send(Verdict::Stale(reply));

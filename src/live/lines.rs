@@ -1,9 +1,10 @@
 //! The thread that compiles incoming ILMR text, so that the tick never waits for it: it
-//! checks and lowers each line against its own copy of the running module and hands
-//! the engine a [`Fragment`] to join, which costs the engine the line's size, not its
-//! compiling. The copy follows the module: every fragment the engine joins is
-//! appended to it, those of this thread and those the engine joined itself (the
-//! emergency stop).
+//! checks and lowers each line into its own copy of the running module (lent to the
+//! lowering, as `Vm::add_line` lends the VM's, so a line costs its own size, not the
+//! program's) and hands the engine the [`Fragment`] it added, which costs the engine
+//! the line's size to join. The copy follows the module: a line stays in it once the
+//! engine joined it and is taken out otherwise, and fragments the engine joined itself
+//! (the emergency stop) are appended to it.
 
 use std::sync::mpsc::{Receiver, Sender};
 
@@ -52,7 +53,7 @@ pub struct Lowered {
 }
 
 pub(super) enum Verdict {
-    Joined(Box<Fragment>),
+    Joined,
     /// The module changed since the copy this was lowered against: lower again.
     Stale(Reply<LineAnswer>),
     /// Answered as failed; nothing joined.
@@ -90,8 +91,7 @@ impl Compiler {
                 Work::Line { text, reply } => self.line(text, reply),
                 Work::Check { text, reply } => {
                     self.catch_up();
-                    let outcome = guarded("checking the line", || self.lower(&text).0)
-                        .unwrap_or_else(Outcome::Failed);
+                    let (outcome, _) = self.lower(&text, false);
                     self.hand_over(text, outcome, None, false, reply, None)
                 }
             };
@@ -105,11 +105,11 @@ impl Compiler {
     fn line(&mut self, text: String, mut reply: Reply<LineAnswer>) -> bool {
         for _ in 0..ATTEMPTS {
             self.catch_up();
-            let (outcome, fragment) = guarded("compiling the line", || self.lower(&text))
-                .unwrap_or_else(|why| (Outcome::Failed(why), None));
+            let (outcome, fragment) = self.lower(&text, true);
             let Some(fragment) = fragment else {
                 return self.hand_over(text, outcome, None, true, reply, None);
             };
+            let base = fragment.base;
             let (verdict, heard) = std::sync::mpsc::channel();
             if !self.hand_over(
                 text.clone(),
@@ -122,12 +122,15 @@ impl Compiler {
                 return false;
             }
             match heard.recv() {
-                Ok(Verdict::Joined(fragment)) => {
-                    self.follow(&fragment);
+                Ok(Verdict::Joined) => return true,
+                Ok(Verdict::Refused) => {
+                    self.copy.truncate(&base);
                     return true;
                 }
-                Ok(Verdict::Refused) => return true,
-                Ok(Verdict::Stale(back)) => reply = back,
+                Ok(Verdict::Stale(back)) => {
+                    self.copy.truncate(&base);
+                    reply = back;
+                }
                 Err(_) => return false,
             }
         }
@@ -155,21 +158,45 @@ impl Compiler {
         self.engine.send(Job::Lowered(Box::new(lowered))).is_ok()
     }
 
-    /// The outcome of `text` against the copy, and what it adds when accepted.
-    fn lower(&self, text: &str) -> (Outcome, Option<Fragment>) {
-        let mut b = ModuleBuilder::extending(&self.copy);
+    /// The outcome of `text` against the copy, and what it adds when accepted. An
+    /// accepted line stays in the copy when `keep` (until the engine's verdict); all
+    /// else is taken out again.
+    fn lower(&mut self, text: &str, keep: bool) -> (Outcome, Option<Fragment>) {
+        let base = self.copy.counts();
+        let lent = std::mem::replace(&mut self.copy, ModuleBuilder::new().into_extended().0);
+        let mut b = ModuleBuilder::lent(lent);
         let mut warnings = Vec::new();
         let options = LineOptions { robotless: false };
-        match lower_line_warned(text, &mut b, &self.model, options, &mut warnings) {
-            Ok(start) => match b.finish_fragment(&start) {
-                Ok(fragment) => (Outcome::Accepted { warnings }, Some(fragment)),
-                Err(e) => (
-                    Outcome::Failed(format!("the line was not joined: {e}")),
-                    None,
-                ),
-            },
-            Err(diagnostics) => (Outcome::Rejected { diagnostics }, None),
+        let model = &self.model;
+        let doing = if keep {
+            "compiling the line"
+        } else {
+            "checking the line"
+        };
+        let lowered = guarded(doing, || {
+            lower_line_warned(text, &mut b, model, options, &mut warnings)
+        });
+        let (module, counts) = b.into_extended();
+        self.copy = module;
+        if counts != Some(base) {
+            // `lower_line_warned` keeps the builder it is lent; were it to replace it,
+            // the copy would be lost and every later line would come back stale.
+            eprintln!("error: the line compiler lost its copy of the running task");
         }
+        let outcome = match lowered {
+            Ok(Ok(start)) => {
+                let mut fragment = added_since(&self.copy, base);
+                fragment.start = start;
+                if keep {
+                    return (Outcome::Accepted { warnings }, Some(fragment));
+                }
+                Outcome::Accepted { warnings }
+            }
+            Ok(Err(diagnostics)) => Outcome::Rejected { diagnostics },
+            Err(why) => Outcome::Failed(why),
+        };
+        self.copy.truncate(&base);
+        (outcome, None)
     }
 
     fn catch_up(&mut self) {
@@ -179,6 +206,8 @@ impl Compiler {
     }
 
     fn follow(&mut self, fragment: &Fragment) {
+        // Appending validates what the fragment adds, which the engine did already; it
+        // costs the fragment's size, as the engine's join did.
         if let Err(e) = self.copy.append(fragment) {
             // The engine joined it, so this cannot be; if it is, lines come back stale
             // and are refused rather than joined against a wrong copy.
