@@ -270,3 +270,42 @@ fn a_100_mb_line_bad_bytes_and_random_bytes_leave_the_server_serving() {
     assert_eq!(noise.ask(r#"{"status": true}"#)["ok"], json!(true));
     newcomer_is_served(&server);
 }
+
+#[test]
+fn a_client_that_sends_but_never_reads_stops_being_read() {
+    let server = Server::start(&["--world", "empty"]);
+    let mut greedy = stalled_subscriber(&server);
+    let before = rss_kib(&server);
+    greedy.stream.set_nonblocking(true).expect("nonblocking");
+    let request = b"{\"status\": true}\n".repeat(1000);
+    let mut written = 0usize;
+    let started = Instant::now();
+    let mut stalled_since: Option<Instant> = None;
+    // Until the server has stopped taking requests for half a second, or 30 s.
+    while started.elapsed() < Duration::from_secs(30) {
+        match greedy.stream.write(&request) {
+            Ok(n) => {
+                written += n;
+                stalled_since = None;
+            }
+            Err(e) if e.kind() == std::io::ErrorKind::WouldBlock => {
+                let since = *stalled_since.get_or_insert_with(Instant::now);
+                if since.elapsed() > Duration::from_millis(500) {
+                    break;
+                }
+                std::thread::sleep(Duration::from_millis(10));
+            }
+            Err(e) => panic!("{e}"),
+        }
+    }
+    assert!(
+        stalled_since.is_some(),
+        "the server read {written} B and went on reading"
+    );
+    // What it took is bounded by the sockets' buffers and the read-ahead, not by
+    // what the client would send.
+    assert!(written < 64 << 20, "{written} B taken");
+    let grown = rss_kib(&server).saturating_sub(before);
+    assert!(grown < 16 * 1024, "the server grew by {grown} KiB");
+    newcomer_is_served(&server);
+}
