@@ -623,12 +623,20 @@ mod compiler_tests {
     /// An engine with its line compiler on a thread, and the queue the compiler hands
     /// its work back on (the engine's, read here one job at a time).
     fn engine_with_compiler() -> (Engine, Receiver<Job>, Arc<EmergencyStop>) {
+        engine_with_compiler_limited(u32::MAX, u64::MAX)
+    }
+
+    fn engine_with_compiler_limited(
+        statements: u32,
+        bytes: u64,
+    ) -> (Engine, Receiver<Job>, Arc<EmergencyStop>) {
         let mut e = tests_support::engine();
         let (jobs, queue) = mpsc::channel();
         let (work, to_compile) = mpsc::channel();
         let (news, heard) = mpsc::channel();
         let stop = Arc::new(EmergencyStop::default());
-        let compiler = Compiler::new(e.vm.module().clone(), e.model.clone(), jobs, heard);
+        let compiler = Compiler::new(e.vm.module().clone(), e.model.clone(), jobs, heard)
+            .limited_to(statements, bytes);
         std::thread::spawn(move || compiler.run(to_compile));
         e = e.with_compiler(work, news, Arc::clone(&stop));
         (e, queue, stop)
@@ -694,6 +702,38 @@ mod compiler_tests {
         );
         e.tick();
         assert_eq!(e.vm.var("n").map(|r| r.value), Some(2.0));
+    }
+
+    #[test]
+    fn lines_past_the_statement_limit_are_refused_and_the_robot_goes_on() {
+        let (mut e, queue, _) = engine_with_compiler_limited(3, 30);
+        let ask = |e: &mut Engine, text: &str| {
+            let (reply, answer) = mpsc::channel();
+            e.handle(Job::Line {
+                text: text.into(),
+                reply: reply.into(),
+            });
+            e.handle(next(&queue));
+            answer
+                .recv_timeout(Duration::from_secs(20))
+                .expect("an answer")
+        };
+        assert!(matches!(
+            ask(&mut e, "a = 1\nb = 2").outcome,
+            Outcome::Accepted { .. }
+        ));
+        let before = e.vm.module().counts();
+        match ask(&mut e, "c = 3\nd = 4").outcome {
+            Outcome::Failed(why) => assert!(why.contains("3 statements from lines"), "{why}"),
+            other => panic!("{other:?}"),
+        }
+        assert_eq!(e.vm.module().counts(), before, "nothing of it joined");
+        assert!(matches!(
+            ask(&mut e, "a = 5").outcome,
+            Outcome::Accepted { .. }
+        ));
+        e.tick();
+        assert_eq!(e.vm.var("a").map(|r| r.value), Some(5.0));
     }
 
     #[test]

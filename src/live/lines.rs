@@ -62,6 +62,12 @@ pub(super) enum Verdict {
 
 pub(super) struct Compiler {
     copy: Module,
+    /// The task's statements before any line, and how many lines may add.
+    task_statements: u32,
+    max_line_statements: u32,
+    /// Bytes of text joined so far, and how many may be.
+    joined_bytes: u64,
+    max_joined_bytes: u64,
     model: RobotModel,
     engine: Sender<Job>,
     /// Fragments the engine joined on its own.
@@ -76,11 +82,23 @@ impl Compiler {
         news: Receiver<Fragment>,
     ) -> Compiler {
         Compiler {
+            task_statements: copy.counts().stmts,
+            max_line_statements: u32::MAX,
+            joined_bytes: 0,
+            max_joined_bytes: u64::MAX,
             copy,
             model,
             engine,
             news,
         }
+    }
+
+    /// Refuses lines once they would have added more than `statements` statements or
+    /// joined more than `bytes` bytes of text.
+    pub(super) fn limited_to(mut self, statements: u32, bytes: u64) -> Compiler {
+        self.max_line_statements = statements;
+        self.max_joined_bytes = bytes;
+        self
     }
 
     /// Runs until the engine stops forwarding work.
@@ -103,6 +121,14 @@ impl Compiler {
 
     /// Lowers `text` and has the engine join it; `false` once the engine is gone.
     fn line(&mut self, text: String, mut reply: Reply<LineAnswer>) -> bool {
+        if self.joined_bytes + text.len() as u64 > self.max_joined_bytes {
+            let why = format!(
+                "the running task has taken {} bytes of text from lines, its limit; nothing \
+                 more can join (restart the server to go on)",
+                self.max_joined_bytes
+            );
+            return self.hand_over(text, Outcome::Failed(why), None, true, reply, None);
+        }
         for _ in 0..ATTEMPTS {
             self.catch_up();
             let (outcome, fragment) = self.lower(&text, true);
@@ -110,6 +136,16 @@ impl Compiler {
                 return self.hand_over(text, outcome, None, true, reply, None);
             };
             let base = fragment.base;
+            let added = self.copy.counts().stmts - self.task_statements;
+            if added > self.max_line_statements {
+                self.copy.truncate(&base);
+                let why = format!(
+                    "the running task has taken {} statements from lines, its limit; \
+                     nothing more can join (restart the server to go on)",
+                    self.max_line_statements
+                );
+                return self.hand_over(text, Outcome::Failed(why), None, true, reply, None);
+            }
             let (verdict, heard) = std::sync::mpsc::channel();
             if !self.hand_over(
                 text.clone(),
@@ -122,7 +158,10 @@ impl Compiler {
                 return false;
             }
             match heard.recv() {
-                Ok(Verdict::Joined) => return true,
+                Ok(Verdict::Joined) => {
+                    self.joined_bytes += text.len() as u64;
+                    return true;
+                }
                 Ok(Verdict::Refused) => {
                     self.copy.truncate(&base);
                     return true;

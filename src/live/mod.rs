@@ -59,6 +59,14 @@ pub struct RobotArgs {
 /// line), so that a client cannot make either hold unbounded input.
 pub const MAX_LINE_BYTES: usize = 1 << 20;
 
+/// Statements lines may add to the running task, all lines together: every joined
+/// line stays in the module for good (a running command may still point into it), so
+/// past this (some 400 MB) lines are refused and the robot goes on with what it has.
+pub const MAX_LINE_STATEMENTS: u32 = 1_000_000;
+/// Bytes of text lines may join, all lines together, for the same reason (the module
+/// keeps each statement's text, and the VM a lower-case copy).
+pub const MAX_LINE_TEXT_BYTES: u64 = 128 << 20;
+
 /// A robot whose VM runs on its own thread, with a second thread that compiles the
 /// lines it is sent; both run for as long as the process does.
 pub struct Live {
@@ -94,7 +102,8 @@ pub fn start_named(args: &RobotArgs, name: Option<&str>) -> Result<Option<Live>,
     let (work, to_compile) = mpsc::channel();
     let (news, heard) = mpsc::channel();
     let stop = Arc::new(stop::EmergencyStop::default());
-    let compiler = lines::Compiler::new(copy, opened.model.clone(), jobs.clone(), heard);
+    let compiler = lines::Compiler::new(copy, opened.model.clone(), jobs.clone(), heard)
+        .limited_to(MAX_LINE_STATEMENTS, MAX_LINE_TEXT_BYTES);
     // The compiler's thread has the stack the compiler's nesting limits need; the
     // engine's too, for the one line it compiles itself (`stop`) and for lines when
     // it has no compiler (its unit tests).

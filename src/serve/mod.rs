@@ -248,6 +248,14 @@ mod tests {
                 "EVENT_BUDGET_BYTES",
                 format!("{} KiB", EVENT_BUDGET_BYTES >> 10),
             ),
+            (
+                "MAX_LINE_STATEMENTS",
+                format!("{} statements", thousands(crate::live::MAX_LINE_STATEMENTS)),
+            ),
+            (
+                "MAX_LINE_TEXT_BYTES",
+                format!("{} MiB", crate::live::MAX_LINE_TEXT_BYTES >> 20),
+            ),
         ];
         for (name, value) in quoted {
             assert!(
@@ -259,6 +267,18 @@ mod tests {
                 "docs/serve.md does not say {value} ({name})"
             );
         }
+    }
+
+    fn thousands(n: u32) -> String {
+        let digits = n.to_string();
+        let mut out = String::new();
+        for (i, c) in digits.chars().enumerate() {
+            if i > 0 && (digits.len() - i).is_multiple_of(3) {
+                out.push(',');
+            }
+            out.push(c);
+        }
+        out
     }
 
     #[test]
