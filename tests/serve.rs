@@ -399,6 +399,12 @@ fn an_accepted_line_brings_its_warnings() {
 #[path = "fuzz/serve_garbage.rs"]
 mod serve_garbage;
 
+#[path = "serve/flood.rs"]
+mod flood;
+
+#[path = "serve/exhaustion.rs"]
+mod exhaustion;
+
 #[test]
 fn a_blank_line_is_answered_so_a_planner_never_waits_for_nothing() {
     let server = Server::start(&[]);
@@ -581,6 +587,50 @@ fn a_fleet_server_routes_each_request_to_the_robot_it_names() {
             "{request}: {e}"
         );
     }
+    let _ = std::fs::remove_file(&fleet);
+}
+
+#[test]
+fn a_fleet_stop_without_a_name_stops_every_robot_and_with_one_that_robot() {
+    let fleet = two_robot_fleet("stop");
+    let server = Server::start(&["--fleet", fleet.to_str().unwrap()]);
+    let mut c = server.connect();
+    for robot in ["a", "b"] {
+        let go = c.ask(&json!({"robot": robot, "ilmr": "speed(0.3)\ngoahead(100)"}).to_string());
+        assert_eq!(go["ok"], json!(true), "{go}");
+    }
+    let speeds = |c: &mut Client| {
+        let all = c.ask(r#"{"status": true}"#);
+        ["a", "b"].map(|r| all["robots"][r]["speed"].as_f64().unwrap_or(f64::NAN))
+    };
+    let until = |c: &mut Client, what: &str, done: &dyn Fn([f64; 2]) -> bool| {
+        let deadline = Instant::now() + PATIENCE;
+        loop {
+            let v = speeds(c);
+            if done(v) {
+                return;
+            }
+            assert!(Instant::now() < deadline, "{what}: {v:?}");
+            std::thread::sleep(Duration::from_millis(50));
+        }
+    };
+    until(&mut c, "both drive", &|v| v.iter().all(|s| *s > 0.2));
+    let one = c.ask(r#"{"robot": "a", "stop": true, "id": 1}"#);
+    assert_eq!(
+        (&one["ok"], &one["robot"], &one["id"]),
+        (&json!(true), &json!("a"), &json!(1)),
+        "{one}"
+    );
+    until(&mut c, "a halts, b drives on", &|v| {
+        v[0].abs() < 1e-3 && v[1] > 0.2
+    });
+    let all = c.ask(r#"{"stop": true}"#);
+    assert_eq!(all["ok"], json!(true), "{all}");
+    for robot in ["a", "b"] {
+        assert_eq!(all["robots"][robot]["ok"], json!(true), "{all}");
+        assert!(all["robots"][robot]["t"].is_number(), "{all}");
+    }
+    until(&mut c, "both halt", &|v| v.iter().all(|s| s.abs() < 1e-3));
     let _ = std::fs::remove_file(&fleet);
 }
 

@@ -4,9 +4,13 @@
 
 pub mod engine;
 pub mod guard;
+mod lines;
+pub mod reply;
 mod robot;
+pub mod stop;
 
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 use std::sync::mpsc::{self, Sender};
 
 use ilmr_compiler::FileId;
@@ -55,10 +59,21 @@ pub struct RobotArgs {
 /// line), so that a client cannot make either hold unbounded input.
 pub const MAX_LINE_BYTES: usize = 1 << 20;
 
-/// A robot whose VM runs on its own thread.
+/// Statements lines may add to the running task, all lines together: every joined
+/// line stays in the module for good (a running command may still point into it), so
+/// past this (some 400 MB) lines are refused and the robot goes on with what it has.
+pub const MAX_LINE_STATEMENTS: u32 = 1_000_000;
+/// Bytes of text lines may join, all lines together, for the same reason (the module
+/// keeps each statement's text, and the VM a lower-case copy).
+pub const MAX_LINE_TEXT_BYTES: u64 = 128 << 20;
+
+/// A robot whose VM runs on its own thread, with a second thread that compiles the
+/// lines it is sent; both run for as long as the process does.
 pub struct Live {
-    /// The VM thread's queue; it stops when every sender is gone.
+    /// The VM thread's queue.
     pub jobs: Sender<Job>,
+    /// The emergency stop, which does not queue behind `jobs`.
+    pub stop: Arc<stop::EmergencyStop>,
     pub model: RobotModel,
     /// The world's name or file.
     pub world: String,
@@ -81,9 +96,23 @@ pub fn start_named(args: &RobotArgs, name: Option<&str>) -> Result<Option<Live>,
         Compiled::Module(m) => *m,
         Compiled::Rejected => return Ok(None),
     };
+    let copy = module.clone();
     let vm = Vm::new(module, opened.robot, SimClock, opened.config).map_err(|e| e.to_string())?;
     let (jobs, queue) = mpsc::channel();
-    let engine = Engine::new(vm, opened.model.clone());
+    let (work, to_compile) = mpsc::channel();
+    let (news, heard) = mpsc::channel();
+    let stop = Arc::new(stop::EmergencyStop::default());
+    let compiler = lines::Compiler::new(copy, opened.model.clone(), jobs.clone(), heard)
+        .limited_to(MAX_LINE_STATEMENTS, MAX_LINE_TEXT_BYTES);
+    // The compiler's thread has the stack the compiler's nesting limits need; the
+    // engine's too, for the one line it compiles itself (`stop`) and for lines when
+    // it has no compiler (its unit tests).
+    std::thread::Builder::new()
+        .name("ilmr-lines".into())
+        .stack_size(ilmr_compiler::limits::COMPILER_STACK)
+        .spawn(move || compiler.run(to_compile))
+        .map_err(|e| format!("cannot start the line compiler's thread: {e}"))?;
+    let engine = Engine::new(vm, opened.model.clone()).with_compiler(work, news, Arc::clone(&stop));
     let engine = match name {
         Some(n) => engine.tagged(n),
         None => engine,
@@ -95,6 +124,7 @@ pub fn start_named(args: &RobotArgs, name: Option<&str>) -> Result<Option<Live>,
         .map_err(|e| format!("cannot start the robot's thread: {e}"))?;
     Ok(Some(Live {
         jobs,
+        stop,
         model: opened.model,
         world: opened.world,
     }))
@@ -186,7 +216,12 @@ impl Robots {
             .all()
             .map(|(name, live)| {
                 let (reply, answer) = mpsc::channel();
-                let sent = live.jobs.send(Job::Status { reply }).is_ok();
+                let sent = live
+                    .jobs
+                    .send(Job::Status {
+                        reply: reply.into(),
+                    })
+                    .is_ok();
                 (name, sent.then_some(answer))
             })
             .collect();

@@ -3,7 +3,9 @@
 //! TCP send ILMR text as JSON lines and are answered at once with success or the
 //! diagnostics; they may subscribe to the trace's events. Protocol: docs/serve.md.
 
+mod admit;
 mod conn;
+mod outbox;
 mod protocol;
 mod reply;
 
@@ -11,13 +13,39 @@ use std::io::Write;
 use std::net::{SocketAddr, TcpListener};
 use std::process::ExitCode;
 use std::sync::Arc;
-use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::Duration;
 
 use crate::live::{RobotArgs, Robots};
 
-/// Connections served at once; one more is told so and closed.
-const MAX_CLIENTS: usize = 64;
+pub use admit::{MAX_CLIENTS, RESERVED_PLACES};
+
+/// A client's first request must end this long after it connected, and every request
+/// line this long after its first byte.
+pub const REQUEST_TIMEOUT: Duration = Duration::from_secs(10);
+/// A client with no request and nothing written to it for this long is closed.
+pub const IDLE_TIMEOUT: Duration = Duration::from_secs(120);
+/// The kernel's send and receive buffers of a client's socket (it doubles them):
+/// fixed, so that a client that does not read holds this much of the kernel's memory
+/// rather than the megabytes autotuning would give it.
+const SOCKET_BUFFER_BYTES: usize = 64 << 10;
+/// The longest `--request-timeout` or `--idle-timeout`: a day.
+const MAX_TIMEOUT_SECS: f64 = 86_400.0;
+
+/// How long a client may take.
+#[derive(Debug, Clone, Copy)]
+pub struct Timeouts {
+    pub request: Duration,
+    pub idle: Duration,
+}
+
+impl Default for Timeouts {
+    fn default() -> Timeouts {
+        Timeouts {
+            request: REQUEST_TIMEOUT,
+            idle: IDLE_TIMEOUT,
+        }
+    }
+}
 
 #[derive(clap::Args)]
 pub struct ServeArgs {
@@ -31,6 +59,14 @@ pub struct ServeArgs {
     /// a free one; the address is printed on stdout).
     #[arg(long)]
     pub listen: String,
+    /// Seconds a client has to finish its first request after connecting, and any
+    /// request line after its first byte (default 10).
+    #[arg(long, value_name = "SECONDS")]
+    pub request_timeout: Option<f64>,
+    /// Seconds after which a client that sent no request and was sent nothing is
+    /// closed (default 120).
+    #[arg(long, value_name = "SECONDS")]
+    pub idle_timeout: Option<f64>,
 }
 
 pub fn run(args: ServeArgs) -> ExitCode {
@@ -43,7 +79,24 @@ pub fn run(args: ServeArgs) -> ExitCode {
     }
 }
 
+fn timeouts(args: &ServeArgs) -> Result<Timeouts, String> {
+    let pick = |flag: &str, given: Option<f64>, default: Duration| match given {
+        None => Ok(default),
+        Some(s) if s.is_finite() && s > 0.0 && s <= MAX_TIMEOUT_SECS => {
+            Ok(Duration::from_secs_f64(s))
+        }
+        Some(s) => Err(format!(
+            "{flag} {s}: expected seconds above 0, at most {MAX_TIMEOUT_SECS}"
+        )),
+    };
+    Ok(Timeouts {
+        request: pick("--request-timeout", args.request_timeout, REQUEST_TIMEOUT)?,
+        idle: pick("--idle-timeout", args.idle_timeout, IDLE_TIMEOUT)?,
+    })
+}
+
 fn execute(args: &ServeArgs) -> Result<ExitCode, String> {
+    let timeouts = timeouts(args)?;
     // The address first: a port in use should fail before the task is compiled.
     let listener = listen(&args.listen)?;
     if let Some(path) = &args.fleet {
@@ -56,7 +109,7 @@ fn execute(args: &ServeArgs) -> Result<ExitCode, String> {
         let names: Vec<&str> = fleet.robots.names().collect();
         println!("listening on {local} (fleet: {})", names.join(", "));
         let _ = std::io::stdout().flush();
-        accept(&listener, &fleet.robots);
+        serve(listener, &fleet.robots, timeouts)?;
         return Ok(ExitCode::SUCCESS);
     }
     let Some(live) = crate::live::start(&args.live)? else {
@@ -71,7 +124,7 @@ fn execute(args: &ServeArgs) -> Result<ExitCode, String> {
         args.live.robot, live.world
     );
     let _ = std::io::stdout().flush();
-    accept(&listener, &Arc::new(Robots::one(live)));
+    serve(listener, &Arc::new(Robots::one(live)), timeouts)?;
     Ok(ExitCode::SUCCESS)
 }
 
@@ -93,42 +146,167 @@ pub fn listen(text: &str) -> Result<TcpListener, String> {
     })
 }
 
-/// Serves connections, each on its own thread, for as long as the process runs.
+/// Serves connections with the default timeouts for as long as the process runs
+/// (`ilmrc fleet --listen`).
 pub fn accept(listener: &TcpListener, robots: &Arc<Robots>) {
-    let clients = Arc::new(AtomicUsize::new(0));
+    let served = listener
+        .try_clone()
+        .map_err(|e| format!("cannot serve the listener: {e}"))
+        .and_then(|l| serve(l, robots, Timeouts::default()));
+    if let Err(e) = served {
+        eprintln!("error: {e}");
+    }
+}
+
+/// Serves connections, each a task on two network threads, for as long as the
+/// process runs.
+fn serve(listener: TcpListener, robots: &Arc<Robots>, timeouts: Timeouts) -> Result<(), String> {
+    let runtime = tokio::runtime::Builder::new_multi_thread()
+        .worker_threads(2)
+        .thread_name("ilmr-net")
+        .enable_io()
+        .enable_time()
+        .build()
+        .map_err(|e| format!("cannot start the network threads: {e}"))?;
+    listener
+        .set_nonblocking(true)
+        .map_err(|e| format!("cannot serve the listener: {e}"))?;
+    runtime.block_on(async {
+        let listener = tokio::net::TcpListener::from_std(listener)
+            .map_err(|e| format!("cannot serve the listener: {e}"))?;
+        accept_all(listener, Arc::clone(robots), timeouts).await;
+        Ok(())
+    })
+}
+
+async fn accept_all(listener: tokio::net::TcpListener, robots: Arc<Robots>, timeouts: Timeouts) {
+    let registry = Arc::new(admit::Registry::default());
     let mut next_conn: u64 = 0;
-    for stream in listener.incoming() {
-        let mut stream = match stream {
-            Ok(s) => s,
+    loop {
+        let stream = match listener.accept().await {
+            Ok((s, _)) => s,
             Err(e) => {
                 // Out of descriptors and the like: say so, and do not spin on it.
                 eprintln!("warning: accepting a connection failed: {e}");
-                std::thread::sleep(Duration::from_millis(50));
+                tokio::time::sleep(Duration::from_millis(50)).await;
                 continue;
             }
         };
-        if clients.load(Ordering::SeqCst) >= MAX_CLIENTS {
+        next_conn += 1;
+        let Some(place) = registry.admit(next_conn) else {
             let refusal = protocol::answer(
-                protocol::error(&format!("the server has {MAX_CLIENTS} clients already")),
+                protocol::error(&format!(
+                    "the server has {} clients already, all of them busy",
+                    MAX_CLIENTS + RESERVED_PLACES
+                )),
                 None,
             );
-            let _ = writeln!(stream, "{refusal}");
+            let _ = stream.try_write(format!("{refusal}\n").as_bytes());
             continue;
+        };
+        let _ = stream.set_nodelay(true);
+        let socket = socket2::SockRef::from(&stream);
+        let _ = socket.set_send_buffer_size(SOCKET_BUFFER_BYTES);
+        let _ = socket.set_recv_buffer_size(SOCKET_BUFFER_BYTES);
+        let robots = Arc::clone(&robots);
+        let registry = Arc::clone(&registry);
+        tokio::spawn(async move {
+            let conn = place.conn;
+            conn::serve(stream, place, robots, timeouts).await;
+            registry.leave(conn);
+        });
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::admit::EVICT_AFTER;
+    use super::outbox::EVENT_BUDGET_BYTES;
+    use super::*;
+
+    /// The limits tables of docs/reliability.md and docs/serve.md quote the constants.
+    #[test]
+    fn the_docs_quote_the_limits() {
+        let reliability = include_str!("../../docs/reliability.md");
+        let serve = include_str!("../../docs/serve.md");
+        let row = |name: &str| {
+            reliability
+                .lines()
+                .find(|l| l.starts_with('|') && l.contains(name))
+                .unwrap_or_else(|| panic!("no row of docs/reliability.md names {name}"))
+        };
+        let quoted = [
+            ("MAX_CLIENTS", format!("{MAX_CLIENTS} clients")),
+            ("RESERVED_PLACES", format!("{RESERVED_PLACES} places")),
+            ("EVICT_AFTER", format!("silent {} s", EVICT_AFTER.as_secs())),
+            (
+                "REQUEST_TIMEOUT",
+                format!("{} s", REQUEST_TIMEOUT.as_secs()),
+            ),
+            ("IDLE_TIMEOUT", format!("{} s", IDLE_TIMEOUT.as_secs())),
+            (
+                "EVENT_BUDGET_BYTES",
+                format!("{} KiB", EVENT_BUDGET_BYTES >> 10),
+            ),
+            (
+                "MAX_LINE_STATEMENTS",
+                format!("{} statements", thousands(crate::live::MAX_LINE_STATEMENTS)),
+            ),
+            (
+                "MAX_LINE_TEXT_BYTES",
+                format!("{} MiB", crate::live::MAX_LINE_TEXT_BYTES >> 20),
+            ),
+        ];
+        for (name, value) in quoted {
+            assert!(
+                row(name).contains(&value),
+                "the row of {name} does not say {value}"
+            );
+            assert!(
+                serve.contains(&value),
+                "docs/serve.md does not say {value} ({name})"
+            );
         }
-        next_conn += 1;
-        let conn = next_conn;
-        let robots = Arc::clone(robots);
-        let count = Arc::clone(&clients);
-        count.fetch_add(1, Ordering::SeqCst);
-        let spawned = std::thread::Builder::new()
-            .name(format!("ilmr-client-{conn}"))
-            .spawn(move || {
-                conn::serve(stream, conn, robots);
-                count.fetch_sub(1, Ordering::SeqCst);
-            });
-        if let Err(e) = spawned {
-            clients.fetch_sub(1, Ordering::SeqCst);
-            eprintln!("warning: cannot serve a connection: {e}");
+    }
+
+    fn thousands(n: u32) -> String {
+        let digits = n.to_string();
+        let mut out = String::new();
+        for (i, c) in digits.chars().enumerate() {
+            if i > 0 && (digits.len() - i).is_multiple_of(3) {
+                out.push(',');
+            }
+            out.push(c);
+        }
+        out
+    }
+
+    #[test]
+    fn timeouts_must_be_positive_and_finite() {
+        let args = |request: Option<f64>, idle: Option<f64>| ServeArgs {
+            live: RobotArgs {
+                robot: "moro".into(),
+                model: None,
+                world: None,
+                start: None,
+                seed: 0,
+                skills: None,
+                task: None,
+                ros2: crate::ros2::Ros2Args::default(),
+            },
+            fleet: None,
+            listen: "127.0.0.1:0".into(),
+            request_timeout: request,
+            idle_timeout: idle,
+        };
+        let t = timeouts(&args(None, Some(2.5))).expect("valid");
+        assert_eq!(
+            (t.request, t.idle),
+            (REQUEST_TIMEOUT, Duration::from_millis(2500))
+        );
+        for bad in [0.0, -1.0, f64::NAN, f64::INFINITY, 1e9] {
+            assert!(timeouts(&args(Some(bad), None)).is_err(), "{bad}");
+            assert!(timeouts(&args(None, Some(bad))).is_err(), "{bad}");
         }
     }
 }

@@ -10,6 +10,8 @@ pub enum Request {
     /// ILMR text to join the running task: one line or a block.
     Ilmr(String),
     Status,
+    /// The emergency stop: the line `stop`, on its own path (`live::stop`).
+    Stop,
     /// Start sending the trace's events on this connection.
     Subscribe,
     /// Not a request: why, for the error object.
@@ -74,8 +76,9 @@ fn request_of(object: &Map<String, Value>) -> Request {
         ("ilmr", _) => Request::Invalid("\"ilmr\" takes a string of ILMR text".into()),
         ("status", Value::Bool(true)) => Request::Status,
         // `stop` and `cont` are the language's own commands; joining them as lines
-        // gives them the same meaning and the same trace as typing them.
-        ("stop", Value::Bool(true)) => Request::Ilmr("stop".into()),
+        // gives them the same meaning and the same trace as typing them. `stop` takes
+        // the emergency path to the robot, around the lines being compiled.
+        ("stop", Value::Bool(true)) => Request::Stop,
         ("cont", Value::Bool(true)) => Request::Ilmr("cont".into()),
         ("subscribe", Value::String(s)) if s == "events" => Request::Subscribe,
         ("subscribe", _) => Request::Invalid("\"subscribe\" takes \"events\"".into()),
@@ -110,10 +113,7 @@ mod tests {
             parse(r#"{"ilmr": "goahead(1)"}"#).request,
             Request::Ilmr("goahead(1)".into())
         );
-        assert_eq!(
-            parse(r#"{"stop": true}"#).request,
-            Request::Ilmr("stop".into())
-        );
+        assert_eq!(parse(r#"{"stop": true}"#).request, Request::Stop);
         assert_eq!(
             parse(r#"{"cont": true, "id": 7}"#),
             Parsed {

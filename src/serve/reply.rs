@@ -49,6 +49,7 @@ pub fn status(s: &Status) -> Map<String, Value> {
     );
     m.insert("speed".into(), json!(s.speed));
     m.insert("curvature".into(), json!(s.curvature));
+    m.insert("longest_tick_gap".into(), json!(s.longest_tick_gap));
     m.insert(
         "activity".into(),
         json!({

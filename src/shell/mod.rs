@@ -23,6 +23,7 @@ use rustyline::history::FileHistory;
 use rustyline::{CompletionType, Config, Editor, ExternalPrinter};
 
 use crate::live::engine::{Job, LineAnswer, Outcome, Status};
+use crate::live::reply::Reply;
 use crate::live::{Live, RobotArgs};
 use crate::notice::Detail;
 use complete::{ShellHelper, Words};
@@ -208,16 +209,17 @@ fn act(
 /// Sends `text` as a line or a check and waits for the answer.
 fn ask_line(
     jobs: &Sender<Job>,
-    job: impl FnOnce(String, Sender<LineAnswer>) -> Job,
+    job: impl FnOnce(String, Reply<LineAnswer>) -> Job,
     text: &str,
 ) -> Result<LineAnswer, String> {
     let (reply, answer) = mpsc::channel();
-    let job = job(text.to_string(), reply);
+    let job = job(text.to_string(), reply.into());
     wait(jobs, job, &answer)
 }
 
 fn status(jobs: &Sender<Job>) -> Result<Status, String> {
     let (reply, answer) = mpsc::channel();
+    let reply = reply.into();
     wait(jobs, Job::Status { reply }, &answer)
 }
 
@@ -255,10 +257,10 @@ fn notices(
     let (done, acknowledged) = mpsc::channel();
     let job = Job::Subscribe {
         conn: SHELL_SUBSCRIBER,
-        out,
+        out: Box::new(out),
         // Nothing to say before the first event.
         first: None,
-        done,
+        done: done.into(),
     };
     wait(jobs, job, &acknowledged)?;
     let mut printer: Box<dyn FnMut(String) + Send> = match terminal {

@@ -98,7 +98,7 @@ impl ModuleBuilder {
     /// A builder that owns the live module while a line is lowered into it (see
     /// `Vm::add_line`): nothing is copied, and [`Self::into_extended`] gives the module
     /// back with the line appended.
-    pub(crate) fn lent(live: Module) -> ModuleBuilder {
+    pub fn lent(live: Module) -> ModuleBuilder {
         let base = live.counts();
         ModuleBuilder {
             m: live,
@@ -109,7 +109,7 @@ impl ModuleBuilder {
 
     /// The module and the counts it had when it was lent (`None` for a builder not
     /// made by [`Self::lent`] or [`Self::extending`]).
-    pub(crate) fn into_extended(self) -> (Module, Option<Counts>) {
+    pub fn into_extended(self) -> (Module, Option<Counts>) {
         (self.m, self.base)
     }
 
