@@ -245,6 +245,39 @@ fn a_subscriber_sees_the_movement_another_client_starts() {
 }
 
 #[test]
+fn the_status_names_the_supervisor_hold_in_force() {
+    // The scanner goes dark a second in: the supervisor holds the robot.
+    let world = std::env::temp_dir().join(format!("ilmr-serve-dark-{}.toml", std::process::id()));
+    let empty = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/robots/worlds/empty.toml"
+    ))
+    .expect("the empty world");
+    std::fs::write(
+        &world,
+        format!("{empty}\n[[fault]]\nkind = \"scanner_dropout\"\nstart = 1.0\n"),
+    )
+    .expect("a world file");
+    let server = Server::start(&["--world", world.to_str().unwrap()]);
+    let mut c = server.connect();
+    let deadline = Instant::now() + PATIENCE;
+    let held = loop {
+        let status = c.ask(r#"{"status": true}"#);
+        if status["faults"].as_array().is_some_and(|f| !f.is_empty()) {
+            break status;
+        }
+        assert!(Instant::now() < deadline, "no fault in {status}");
+        std::thread::sleep(Duration::from_millis(100));
+    };
+    let _ = std::fs::remove_file(&world);
+    let fault = &held["faults"][0];
+    assert_eq!(fault["fault"], json!("scanner_lost"), "{held}");
+    assert_eq!(fault["code"], json!("R0202"), "{held}");
+    assert_eq!(fault["reaction"], json!("hold"), "{held}");
+    assert!(fault["help"].is_string(), "{held}");
+}
+
+#[test]
 fn a_client_leaving_mid_line_disturbs_neither_robot_nor_others() {
     let server = Server::start(&[]);
     let mut watcher = server.connect();

@@ -17,6 +17,7 @@ use ilmr_hal::Pose;
 use ilmr_model::RobotModel;
 use ilmr_stdlib::VarKind;
 use ilmr_vm::bytecode::{BlockId, Fragment, ModuleError};
+use ilmr_vm::runtime::safety::Fault;
 use ilmr_vm::runtime::trace::fmt_num;
 use ilmr_vm::{Activity, LineError, ModuleBuilder, SimClock, VarRecord, Vm, VmError};
 
@@ -133,6 +134,9 @@ pub struct Status {
     /// The longest wall time between two ticks' starts since the robot started,
     /// seconds (a period, 0.01, when no tick was late).
     pub longest_tick_gap: f64,
+    /// The supervisor's faults in force, most urgent first: a hold says why the
+    /// robot stands.
+    pub faults: Vec<Fault>,
     /// One entry per live command, guard, loop or skill call, in program order.
     pub live: Vec<LiveCommand>,
     pub vars: Vec<VarState>,
@@ -502,6 +506,7 @@ impl Engine {
             activity: self.vm.activity(),
             finished: self.vm.finished(),
             longest_tick_gap: self.longest_tick_gap.as_secs_f64(),
+            faults: self.vm.faults_in_force(),
             live,
             vars,
             skills,

@@ -96,12 +96,7 @@ mod tests {
     }
 
     fn event(t: f64, kind: EventKind) -> Event {
-        Event {
-            tick: (t * 100.0) as u64,
-            t,
-            stmt: None,
-            kind,
-        }
+        Event::new((t * 100.0) as u64, t, None, kind)
     }
 
     #[test]

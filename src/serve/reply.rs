@@ -51,6 +51,16 @@ pub fn status(s: &Status) -> Map<String, Value> {
     m.insert("curvature".into(), json!(s.curvature));
     m.insert("longest_tick_gap".into(), json!(s.longest_tick_gap));
     m.insert(
+        "faults".into(),
+        s.faults
+            .iter()
+            .map(|f| {
+                let code = ilmr_vm::runtime::safety::Code::Fault(*f);
+                json!({"fault": f.name(), "code": code.code(), "reaction": f.reaction().name(), "help": code.help()})
+            })
+            .collect(),
+    );
+    m.insert(
         "activity".into(),
         json!({
             "running_commands": a.running_commands,

@@ -3,6 +3,7 @@
 
 use ilmr_compiler::render::{self, RenderFile, Style};
 use ilmr_stdlib::Field;
+use ilmr_vm::runtime::safety::Code;
 use ilmr_vm::runtime::trace::fmt_num;
 
 use crate::live::engine::{LineAnswer, Outcome, Status, VarState};
@@ -77,6 +78,16 @@ pub fn status(s: &Status) -> String {
         a.issuing_blocks,
         if s.finished { "; nothing is live" } else { "" }
     ));
+    // What the supervisor does to the robot comes before what the task asks of it.
+    for f in &s.faults {
+        out.push_str(&format!(
+            "supervisor: {} ({} {}): {}\n",
+            crate::notice::reaction_verb(f.reaction().name()),
+            Code::Fault(*f).code(),
+            f.name(),
+            Code::Fault(*f).help()
+        ));
+    }
     if s.live.is_empty() {
         out.push_str("live: none\n");
     } else {
@@ -138,3 +149,36 @@ Shell commands:
   :quit     leave (also `exit`, `quit`, Ctrl-D); Ctrl-C drops what is being typed
 Tab completes commands, keywords, robot model names, variables and skills.
 ";
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use ilmr_vm::runtime::safety::Fault;
+
+    #[test]
+    fn the_status_says_which_hold_keeps_the_robot_standing() {
+        let s = Status {
+            t: 12.0,
+            ticks: 1200,
+            pose: ilmr_hal::Pose {
+                x: 11.2,
+                y: 6.3,
+                h: 0.26,
+            },
+            speed: 0.0,
+            curvature: 0.0,
+            activity: ilmr_vm::Activity::default(),
+            finished: false,
+            longest_tick_gap: 0.01,
+            faults: vec![Fault::ObstacleNear],
+            live: Vec::new(),
+            vars: Vec::new(),
+            skills: Vec::new(),
+        };
+        let view = status(&s);
+        assert!(
+            view.contains("\nsupervisor: held (R0206 obstacle_near): clear the way"),
+            "{view}"
+        );
+    }
+}

@@ -286,6 +286,17 @@ impl<H: Hal, C: Clock> Vm<H, C> {
         self.activity().only_guards_waiting()
     }
 
+    /// The supervisor's faults in force, most urgent first (what `sensor(supervisor)`
+    /// reads is the first's number).
+    pub fn faults_in_force(&self) -> Vec<safety::Fault> {
+        let mut faults: Vec<safety::Fault> = safety::FAULTS
+            .into_iter()
+            .filter(|f| self.supervisor.is_active(*f))
+            .collect();
+        faults.sort_by_key(|f| std::cmp::Reverse(f.urgency()));
+        faults
+    }
+
     /// Logical time of the current tick, seconds.
     pub fn time(&self) -> f64 {
         self.tick as f64 * self.cfg.period
