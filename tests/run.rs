@@ -118,11 +118,7 @@ fn run_cases_give_deterministic_traces() {
             a.extend(["--trace", &trace_arg]);
             let (code, out, err) = ilmrc(&a);
             // The snapshot holds the summary, and with it how the case must end.
-            let said = out
-                .lines()
-                .find_map(|l| l.trim().strip_prefix("exit"))
-                .and_then(|c| c.trim().parse::<i32>().ok());
-            assert_eq!(Some(code), said, "{name}: {out}{err}");
+            assert_eq!(Some(code), summary_exit(&out), "{name}: {out}{err}");
             assert!(!matches!(code, 1 | 2), "{name}: {out}{err}");
             let bytes = std::fs::read(&trace).expect("the trace is written");
             let _ = std::fs::remove_file(&trace);
@@ -324,7 +320,7 @@ fn a_run_ends_at_max_time_when_commands_are_left() {
     ]);
     assert_eq!(code, 5, "stopped with commands live: {out}");
     assert!(
-        out.contains("max-time: stopped at --max-time 3, 2 command(s) live"),
+        out.contains("max-time: stopped at --max-time 3, 3 statement(s) live"),
         "{out}"
     );
     assert!(out.contains("simulated time  3 s (300 ticks)"), "{out}");

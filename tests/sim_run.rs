@@ -9,7 +9,7 @@ mod support;
 
 use std::path::PathBuf;
 
-use support::ilmrc;
+use support::{ilmrc, summary_exit};
 
 fn scratch(name: &str) -> PathBuf {
     std::env::temp_dir().join(format!("ilmr-sim-run-{}-{name}", std::process::id()))
@@ -39,11 +39,7 @@ fn run_with_outputs(name: &str, args: &[&str]) -> Outputs {
     a.extend(["--trace", &ts, "--mcap", &ms, "--plot", &ps]);
     let (code, out, err) = ilmrc(&a);
     // The snapshots hold the summary, and with it how each case must end.
-    let said = out
-        .lines()
-        .find_map(|l| l.trim().strip_prefix("exit"))
-        .and_then(|c| c.trim().parse::<i32>().ok());
-    assert_eq!(Some(code), said, "{name}: {out}{err}");
+    assert_eq!(Some(code), summary_exit(&out), "{name}: {out}{err}");
     assert!(!matches!(code, 1 | 2), "{name}: {out}{err}");
     let read = |p: &PathBuf| {
         let bytes = std::fs::read(p).expect("output written");

@@ -27,7 +27,8 @@ fn a_tight_loop_traces_one_event_per_statement_a_tick_and_every_overrun() {
         ],
         std::time::Duration::from_secs(120),
     );
-    assert_eq!(code, 0, "{out}{err}");
+    // The loop never ends: the run stops at --max-time with it live.
+    assert_eq!(code, 5, "{out}{err}");
     let text = std::fs::read_to_string(&trace).expect("trace");
     let mcap_len = std::fs::metadata(&mcap).expect("mcap").len();
     let _ = std::fs::remove_dir_all(&dir);

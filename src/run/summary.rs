@@ -70,10 +70,7 @@ impl Ended<'_> {
             Outcome::MaxTime => {
                 let live = match hold {
                     Some(hold) => format!("held, {hold}"),
-                    None => format!(
-                        "{} command(s) live",
-                        a.running_commands + a.queued_movements
-                    ),
+                    None => format!("{} statement(s) live", vm.live_statements().len()),
                 };
                 format!("max-time: stopped at --max-time {}, {live}", args.max_time)
             }

@@ -12,6 +12,14 @@ use ilmr_model::RobotModel;
 
 pub const ROBOTS: [&str; 2] = ["moro", "workpartner"];
 
+/// The exit code a run's summary says (`  exit            3`).
+pub fn summary_exit(summary: &str) -> Option<i32> {
+    summary
+        .lines()
+        .find_map(|l| l.trim().strip_prefix("exit"))
+        .and_then(|c| c.trim().parse().ok())
+}
+
 /// Runs the built `ilmrc` from the repository root: exit code, stdout, stderr.
 pub fn ilmrc(args: &[&str]) -> (i32, String, String) {
     let out = std::process::Command::new(env!("CARGO_BIN_EXE_ilmrc"))

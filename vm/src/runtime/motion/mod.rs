@@ -269,15 +269,19 @@ impl<H: Hal, C: Clock> Vm<H, C> {
         }
     }
 
+    /// The first queued movement that is still live and not being ended.
+    fn first_queued(&self) -> Option<NodeRef> {
+        self.motion
+            .queue
+            .iter()
+            .copied()
+            .find(|r| self.nodes.alive(*r) && !self.nodes.get(r.idx).dying)
+    }
+
     /// Gives the reservation to the first queued movement that can plan a path.
     pub(super) fn start_next_movement(&mut self, linked: bool) {
         loop {
-            let next = self
-                .motion
-                .queue
-                .iter()
-                .copied()
-                .find(|r| self.nodes.alive(*r) && !self.nodes.get(r.idx).dying);
+            let next = self.first_queued();
             let Some(next) = next else {
                 // Nothing to drive: the halt ramp brings the robot to rest from the
                 // next tick on (`halt.rs`), never a jump of the setpoint to 0.
@@ -384,12 +388,7 @@ impl<H: Hal, C: Clock> Vm<H, C> {
     /// its end, rather than ending early with nothing to take over its remainder.
     pub(super) fn successor_starts_from(&mut self, tail: &Path) -> bool {
         loop {
-            let next = self
-                .motion
-                .queue
-                .iter()
-                .copied()
-                .find(|r| self.nodes.alive(*r) && !self.nodes.get(r.idx).dying);
+            let next = self.first_queued();
             let Some(next) = next else {
                 return false;
             };
@@ -416,11 +415,7 @@ impl<H: Hal, C: Clock> Vm<H, C> {
 
     /// A successor is queued and nothing waits on the running movement's variable.
     fn can_link(&self, head: NodeRef) -> bool {
-        let queued = self
-            .motion
-            .queue
-            .iter()
-            .any(|r| self.nodes.alive(*r) && !self.nodes.get(r.idx).dying);
+        let queued = self.first_queued().is_some();
         if !queued || !self.motion.run.as_ref().is_some_and(Run::ends) {
             return false;
         }
