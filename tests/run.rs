@@ -235,7 +235,7 @@ fn run_takes_a_built_module() {
     let (code, out, err) = ilmrc(&["build", "tests/run/counting.ilmr", "-o", &built_arg]);
     assert_eq!(code, 0, "{out}{err}");
     let trace_of = |task: &str, n: u32| {
-        let trace = scratch(&format!("counting-{n}.jsonl"));
+        let trace = scratch(&format!("built-counting-{n}.jsonl"));
         let trace_arg = trace.display().to_string();
         let (code, out, err) = ilmrc(&[
             "run",
