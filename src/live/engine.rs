@@ -298,38 +298,8 @@ impl Engine {
 
     fn handle(&mut self, job: Job) {
         match job {
-            Job::Line { text, reply } => match &self.compiler {
-                Some((work, _)) => {
-                    if let Err(e) = work.send(Work::Line { text, reply }) {
-                        self.no_compiler(e.0);
-                    }
-                }
-                None => {
-                    let t = self.vm.time();
-                    let answer = guard::guarded("joining the line", || self.line(&text))
-                        .unwrap_or_else(|why| LineAnswer {
-                            t,
-                            outcome: Outcome::Failed(why),
-                        });
-                    reply.send(answer);
-                }
-            },
-            Job::Check { text, reply } => match &self.compiler {
-                Some((work, _)) => {
-                    if let Err(e) = work.send(Work::Check { text, reply }) {
-                        self.no_compiler(e.0);
-                    }
-                }
-                None => {
-                    let t = self.vm.time();
-                    let answer = guard::guarded("checking the line", || self.check(&text))
-                        .unwrap_or_else(|why| LineAnswer {
-                            t,
-                            outcome: Outcome::Failed(why),
-                        });
-                    reply.send(answer);
-                }
-            },
+            Job::Line { text, reply } => self.take_text(Work::Line { text, reply }),
+            Job::Check { text, reply } => self.take_text(Work::Check { text, reply }),
             Job::Status { reply } => reply.send(self.status()),
             Job::Subscribe {
                 conn,
@@ -353,6 +323,32 @@ impl Engine {
 
     /// The line compiler's thread has ended (it panicked outside a line): the text is
     /// answered as failed rather than lost.
+    /// Hands a line (or a `check` block) to the line compiler; without one, lowers
+    /// it here.
+    fn take_text(&mut self, work: Work) {
+        if let Some((compiler, _)) = &self.compiler {
+            if let Err(e) = compiler.send(work) {
+                self.no_compiler(e.0);
+            }
+            return;
+        }
+        let t = self.vm.time();
+        let (answer, reply) = match work {
+            Work::Line { text, reply } => (
+                guard::guarded("joining the line", || self.line(&text)),
+                reply,
+            ),
+            Work::Check { text, reply } => (
+                guard::guarded("checking the line", || self.check(&text)),
+                reply,
+            ),
+        };
+        reply.send(answer.unwrap_or_else(|why| LineAnswer {
+            t,
+            outcome: Outcome::Failed(why),
+        }));
+    }
+
     fn no_compiler(&self, work: Work) {
         let (Work::Line { reply, .. } | Work::Check { reply, .. }) = work;
         reply.send(LineAnswer {
