@@ -27,11 +27,19 @@ pub struct Gate {
 }
 
 impl Gate {
+    /// The notice for `v` at `detail`, if it passes; only trouble is gated.
     pub fn pass(&mut self, v: &Value, detail: Detail) -> Option<String> {
         let text = for_event(v, detail)?;
-        if for_event(v, Detail::Trouble).is_none() {
+        let trouble = detail == Detail::Trouble || for_event(v, Detail::Trouble).is_some();
+        if !trouble {
             return Some(text);
         }
+        self.admit(v, text)
+    }
+
+    /// `text`, trouble's notice for `v`, if it passes, with how many of its kind were
+    /// held back before it.
+    pub fn admit(&mut self, v: &Value, text: String) -> Option<String> {
         let t = v["t"].as_f64().unwrap_or(0.0);
         let kind = format!(
             "{} {} {}",

@@ -65,12 +65,13 @@ impl Report {
             let Ok(v) = serde_json::from_str::<Value>(&render_event(module, e)) else {
                 continue;
             };
-            if self.first.len() < FIRST_KEPT
-                && let Some(text) = notice::for_event(&v, Detail::Trouble)
-            {
+            let Some(text) = notice::for_event(&v, Detail::Trouble) else {
+                continue;
+            };
+            if self.first.len() < FIRST_KEPT {
                 self.first.push(format!("{text}{after}"));
             }
-            if let Some(text) = self.gate.pass(&v, Detail::Trouble) {
+            if let Some(text) = self.gate.admit(&v, text) {
                 say(&format!("{text}{after}"));
             }
         }
