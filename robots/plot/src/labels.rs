@@ -2,6 +2,8 @@
 //! tries places round its point, nearest first, and takes the first free one. Points
 //! in pixels, y down, as the drawing backend has them.
 
+use std::collections::{HashMap, HashSet};
+
 /// The font size of map labels, pixels.
 pub const FONT: u32 = 13;
 
@@ -11,7 +13,7 @@ pub fn width(text: &str) -> i32 {
     (text.chars().count() as f64 * 0.6 * f64::from(FONT)).ceil() as i32 + 2
 }
 
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 struct Rect {
     x0: i32,
     y0: i32,
@@ -30,20 +32,51 @@ const GAP: i32 = 6;
 /// Rings of places tried round a point, each further out.
 const RINGS: i32 = 3;
 
+/// Side of the grid cells taken places are filed under, pixels: a place is looked up
+/// among its cells' places only, so a run with thousands of marks stays linear.
+const CELL: i32 = 64;
+
+/// The grid cells a rectangle touches.
+fn cells(r: &Rect) -> impl Iterator<Item = (i32, i32)> {
+    let (cx0, cx1) = (r.x0.div_euclid(CELL), (r.x1 - 1).div_euclid(CELL));
+    let (cy0, cy1) = (r.y0.div_euclid(CELL), (r.y1 - 1).div_euclid(CELL));
+    (cx0..=cx1).flat_map(move |x| (cy0..=cy1).map(move |y| (x, y)))
+}
+
 #[derive(Debug, Default)]
 pub struct Placer {
-    taken: Vec<Rect>,
+    taken: HashMap<(i32, i32), Vec<Rect>>,
+    /// Every place taken once: marks that fall on one pixel (a robot standing
+    /// through many commands) block it once.
+    seen: HashSet<Rect>,
 }
 
 impl Placer {
     /// Keeps a square of `half` pixels round `at` clear (a marker).
     pub fn block(&mut self, at: (i32, i32), half: i32) {
-        self.taken.push(Rect {
+        self.take(Rect {
             x0: at.0 - half,
             y0: at.1 - half,
             x1: at.0 + half,
             y1: at.1 + half,
         });
+    }
+
+    fn take(&mut self, r: Rect) {
+        if !self.seen.insert(r) {
+            return;
+        }
+        for cell in cells(&r) {
+            self.taken.entry(cell).or_default().push(r);
+        }
+    }
+
+    fn free(&self, r: &Rect) -> bool {
+        cells(r).all(|cell| {
+            self.taken
+                .get(&cell)
+                .is_none_or(|rs| !rs.iter().any(|t| t.overlaps(r)))
+        })
     }
 
     /// The offset from `at` of the top-left corner of a free place for a label of
@@ -69,8 +102,8 @@ impl Placer {
                     x1: at.0 + dx + w,
                     y1: at.1 + dy + h,
                 };
-                if !self.taken.iter().any(|t| t.overlaps(&r)) {
-                    self.taken.push(r);
+                if self.free(&r) {
+                    self.take(r);
                     return Some((dx, dy));
                 }
             }
@@ -84,15 +117,30 @@ impl Placer {
 /// other ("6" and "11" reading as "61").
 pub fn group(points: &[(i32, i32)], near: i32) -> Vec<Vec<usize>> {
     let mut groups: Vec<Vec<usize>> = Vec::new();
+    // Points filed by cells of `near` pixels: a close point is in this cell or one
+    // beside it.
+    let side = near.max(1);
+    let mut filed: HashMap<(i32, i32), Vec<usize>> = HashMap::new();
+    let mut group_of = vec![0; points.len()];
     for (i, p) in points.iter().enumerate() {
-        let close = |j: &usize| {
-            let q = points[*j];
-            (p.0 - q.0).abs() <= near && (p.1 - q.1).abs() <= near
-        };
-        match groups.iter_mut().find(|g| g.iter().any(close)) {
-            Some(g) => g.push(i),
-            None => groups.push(vec![i]),
-        }
+        let cell = (p.0.div_euclid(side), p.1.div_euclid(side));
+        let close = (-1..=1)
+            .flat_map(|dx| (-1..=1).map(move |dy| (cell.0 + dx, cell.1 + dy)))
+            .filter_map(|c| filed.get(&c))
+            .flatten()
+            .filter(|&&j| {
+                let q = points[j];
+                (p.0 - q.0).abs() <= near && (p.1 - q.1).abs() <= near
+            })
+            .map(|&j| group_of[j])
+            .min();
+        let g = close.unwrap_or_else(|| {
+            groups.push(Vec::new());
+            groups.len() - 1
+        });
+        groups[g].push(i);
+        group_of[i] = g;
+        filed.entry(cell).or_default().push(i);
     }
     groups
 }
