@@ -36,7 +36,14 @@ fn start() -> Server {
     let exe =
         std::env::var("ILMR_SERVE_BIN").unwrap_or_else(|_| env!("CARGO_BIN_EXE_ilmrc").into());
     let mut child = Command::new(exe)
-        .args(["serve", "--listen", "127.0.0.1:0", "--world", "empty"])
+        .args([
+            "serve",
+            "--no-tls",
+            "--listen",
+            "127.0.0.1:0",
+            "--world",
+            "empty",
+        ])
         .stdout(Stdio::piped())
         .stderr(Stdio::null())
         .spawn()

@@ -54,7 +54,14 @@ fn readers(path: &str, dir: &Path) -> Vec<Vec<String>> {
         own(&["run", "--robot", "scripted", "--scenario", path, &task]),
         own(&["shell", "--task", path]),
         own(&["shell", "--history", path]),
-        own(&["serve", "--listen", "127.0.0.1:0", "--world", path]),
+        own(&[
+            "serve",
+            "--no-tls",
+            "--listen",
+            "127.0.0.1:0",
+            "--world",
+            path,
+        ]),
     ]
 }
 

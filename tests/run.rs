@@ -627,7 +627,7 @@ fn a_world_fault_for_a_missing_part_is_refused_by_run_serve_and_shell() {
     );
     for args in [
         vec!["run", "--world", w, "examples/short_task.ilmr"],
-        vec!["serve", "--listen", "127.0.0.1:0", "--world", w],
+        vec!["serve", "--no-tls", "--listen", "127.0.0.1:0", "--world", w],
         vec!["shell", "--world", w],
     ] {
         let (code, out, err) = ilmrc_within(&args, std::time::Duration::from_secs(60));

@@ -21,9 +21,16 @@ struct Server {
 }
 
 impl Server {
+    /// A server of plain TCP that asks nobody who they are.
     fn start(extra: &[&str]) -> Server {
+        Server::launch(&["--no-tls"], extra)
+    }
+
+    /// A server with these security flags (`--no-tls`, `--credentials DIR`, ...).
+    fn launch(security: &[&str], extra: &[&str]) -> Server {
         let mut child = Command::new(env!("CARGO_BIN_EXE_ilmrc"))
             .args(["serve", "--listen", "127.0.0.1:0"])
+            .args(security)
             .args(extra)
             .stdout(Stdio::piped())
             .stderr(Stdio::null())
@@ -340,10 +347,10 @@ fn a_port_in_use_or_a_bad_address_is_a_usage_error() {
     for (listen, says) in [
         (server.addr.as_str(), "in use"),
         ("192.0.2.1:7878", "loopback"),
-        ("localhost", "expected a loopback address"),
+        ("localhost", "expected an address and port"),
     ] {
         let mut child = Command::new(env!("CARGO_BIN_EXE_ilmrc"))
-            .args(["serve", "--listen", listen])
+            .args(["serve", "--no-tls", "--listen", listen])
             .stdout(Stdio::null())
             .stderr(Stdio::piped())
             .spawn()
@@ -397,7 +404,7 @@ fn a_task_starts_with_the_server_and_a_bad_one_is_refused() {
     drop(server);
 
     let out = Command::new(env!("CARGO_BIN_EXE_ilmrc"))
-        .args(["serve", "--listen", "127.0.0.1:0", "--task"])
+        .args(["serve", "--no-tls", "--listen", "127.0.0.1:0", "--task"])
         .arg(&bad)
         .output()
         .expect("run ilmrc serve");
@@ -437,6 +444,9 @@ mod flood;
 
 #[path = "serve/exhaustion.rs"]
 mod exhaustion;
+
+#[path = "serve/secure.rs"]
+mod secure;
 
 #[test]
 fn a_blank_line_is_answered_so_a_planner_never_waits_for_nothing() {
@@ -540,7 +550,7 @@ fn a_task_nested_past_the_limits_is_a_clear_error_before_listening() {
         let task = dir.join(format!("deep{depth}.ilmr"));
         std::fs::write(&task, nested_ifs(depth)).expect("write task");
         let mut child = Command::new(env!("CARGO_BIN_EXE_ilmrc"))
-            .args(["serve", "--listen", "127.0.0.1:0", "--task"])
+            .args(["serve", "--no-tls", "--listen", "127.0.0.1:0", "--task"])
             .arg(&task)
             .env("NO_COLOR", "1")
             .stdout(Stdio::piped())
@@ -701,6 +711,7 @@ fn a_single_robot_server_refuses_a_robots_name_and_fleet_with_robot_options() {
     let out = Command::new(env!("CARGO_BIN_EXE_ilmrc"))
         .args([
             "serve",
+            "--no-tls",
             "--listen",
             "127.0.0.1:0",
             "--fleet",

@@ -28,6 +28,8 @@ pub struct FleetArgs {
     /// address and port).
     #[arg(long)]
     pub listen: Option<String>,
+    #[command(flatten)]
+    pub security: crate::serve::SecurityArgs,
     /// Seconds between the robots' state tables on stdout.
     #[arg(long, default_value_t = 1.0)]
     pub every: f64,
@@ -82,19 +84,19 @@ fn execute(args: &FleetArgs) -> Result<ExitCode, String> {
         }
     }
     let listener = match &args.listen {
-        Some(a) => Some(crate::serve::listen(a)?),
+        Some(a) => Some(crate::serve::listen(a, &args.security)?),
         None => None,
     };
     let Some(fleet) = open(&args.file)? else {
         return Ok(ExitCode::from(crate::EXIT_ERRORS));
     };
-    if let Some(l) = listener {
+    if let Some((l, security)) = listener {
         let local = l.local_addr().map_err(|e| e.to_string())?;
         println!("listening on {local}");
         let robots = Arc::clone(&fleet.robots);
         std::thread::Builder::new()
             .name("ilmr-fleet-serve".into())
-            .spawn(move || crate::serve::accept(&l, &robots))
+            .spawn(move || crate::serve::accept(&l, &robots, security))
             .map_err(|e| format!("cannot start serving: {e}"))?;
     }
     let start = Instant::now();

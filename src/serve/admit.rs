@@ -5,10 +5,12 @@
 //! connect and send `stop`.
 
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
-use std::sync::{Arc, Mutex};
+use std::sync::{Arc, Mutex, OnceLock};
 use std::time::{Duration, Instant};
 
 use tokio::sync::Notify;
+
+use super::access::Identity;
 
 /// Clients served at once before a newcomer needs a place made for it.
 pub const MAX_CLIENTS: usize = 64;
@@ -29,6 +31,9 @@ pub struct Place {
     spoken: AtomicBool,
     evicted: AtomicBool,
     pub evict: Notify,
+    /// Who the client is, once it has proved it (at once for a certificate, or on a
+    /// server that asks nobody).
+    identity: OnceLock<Identity>,
 }
 
 impl Place {
@@ -53,6 +58,15 @@ impl Place {
         self.epoch + Duration::from_millis(self.active_ms.load(Ordering::SeqCst))
     }
 
+    pub fn identity(&self) -> Option<&Identity> {
+        self.identity.get()
+    }
+
+    /// Records who the client is; a client proves it once.
+    pub fn identify(&self, identity: Identity) -> Result<(), Identity> {
+        self.identity.set(identity)
+    }
+
     pub fn is_evicted(&self) -> bool {
         self.evicted.load(Ordering::SeqCst)
     }
@@ -70,13 +84,17 @@ pub enum Admission {
 /// A client as the choice sees it.
 #[derive(Debug, Clone, Copy)]
 pub struct Seen {
+    /// It has proved who it is (always, on a server that asks nobody).
+    pub known: bool,
     pub spoken: bool,
     pub silent: Duration,
 }
 
-/// The rule: below the limit, take; else make room with the longest-silent client
-/// that has never finished a request or has been silent `EVICT_AFTER`; else take
-/// into a reserved place; else refuse.
+/// The rule: below the limit, take; else make room with a client that has not proved
+/// who it is, or else with the longest-silent client that has never finished a
+/// request or has been silent `EVICT_AFTER`; else take into a reserved place; else
+/// refuse. So the reserved places are in the end held by clients known to the
+/// server: a stranger gives its place to the next newcomer.
 pub fn choose(clients: &[Seen]) -> Admission {
     if clients.len() < MAX_CLIENTS {
         return Admission::Take;
@@ -84,8 +102,8 @@ pub fn choose(clients: &[Seen]) -> Admission {
     let idlest = clients
         .iter()
         .enumerate()
-        .filter(|(_, c)| !c.spoken || c.silent >= EVICT_AFTER)
-        .max_by_key(|(_, c)| c.silent);
+        .filter(|(_, c)| !c.known || !c.spoken || c.silent >= EVICT_AFTER)
+        .max_by_key(|(_, c)| (!c.known, c.silent));
     match idlest {
         Some((i, _)) => Admission::MakeRoom(i),
         None if clients.len() < MAX_CLIENTS + RESERVED_PLACES => Admission::Take,
@@ -113,6 +131,7 @@ impl Registry {
         let seen: Vec<Seen> = places
             .iter()
             .map(|p| Seen {
+                known: p.identity().is_some(),
                 spoken: p.has_spoken(),
                 silent: now.saturating_duration_since(p.last_active()),
             })
@@ -133,6 +152,7 @@ impl Registry {
             spoken: AtomicBool::new(false),
             evicted: AtomicBool::new(false),
             evict: Notify::new(),
+            identity: OnceLock::new(),
         });
         places.push(Arc::clone(&place));
         Some(place)
@@ -153,6 +173,7 @@ mod tests {
     fn clients(n: usize, spoken: bool, silent_ms: u64) -> Vec<Seen> {
         vec![
             Seen {
+                known: true,
                 spoken,
                 silent: Duration::from_millis(silent_ms),
             };
@@ -178,6 +199,16 @@ mod tests {
         let mut c = clients(MAX_CLIENTS, true, 100);
         c[9].silent = EVICT_AFTER;
         assert_eq!(choose(&c), Admission::MakeRoom(9));
+    }
+
+    #[test]
+    fn a_client_that_has_not_proved_who_it_is_makes_room_first() {
+        // Busy all of them, even the stranger; it goes, not the longest silent.
+        let mut c = clients(MAX_CLIENTS + RESERVED_PLACES, true, 100);
+        c[5].silent = Duration::from_millis(900);
+        c[11].known = false;
+        c[11].silent = Duration::from_millis(1);
+        assert_eq!(choose(&c), Admission::MakeRoom(11));
     }
 
     #[test]

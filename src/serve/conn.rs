@@ -6,6 +6,7 @@
 //! read while earlier requests still wait takes effect at once (and again in its
 //! place, so a `cont` sent before it cannot undo it).
 
+use std::net::SocketAddr;
 use std::sync::Arc;
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::mpsc::Sender;
@@ -15,10 +16,13 @@ use serde_json::{Map, Value};
 use tokio::io::{AsyncRead, AsyncReadExt, AsyncWrite, AsyncWriteExt, ReadHalf, WriteHalf};
 use tokio::sync::{mpsc, oneshot};
 
-use super::Timeouts;
+use super::Server;
+use super::access::Role;
 use super::admit::{MAX_CLIENTS, Place};
+use super::audit::Who;
+use super::lease::{Driver, Grant};
 use super::outbox::Outbox;
-use super::protocol::{self, Parsed, Request};
+use super::protocol::{self, LeaseAsk, Parsed, Request};
 use super::reply;
 use crate::live::engine::{Job, LineAnswer};
 use crate::live::guard::guarded;
@@ -58,36 +62,82 @@ enum Item {
     Close(String),
 }
 
+/// One connected client as the answering side sees it.
+struct Client<'a> {
+    conn: u64,
+    place: &'a Place,
+    server: &'a Server,
+    outbox: &'a Arc<Outbox>,
+    peer: Option<SocketAddr>,
+}
+
+impl Client<'_> {
+    fn who(&self) -> Who<'_> {
+        Who {
+            identity: self.place.identity(),
+            conn: self.conn,
+            peer: self.peer,
+        }
+    }
+
+    fn audit(&self, what: &str, fields: Map<String, Value>) {
+        if let Some(audit) = &self.server.audit {
+            audit.record(&self.who(), what, fields);
+        }
+    }
+}
+
 /// Serves one client until it closes, breaks a limit, times out or is evicted.
 /// Never touches a robot except through its jobs and its emergency stop. The stream
-/// is a TCP socket today, and any byte stream (a TLS session) as well: whatever the
-/// stream must do before the first request (a handshake) counts against the request
-/// timeout once it is done inside `read`.
-pub async fn serve<S>(stream: S, place: Arc<Place>, robots: Arc<Robots>, timeouts: Timeouts)
+/// is a TCP socket or a TLS session whose handshake is done.
+pub async fn serve<S>(stream: S, place: Arc<Place>, server: Arc<Server>, peer: Option<SocketAddr>)
 where
     S: AsyncRead + AsyncWrite + Send + 'static,
 {
     let conn = place.conn;
+    let robots = &server.robots;
     let (read, write) = tokio::io::split(stream);
     let outbox = Arc::new(Outbox::default());
     let mut writer = tokio::spawn(write_out(write, Arc::clone(&outbox), Arc::clone(&place)));
     let (items, queue) = mpsc::channel(READ_AHEAD);
     let pending = Pending::default();
+    let client = Client {
+        conn,
+        place: &place,
+        server: &server,
+        outbox: &outbox,
+        peer,
+    };
+    // The answerer ends the connection (a failed authentication, a limit); a reader
+    // that ends (the client left) leaves what it read to be answered first.
     let work = async {
-        tokio::join!(
-            read_lines(read, items, &pending, &robots, &place, timeouts.request),
-            answer_requests(queue, conn, &robots, &outbox, &pending),
+        let reader = read_lines(
+            read,
+            items,
+            &pending,
+            robots,
+            &place,
+            server.timeouts.request,
         );
+        let answerer = answer_requests(queue, &client, &pending);
+        tokio::pin!(reader, answerer);
+        tokio::select! {
+            () = &mut answerer => {}
+            () = &mut reader => answerer.await,
+        }
     };
     let ended = tokio::select! {
         () = work => None,
-        why = watchdog(&place, timeouts.idle) => Some(why),
+        why = watchdog(&place, server.timeouts.idle) => Some(why),
     };
     if let Some(why) = ended {
         outbox.answer(protocol::answer(protocol::error(&why), None));
     }
     for (_, live) in robots.all() {
         let _ = live.jobs.send(Job::Unsubscribe { conn });
+    }
+    for robot in server.leases.release(conn, None) {
+        client.audit("lease released", robot_field(&robot, "left"));
     }
     outbox.close();
     if tokio::time::timeout(GOODBYE_WAIT, &mut writer)
@@ -148,7 +198,7 @@ async fn read_lines<S: AsyncRead>(
             begun = (!buf.is_empty()).then(Instant::now);
             place.spoke();
             if pending.requests.fetch_add(1, Ordering::SeqCst) > 0 {
-                stop_at_once(&line, robots);
+                stop_at_once(&line, robots, place);
             }
             pending.bytes.fetch_add(line.len(), Ordering::SeqCst);
             if items.send(Item::Line(line)).await.is_err() {
@@ -204,9 +254,10 @@ async fn read_lines<S: AsyncRead>(
 }
 
 /// A `stop` read while the client's earlier requests wait: raised now, answered in
-/// its place. Only short lines are looked at, so this costs the reader nothing.
-fn stop_at_once(line: &[u8], robots: &Robots) {
-    if line.len() > 256 {
+/// its place. Only short lines are looked at, so this costs the reader nothing; only
+/// a client that has proved who it is may stop the robot.
+fn stop_at_once(line: &[u8], robots: &Robots, place: &Place) {
+    if line.len() > 256 || place.identity().is_none() {
         return;
     }
     let Ok(text) = std::str::from_utf8(line) else {
@@ -218,18 +269,20 @@ fn stop_at_once(line: &[u8], robots: &Robots) {
     }
 }
 
-/// Answers requests in order; each answer is written before the next is taken.
-async fn answer_requests(
-    mut queue: mpsc::Receiver<Item>,
-    conn: u64,
-    robots: &Robots,
-    outbox: &Arc<Outbox>,
-    pending: &Pending,
-) {
+/// Answers requests in order; each answer is written before the next is taken. A
+/// client that has not proved who it is gets one request to do so.
+async fn answer_requests(mut queue: mpsc::Receiver<Item>, client: &Client<'_>, pending: &Pending) {
+    let outbox = client.outbox;
     while let Some(item) = queue.recv().await {
         match item {
             Item::Line(bytes) => {
-                if let Some(answer) = respond(&bytes, conn, robots, outbox).await {
+                let (answer, go_on) = if client.place.identity().is_some() {
+                    (respond(&bytes, client).await, true)
+                } else {
+                    let (answer, known) = authenticate(&bytes, client);
+                    (Some(answer), known)
+                };
+                if let Some(answer) = answer {
                     outbox.answer(answer);
                 }
                 while outbox.answers_waiting() > 0 {
@@ -238,6 +291,9 @@ async fn answer_requests(
                 pending.requests.fetch_sub(1, Ordering::SeqCst);
                 pending.bytes.fetch_sub(bytes.len(), Ordering::SeqCst);
                 pending.answered.notify_one();
+                if !go_on {
+                    return;
+                }
             }
             Item::Close(why) => {
                 outbox.answer(protocol::answer(protocol::error(&why), None));
@@ -247,9 +303,54 @@ async fn answer_requests(
     }
 }
 
+/// The first request of a client that came without a certificate: its token. The
+/// answer, and whether the client is now known (else it is closed: a wrong token
+/// gets no second try on the same connection).
+fn authenticate(bytes: &[u8], client: &Client<'_>) -> (String, bool) {
+    let refuse =
+        |why: &str, id: Option<&Value>| (protocol::answer(protocol::error(why), id), false);
+    let Some(access) = &client.server.access else {
+        // A server that asks nobody knows every client from the start.
+        return refuse("this server asks nobody who they are", None);
+    };
+    let Ok(text) = std::str::from_utf8(bytes) else {
+        return refuse("not UTF-8; authenticate first: {\"auth\": TOKEN}", None);
+    };
+    let parsed = protocol::parse(text.trim());
+    let Request::Auth(token) = &parsed.request else {
+        return refuse(
+            "authenticate first: send {\"auth\": TOKEN} (or connect with a client certificate)",
+            parsed.id.as_ref(),
+        );
+    };
+    let Some(identity) = access.by_token(token) else {
+        client.audit("auth refused", Map::new());
+        return refuse("unknown token", parsed.id.as_ref());
+    };
+    let mut answer = Map::new();
+    answer.insert("ok".into(), Value::Bool(true));
+    answer.insert("client".into(), Value::String(identity.name.clone()));
+    answer.insert("role".into(), Value::String(identity.role.name().into()));
+    let known = client.place.identify(identity).is_ok();
+    client.audit("auth", Map::new());
+    (protocol::answer(answer, parsed.id.as_ref()), known)
+}
+
+fn robot_field(robot: &str, key_value: &str) -> Map<String, Value> {
+    let mut m = Map::new();
+    if !robot.is_empty() {
+        m.insert("robot".into(), Value::String(robot.into()));
+    }
+    if !key_value.is_empty() {
+        m.insert("why".into(), Value::String(key_value.into()));
+    }
+    m
+}
+
 /// The answer line to one request line; `None` when the engine queued it itself (a
 /// subscription's, before its first event).
-async fn respond(bytes: &[u8], conn: u64, robots: &Robots, outbox: &Arc<Outbox>) -> Option<String> {
+async fn respond(bytes: &[u8], client: &Client<'_>) -> Option<String> {
+    let (conn, robots, outbox) = (client.conn, &*client.server.robots, client.outbox);
     let Ok(text) = std::str::from_utf8(bytes) else {
         return Some(protocol::answer(protocol::error("not UTF-8"), None));
     };
@@ -266,7 +367,8 @@ async fn respond(bytes: &[u8], conn: u64, robots: &Robots, outbox: &Arc<Outbox>)
         Ok(p) => p,
         Err(why) => return Some(protocol::answer(protocol::error(&why), None)),
     };
-    let answer = ask(&parsed, conn, robots, outbox).await?;
+    client.server.leases.renew(conn);
+    let answer = ask(&parsed, client).await?;
     let rendered = guarded("answering the request", || {
         let mut a = answer.render();
         if let (true, Some(name)) = (robots.is_fleet(), &parsed.robot) {
@@ -274,7 +376,9 @@ async fn respond(bytes: &[u8], conn: u64, robots: &Robots, outbox: &Arc<Outbox>)
         }
         if parsed.request == Request::Status {
             a.insert("dropped_events".into(), Value::from(outbox.dropped()));
+            status_of_client(&mut a, client, parsed.robot.as_deref());
         }
+        audit_answer(client, &parsed, &a);
         protocol::answer(a, parsed.id.as_ref())
     });
     Some(rendered.unwrap_or_else(|why| protocol::answer(protocol::error(&why), None)))
@@ -297,11 +401,18 @@ impl Answer {
     }
 }
 
-async fn ask(parsed: &Parsed, conn: u64, robots: &Robots, outbox: &Arc<Outbox>) -> Option<Answer> {
+async fn ask(parsed: &Parsed, client: &Client<'_>) -> Option<Answer> {
+    let (conn, robots, outbox) = (client.conn, &*client.server.robots, client.outbox);
     let ready = |m| Some(Answer::Ready(m));
     match &parsed.request {
         Request::Invalid(why) => return ready(protocol::error(why)),
         Request::Stop => return ready(stop(robots, parsed.robot.as_deref()).await),
+        Request::Auth(_) => {
+            let known = client.place.identity().map_or("", |i| i.name.as_str());
+            return ready(protocol::error(&format!(
+                "already authenticated as `{known}`"
+            )));
+        }
         // A fleet's status and events without a robot's name are the whole fleet's.
         Request::Status if robots.is_fleet() && parsed.robot.is_none() => {
             return ready(fleet_status(robots).await);
@@ -315,6 +426,18 @@ async fn ask(parsed: &Parsed, conn: u64, robots: &Robots, outbox: &Arc<Outbox>) 
         Ok(live) => live,
         Err(why) => return ready(protocol::error(&why)),
     };
+    let robot = parsed.robot.as_deref().unwrap_or("");
+    if let Request::Lease(lease) = parsed.request {
+        return ready(match may_drive(client, "lease") {
+            Err(why) => protocol::error(&why),
+            Ok(()) => lease_answer(client, robot, lease),
+        });
+    }
+    if let Request::Ilmr(_) = parsed.request
+        && let Err(why) = may_drive(client, "send lines").and_then(|()| hold_lease(client, robot))
+    {
+        return ready(protocol::error(&why));
+    }
     let answered = match &parsed.request {
         Request::Ilmr(text) => {
             let text = text.clone();
@@ -331,9 +454,155 @@ async fn ask(parsed: &Parsed, conn: u64, robots: &Robots, outbox: &Arc<Outbox>) 
                 .await
                 .map(Answer::Ready);
         }
-        Request::Invalid(_) | Request::Stop => unreachable_answer(),
+        Request::Invalid(_) | Request::Stop | Request::Auth(_) | Request::Lease(_) => {
+            unreachable_answer()
+        }
     };
     Some(answered.unwrap_or_else(Answer::Ready))
+}
+
+/// Roles and leases apply where the server knows its clients (an access file).
+fn roles_apply(client: &Client<'_>) -> bool {
+    client.server.access.is_some()
+}
+
+/// Whether this client's role lets it `act` (lines, `cont`, a lease).
+fn may_drive(client: &Client<'_>, act: &str) -> Result<(), String> {
+    match client.place.identity() {
+        Some(id) if id.role == Role::Observer && roles_apply(client) => Err(format!(
+            "`{}` is an observer: only a driver may {act} (an observer may ask for status, \
+             subscribe and stop)",
+            id.name
+        )),
+        _ => Ok(()),
+    }
+}
+
+/// A driver's line needs the robot's lease: taken if free, kept if held.
+fn hold_lease(client: &Client<'_>, robot: &str) -> Result<(), String> {
+    if !roles_apply(client) {
+        return Ok(());
+    }
+    let driver = driver(client);
+    match client.server.leases.take(robot, &driver)? {
+        Grant::Renewed => {}
+        Grant::Taken => client.audit("lease taken", lease_fields(robot, None)),
+        Grant::TakenFrom(lapsed) => {
+            client.audit("lease taken", lease_fields(robot, Some(&lapsed)));
+        }
+    }
+    Ok(())
+}
+
+fn driver<'a>(client: &'a Client<'_>) -> Driver<'a> {
+    Driver {
+        conn: client.conn,
+        client: client.place.identity().map_or("", |i| i.name.as_str()),
+        outbox: client.outbox,
+    }
+}
+
+fn lease_fields(robot: &str, from: Option<&str>) -> Map<String, Value> {
+    let mut m = robot_field(robot, "");
+    if let Some(from) = from {
+        m.insert("from".into(), Value::String(from.into()));
+    }
+    m
+}
+
+/// `{"lease": "take" | "release" | "takeover"}`.
+fn lease_answer(client: &Client<'_>, robot: &str, ask: LeaseAsk) -> Map<String, Value> {
+    if !roles_apply(client) {
+        return protocol::error(
+            "this server has no access file: every client drives, and there is no lease",
+        );
+    }
+    let leases = &client.server.leases;
+    let driver = driver(client);
+    let mut m = Map::new();
+    match ask {
+        LeaseAsk::Take => match leases.take(robot, &driver) {
+            Err(why) => return protocol::error(&why),
+            Ok(Grant::Renewed) => {}
+            Ok(Grant::Taken) => client.audit("lease taken", lease_fields(robot, None)),
+            Ok(Grant::TakenFrom(c)) => client.audit("lease taken", lease_fields(robot, Some(&c))),
+        },
+        LeaseAsk::Takeover => {
+            let from = match leases.take_over(robot, &driver) {
+                Grant::TakenFrom(c) => Some(c),
+                Grant::Taken | Grant::Renewed => None,
+            };
+            client.audit("lease taken over", lease_fields(robot, from.as_deref()));
+            if let Some(from) = from {
+                m.insert("from".into(), Value::String(from));
+            }
+        }
+        LeaseAsk::Release => {
+            let gone = leases.release(client.conn, Some(robot));
+            if gone.is_empty() {
+                return protocol::error("this client does not hold the lease");
+            }
+            client.audit("lease released", robot_field(robot, ""));
+            m.insert("ok".into(), Value::Bool(true));
+            m.insert("lease".into(), Value::String("released".into()));
+            return m;
+        }
+    }
+    m.insert("ok".into(), Value::Bool(true));
+    m.insert("lease".into(), Value::String("held".into()));
+    m.insert(
+        "lapses_after".into(),
+        Value::from(super::lease::LEASE_TIME.as_secs()),
+    );
+    m
+}
+
+/// What a status answer says of the asking client and of the robot's lease.
+fn status_of_client(answer: &mut Map<String, Value>, client: &Client<'_>, robot: Option<&str>) {
+    if let Some(id) = client.place.identity() {
+        let mut you = Map::new();
+        you.insert("client".into(), Value::String(id.name.clone()));
+        you.insert("role".into(), Value::String(id.role.name().into()));
+        answer.insert("you".into(), Value::Object(you));
+    }
+    if roles_apply(client) {
+        let lease = match client.server.leases.holder(robot.unwrap_or("")) {
+            None => Value::Null,
+            Some((holder, left)) => {
+                let mut l = Map::new();
+                l.insert("holder".into(), Value::String(holder));
+                l.insert(
+                    "lapses_in".into(),
+                    Value::from(left.as_millis() as f64 / 1000.0),
+                );
+                Value::Object(l)
+            }
+        };
+        answer.insert("lease".into(), lease);
+    }
+}
+
+/// Lines, `cont` and `stop` go into the audit log with their outcome.
+fn audit_answer(client: &Client<'_>, parsed: &Parsed, answer: &Map<String, Value>) {
+    let what = match &parsed.request {
+        Request::Ilmr(text) if text == "cont" => "cont",
+        Request::Ilmr(_) => "line",
+        Request::Stop => "stop",
+        _ => return,
+    };
+    let mut fields = robot_field(parsed.robot.as_deref().unwrap_or(""), "");
+    if let Request::Ilmr(text) = &parsed.request {
+        fields.insert("text".into(), Value::String(text.clone()));
+    }
+    for key in ["ok", "t", "error"] {
+        if let Some(v) = answer.get(key) {
+            fields.insert(key.into(), v.clone());
+        }
+    }
+    if let Some(Value::Array(d)) = answer.get("diagnostics") {
+        fields.insert("diagnostics".into(), Value::from(d.len()));
+    }
+    client.audit(what, fields);
 }
 
 fn text_of(request: &Request) -> String {
@@ -583,7 +852,15 @@ mod tests {
                 let (stream, _) = listener.accept().await.expect("a client");
                 let registry = super::super::admit::Registry::default();
                 let place = registry.admit(1).expect("a place");
-                let connection = serve(stream, place, robots, Timeouts::default());
+                let _ = place.identify(crate::serve::access::Identity::anonymous(1));
+                let server = Arc::new(Server {
+                    robots,
+                    timeouts: crate::serve::Timeouts::default(),
+                    access: None,
+                    leases: crate::serve::lease::Leases::default(),
+                    audit: None,
+                });
+                let connection = serve(stream, place, server, None);
                 // What a client costs besides its socket: this task (the 4 KiB read
                 // chunk included), its writer's and the buffers it has filled.
                 let size = std::mem::size_of_val(&connection);

@@ -3,19 +3,31 @@
 //! TCP send ILMR text as JSON lines and are answered at once with success or the
 //! diagnostics; they may subscribe to the trace's events. Protocol: docs/serve.md.
 
+mod access;
 mod admit;
+mod audit;
 mod conn;
+mod credentials;
+mod lease;
 mod outbox;
 mod protocol;
 mod reply;
+mod tls;
 
 use std::io::Write;
 use std::net::{SocketAddr, TcpListener};
+use std::path::PathBuf;
 use std::process::ExitCode;
 use std::sync::Arc;
 use std::time::Duration;
 
+use tokio_rustls::TlsAcceptor;
+
 use crate::live::{RobotArgs, Robots};
+use access::{Access, Identity};
+use audit::Audit;
+use lease::Leases;
+use tls::CredentialFiles;
 
 pub use admit::{MAX_CLIENTS, RESERVED_PLACES};
 
@@ -47,6 +59,96 @@ impl Default for Timeouts {
     }
 }
 
+/// How a server on the network knows its clients (`serve` and `fleet --listen`).
+#[derive(clap::Args, Default)]
+pub struct SecurityArgs {
+    /// Serve TLS and authenticate clients with the credentials in DIR (server.pem,
+    /// server.key, ca.pem, access.toml), as `--init-credentials DIR` makes them.
+    #[arg(long, value_name = "DIR")]
+    pub credentials: Option<PathBuf>,
+    /// Serve plain TCP without TLS: on a loopback address only, and only when asked
+    /// for with this flag.
+    #[arg(long, conflicts_with = "credentials")]
+    pub no_tls: bool,
+    /// The clients, their roles and tokens (TOML, owner-only; docs/serve.md).
+    /// Default with --credentials: DIR/access.toml. With --no-tls and no access file,
+    /// every client drives and none is asked who it is.
+    #[arg(long, value_name = "FILE")]
+    pub access: Option<PathBuf>,
+    /// Append what clients do (authentication, leases, lines, cont, stop) to FILE as
+    /// JSON lines. Default with --credentials: DIR/audit.jsonl.
+    #[arg(long, value_name = "FILE")]
+    pub audit: Option<PathBuf>,
+}
+
+/// What a server knows of its clients, made once at start from `SecurityArgs`.
+pub struct Security {
+    tls: Option<TlsAcceptor>,
+    access: Option<Access>,
+    audit: Option<Audit>,
+}
+
+impl Security {
+    /// Checks the flags against the address and reads the credentials.
+    pub fn from_args(args: &SecurityArgs, addr: &SocketAddr) -> Result<Security, String> {
+        let files = args.credentials.as_deref().map(CredentialFiles::in_dir);
+        if files.is_none() && !args.no_tls {
+            return Err(format!(
+                "--listen {addr}: give --credentials DIR to serve TLS to authenticated \
+                 clients (`ilmrc serve --init-credentials DIR` makes them), or, on a loopback \
+                 address only, --no-tls"
+            ));
+        }
+        if files.is_none() && !addr.ip().is_loopback() {
+            return Err(format!(
+                "--listen {addr}: plain TCP (--no-tls) is served on loopback addresses only \
+                 (127.0.0.1, [::1]); beyond this machine give --credentials DIR"
+            ));
+        }
+        let access_path = args
+            .access
+            .clone()
+            .or_else(|| files.as_ref().map(|f| f.access.clone()));
+        let access = access_path.as_deref().map(Access::load).transpose()?;
+        let tls = match &files {
+            Some(f) => {
+                let access = access.as_ref().ok_or("TLS needs an access file")?;
+                Some(tls::acceptor(f, access.wants_certificates())?)
+            }
+            None => None,
+        };
+        let audit_path = args
+            .audit
+            .clone()
+            .or_else(|| args.credentials.as_ref().map(|dir| dir.join("audit.jsonl")));
+        let audit = audit_path.as_deref().map(Audit::open).transpose()?;
+        Ok(Security { tls, access, audit })
+    }
+
+    /// How the address line describes it.
+    fn describe(&self) -> String {
+        let tls = if self.tls.is_some() {
+            "TLS"
+        } else {
+            "plain TCP"
+        };
+        match &self.access {
+            Some(a) => format!("{tls}, {} clients known", a.len()),
+            None => format!("{tls}, no authentication"),
+        }
+    }
+}
+
+/// What every connection shares.
+pub struct Server {
+    pub robots: Arc<Robots>,
+    pub timeouts: Timeouts,
+    /// `None`: a loopback server that asks nobody who they are.
+    pub access: Option<Access>,
+    pub leases: Leases,
+    pub audit: Option<Audit>,
+}
+
 #[derive(clap::Args)]
 pub struct ServeArgs {
     #[command(flatten)]
@@ -55,10 +157,21 @@ pub struct ServeArgs {
     /// the robot with "robot".
     #[arg(long, conflicts_with_all = ["robot", "model", "world", "start", "task", "skills"])]
     pub fleet: Option<std::path::PathBuf>,
-    /// Where to listen: a loopback address and port, e.g. 127.0.0.1:7878 (port 0 picks
-    /// a free one; the address is printed on stdout).
-    #[arg(long)]
-    pub listen: String,
+    /// Where to listen: an address and port, e.g. 0.0.0.0:7878 with --credentials, or
+    /// 127.0.0.1:7878 with --no-tls (port 0 picks a free one; the address is printed
+    /// on stdout).
+    #[arg(long, required_unless_present = "init_credentials")]
+    pub listen: Option<String>,
+    #[command(flatten)]
+    pub security: SecurityArgs,
+    /// Make a CA, a server certificate, client credentials and an access file in DIR
+    /// (for --credentials DIR), then exit.
+    #[arg(long, value_name = "DIR", conflicts_with_all = ["listen", "credentials", "no_tls"])]
+    pub init_credentials: Option<PathBuf>,
+    /// A host name or address the server's certificate also names (repeat for more;
+    /// localhost, 127.0.0.1 and ::1 are always named).
+    #[arg(long, value_name = "NAME", requires = "init_credentials")]
+    pub san: Vec<String>,
     /// Seconds a client has to finish its first request after connecting, and any
     /// request line after its first byte (default 10).
     #[arg(long, value_name = "SECONDS")]
@@ -96,9 +209,23 @@ fn timeouts(args: &ServeArgs) -> Result<Timeouts, String> {
 }
 
 fn execute(args: &ServeArgs) -> Result<ExitCode, String> {
+    if let Some(dir) = &args.init_credentials {
+        let written = credentials::init(dir, &args.san)?;
+        for path in &written {
+            println!("wrote {}", path.display());
+        }
+        println!(
+            "serve with: ilmrc serve --credentials {} --listen ADDRESS:PORT",
+            dir.display()
+        );
+        return Ok(ExitCode::SUCCESS);
+    }
     let timeouts = timeouts(args)?;
+    let Some(address) = &args.listen else {
+        return Err("--listen ADDRESS:PORT is needed".into());
+    };
     // The address first: a port in use should fail before the task is compiled.
-    let listener = listen(&args.listen)?;
+    let (listener, security) = listen(address, &args.security)?;
     if let Some(path) = &args.fleet {
         let Some(fleet) = crate::fleet::open(path)? else {
             return Ok(ExitCode::from(crate::EXIT_ERRORS));
@@ -107,9 +234,13 @@ fn execute(args: &ServeArgs) -> Result<ExitCode, String> {
             .local_addr()
             .map_err(|e| format!("cannot read the bound address: {e}"))?;
         let names: Vec<&str> = fleet.robots.names().collect();
-        println!("listening on {local} (fleet: {})", names.join(", "));
+        println!(
+            "listening on {local} ({}; fleet: {})",
+            security.describe(),
+            names.join(", ")
+        );
         let _ = std::io::stdout().flush();
-        serve(listener, &fleet.robots, timeouts)?;
+        serve(listener, server(&fleet.robots, timeouts, security))?;
         return Ok(ExitCode::SUCCESS);
     }
     let Some(live) = crate::live::start(&args.live)? else {
@@ -120,39 +251,56 @@ fn execute(args: &ServeArgs) -> Result<ExitCode, String> {
         .map_err(|e| format!("cannot read the bound address: {e}"))?;
     // Clients (and the test) read this line to learn the port.
     println!(
-        "listening on {local} (robot {}, world {})",
-        args.live.robot, live.world
+        "listening on {local} ({}; robot {}, world {})",
+        security.describe(),
+        args.live.robot,
+        live.world
     );
     let _ = std::io::stdout().flush();
-    serve(listener, &Arc::new(Robots::one(live)), timeouts)?;
+    serve(
+        listener,
+        server(&Arc::new(Robots::one(live)), timeouts, security),
+    )?;
     Ok(ExitCode::SUCCESS)
 }
 
-/// Binds a loopback address. The protocol has no authentication: whoever connects
-/// drives the robot, so the server does not listen beyond this machine.
-pub fn listen(text: &str) -> Result<TcpListener, String> {
+/// What the connections share, and the TLS acceptor they go through when there is one.
+fn server(
+    robots: &Arc<Robots>,
+    timeouts: Timeouts,
+    security: Security,
+) -> (Server, Option<TlsAcceptor>) {
+    let server = Server {
+        robots: Arc::clone(robots),
+        timeouts,
+        access: security.access,
+        leases: Leases::default(),
+        audit: security.audit,
+    };
+    (server, security.tls)
+}
+
+/// Binds the address with what the flags say of TLS and clients: beyond loopback
+/// only with credentials, and plain TCP only when asked for.
+pub fn listen(text: &str, args: &SecurityArgs) -> Result<(TcpListener, Security), String> {
     let addr: SocketAddr = text.parse().map_err(|_| {
-        format!("--listen `{text}`: expected a loopback address and port, e.g. 127.0.0.1:7878")
+        format!("--listen `{text}`: expected an address and port, e.g. 127.0.0.1:7878")
     })?;
-    if !addr.ip().is_loopback() {
-        return Err(format!(
-            "--listen `{text}`: only loopback addresses (127.0.0.1, [::1]) are served, since \
-             the protocol has no authentication"
-        ));
-    }
-    TcpListener::bind(addr).map_err(|e| match e.kind() {
+    let security = Security::from_args(args, &addr)?;
+    let listener = TcpListener::bind(addr).map_err(|e| match e.kind() {
         std::io::ErrorKind::AddrInUse => format!("cannot listen on {addr}: the port is in use"),
         _ => format!("cannot listen on {addr}: {e}"),
-    })
+    })?;
+    Ok((listener, security))
 }
 
 /// Serves connections with the default timeouts for as long as the process runs
 /// (`ilmrc fleet --listen`).
-pub fn accept(listener: &TcpListener, robots: &Arc<Robots>) {
+pub fn accept(listener: &TcpListener, robots: &Arc<Robots>, security: Security) {
     let served = listener
         .try_clone()
         .map_err(|e| format!("cannot serve the listener: {e}"))
-        .and_then(|l| serve(l, robots, Timeouts::default()));
+        .and_then(|l| serve(l, server(robots, Timeouts::default(), security)));
     if let Err(e) = served {
         eprintln!("error: {e}");
     }
@@ -160,7 +308,7 @@ pub fn accept(listener: &TcpListener, robots: &Arc<Robots>) {
 
 /// Serves connections, each a task on two network threads, for as long as the
 /// process runs.
-fn serve(listener: TcpListener, robots: &Arc<Robots>, timeouts: Timeouts) -> Result<(), String> {
+fn serve(listener: TcpListener, server: (Server, Option<TlsAcceptor>)) -> Result<(), String> {
     let runtime = tokio::runtime::Builder::new_multi_thread()
         .worker_threads(2)
         .thread_name("ilmr-net")
@@ -174,17 +322,21 @@ fn serve(listener: TcpListener, robots: &Arc<Robots>, timeouts: Timeouts) -> Res
     runtime.block_on(async {
         let listener = tokio::net::TcpListener::from_std(listener)
             .map_err(|e| format!("cannot serve the listener: {e}"))?;
-        accept_all(listener, Arc::clone(robots), timeouts).await;
+        accept_all(listener, Arc::new(server.0), server.1).await;
         Ok(())
     })
 }
 
-async fn accept_all(listener: tokio::net::TcpListener, robots: Arc<Robots>, timeouts: Timeouts) {
+async fn accept_all(
+    listener: tokio::net::TcpListener,
+    server: Arc<Server>,
+    tls: Option<TlsAcceptor>,
+) {
     let registry = Arc::new(admit::Registry::default());
     let mut next_conn: u64 = 0;
     loop {
-        let stream = match listener.accept().await {
-            Ok((s, _)) => s,
+        let (stream, peer) = match listener.accept().await {
+            Ok(accepted) => accepted,
             Err(e) => {
                 // Out of descriptors and the like: say so, and do not spin on it.
                 eprintln!("warning: accepting a connection failed: {e}");
@@ -208,14 +360,66 @@ async fn accept_all(listener: tokio::net::TcpListener, robots: Arc<Robots>, time
         let socket = socket2::SockRef::from(&stream);
         let _ = socket.set_send_buffer_size(SOCKET_BUFFER_BYTES);
         let _ = socket.set_recv_buffer_size(SOCKET_BUFFER_BYTES);
-        let robots = Arc::clone(&robots);
+        let server = Arc::clone(&server);
         let registry = Arc::clone(&registry);
+        let tls = tls.clone();
         tokio::spawn(async move {
             let conn = place.conn;
-            conn::serve(stream, place, robots, timeouts).await;
+            match tls {
+                None => {
+                    if server.access.is_none() {
+                        let _ = place.identify(Identity::anonymous(conn));
+                    }
+                    conn::serve(stream, place, server, Some(peer)).await;
+                }
+                Some(tls) => handshake(stream, peer, place, server, &tls).await,
+            }
             registry.leave(conn);
         });
     }
+}
+
+/// A TLS client: the handshake within the request timeout (else it is closed with no
+/// word, as it cannot read one), then its certificate's name, if it gave one.
+async fn handshake(
+    stream: tokio::net::TcpStream,
+    peer: SocketAddr,
+    place: Arc<admit::Place>,
+    server: Arc<Server>,
+    tls: &TlsAcceptor,
+) {
+    let within = server.timeouts.request;
+    let Ok(Ok(mut session)) = tokio::time::timeout(within, tls.accept(stream)).await else {
+        return;
+    };
+    let certificate = session
+        .get_ref()
+        .1
+        .peer_certificates()
+        .and_then(|c| c.first());
+    if let (Some(cert), Some(access)) = (certificate, &server.access) {
+        let name = tls::common_name(cert);
+        match name.as_deref().and_then(|n| access.by_certificate(n)) {
+            Some(identity) => {
+                let _ = place.identify(identity);
+            }
+            None => {
+                use tokio::io::AsyncWriteExt;
+                let why = format!(
+                    "the certificate of `{}` is not a client of this server (access file)",
+                    name.as_deref().unwrap_or("?")
+                );
+                let line = protocol::answer(protocol::error(&why), None);
+                let _ = tokio::time::timeout(within, async {
+                    let _ = session.write_all(format!("{line}\n").as_bytes()).await;
+                    let _ = session.shutdown().await;
+                })
+                .await;
+                return;
+            }
+        }
+    }
+    conn::serve(session, place, server, Some(peer)).await;
 }
 
 #[cfg(test)]
@@ -244,6 +448,11 @@ mod tests {
                 format!("{} s", REQUEST_TIMEOUT.as_secs()),
             ),
             ("IDLE_TIMEOUT", format!("{} s", IDLE_TIMEOUT.as_secs())),
+            ("LEASE_TIME", format!("{} s", lease::LEASE_TIME.as_secs())),
+            (
+                "MAX_AUDIT_BYTES",
+                format!("{} MiB", audit::MAX_AUDIT_BYTES >> 20),
+            ),
             (
                 "EVENT_BUDGET_BYTES",
                 format!("{} KiB", EVENT_BUDGET_BYTES >> 10),
@@ -295,7 +504,10 @@ mod tests {
                 ros2: crate::ros2::Ros2Args::default(),
             },
             fleet: None,
-            listen: "127.0.0.1:0".into(),
+            listen: Some("127.0.0.1:0".into()),
+            security: SecurityArgs::default(),
+            init_credentials: None,
+            san: Vec::new(),
             request_timeout: request,
             idle_timeout: idle,
         };

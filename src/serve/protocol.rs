@@ -14,8 +14,20 @@ pub enum Request {
     Stop,
     /// Start sending the trace's events on this connection.
     Subscribe,
+    /// A client's token: the first request to a server with an access file, unless
+    /// the client came with a certificate.
+    Auth(String),
+    /// A driver asks for the robot's lease, gives it up, or takes it from another.
+    Lease(LeaseAsk),
     /// Not a request: why, for the error object.
     Invalid(String),
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum LeaseAsk {
+    Take,
+    Release,
+    Takeover,
 }
 
 /// A request line, the `id` the client gave it (echoed in the answer) and the robot
@@ -61,8 +73,8 @@ fn request_of(object: &Map<String, Value>) -> Request {
     let keys: Vec<&str> = object.keys().map(String::as_str).collect();
     let [key] = keys[..] else {
         return Request::Invalid(format!(
-            "expected exactly one of \"ilmr\", \"status\", \"stop\", \"cont\", \"subscribe\" \
-             (besides \"id\" and \"robot\"), got {}",
+            "expected exactly one of \"ilmr\", \"status\", \"stop\", \"cont\", \"subscribe\", \
+             \"auth\", \"lease\" (besides \"id\" and \"robot\"), got {}",
             if keys.is_empty() {
                 "none".to_string()
             } else {
@@ -82,6 +94,14 @@ fn request_of(object: &Map<String, Value>) -> Request {
         ("cont", Value::Bool(true)) => Request::Ilmr("cont".into()),
         ("subscribe", Value::String(s)) if s == "events" => Request::Subscribe,
         ("subscribe", _) => Request::Invalid("\"subscribe\" takes \"events\"".into()),
+        ("auth", Value::String(token)) => Request::Auth(token.clone()),
+        ("auth", _) => Request::Invalid("\"auth\" takes the client's token, a string".into()),
+        ("lease", Value::String(s)) if s == "take" => Request::Lease(LeaseAsk::Take),
+        ("lease", Value::String(s)) if s == "release" => Request::Lease(LeaseAsk::Release),
+        ("lease", Value::String(s)) if s == "takeover" => Request::Lease(LeaseAsk::Takeover),
+        ("lease", _) => {
+            Request::Invalid("\"lease\" takes \"take\", \"release\" or \"takeover\"".into())
+        }
         ("status" | "stop" | "cont", _) => Request::Invalid(format!("\"{key}\" takes true")),
         _ => Request::Invalid(format!("unknown request \"{key}\"")),
     }
@@ -127,6 +147,14 @@ mod tests {
             parse(r#"{"subscribe": "events"}"#).request,
             Request::Subscribe
         );
+        assert_eq!(
+            parse(r#"{"auth": "abc"}"#).request,
+            Request::Auth("abc".into())
+        );
+        assert_eq!(
+            parse(r#"{"lease": "takeover"}"#).request,
+            Request::Lease(LeaseAsk::Takeover)
+        );
         let to_r2 = parse(r#"{"robot": "r2", "ilmr": "goahead(1)"}"#);
         assert_eq!(to_r2.robot.as_deref(), Some("r2"));
         assert_eq!(to_r2.request, Request::Ilmr("goahead(1)".into()));
@@ -145,6 +173,8 @@ mod tests {
         assert!(invalid(r#"{"ilmr": 3}"#).contains("string"));
         assert!(invalid(r#"{"status": false}"#).contains("true"));
         assert!(invalid(r#"{"subscribe": "poses"}"#).contains("events"));
+        assert!(invalid(r#"{"auth": 1}"#).contains("token"));
+        assert!(invalid(r#"{"lease": "steal"}"#).contains("takeover"));
         assert!(invalid(r#"{"fly": true}"#).contains("unknown request \"fly\""));
         assert!(invalid(r#"{"robot": 3, "status": true}"#).contains("robot's name"));
     }

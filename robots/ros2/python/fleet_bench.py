@@ -85,7 +85,7 @@ def main():
             )
     started = time.monotonic()
     serve = subprocess.Popen(
-        [args.ilmrc, "serve", "--fleet", fleet, "--listen", "127.0.0.1:0"],
+        [args.ilmrc, "serve", "--fleet", fleet, "--no-tls", "--listen", "127.0.0.1:0"],
         stdout=subprocess.PIPE,
         text=True,
     )
