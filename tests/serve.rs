@@ -378,6 +378,36 @@ fn a_port_in_use_or_a_bad_address_is_a_usage_error() {
     }
 }
 
+/// The operator's stop is above the task: a running `priority = highest` block, which
+/// holds every other line back, does not hold it back.
+#[test]
+fn the_emergency_stop_halts_a_robot_driven_by_a_priority_block() {
+    let dir = std::env::temp_dir().join(format!("ilmr-serve-priority-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    let task = dir.join("priority.ilmr");
+    std::fs::write(&task, "priority = highest\nspeed(0.4)\ngoahead(20)\n").expect("write task");
+    let server = Server::start(&["--world", "empty", "--task", task.to_str().expect("utf-8")]);
+    let mut c = server.connect();
+    let speed = |c: &mut Client| {
+        c.ask(r#"{"status": true}"#)["speed"]
+            .as_f64()
+            .unwrap_or(0.0)
+    };
+    let deadline = Instant::now() + PATIENCE;
+    while speed(&mut c) < 0.3 {
+        assert!(Instant::now() < deadline, "the task did not get going");
+        std::thread::sleep(Duration::from_millis(50));
+    }
+    let stopped = c.ask(r#"{"stop": true}"#);
+    assert_eq!(stopped["ok"], json!(true), "{stopped}");
+    let deadline = Instant::now() + PATIENCE;
+    while speed(&mut c) > 0.0 {
+        assert!(Instant::now() < deadline, "the robot did not stop");
+        std::thread::sleep(Duration::from_millis(50));
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
 #[test]
 fn a_task_starts_with_the_server_and_a_bad_one_is_refused() {
     let dir = std::env::temp_dir().join(format!("ilmr-serve-{}", std::process::id()));

@@ -276,6 +276,8 @@ impl Engine {
             b.waiting.extend(waiting);
             return;
         }
+        // The operator's stop is not the task's to hold back.
+        self.vm.lift_priority();
         let base = self.vm.module().counts();
         let answer = self.line("stop");
         let joined = match answer.outcome {

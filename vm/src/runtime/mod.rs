@@ -446,6 +446,13 @@ impl<H: Hal, C: Clock> Vm<H, C> {
         self.pending.extend(start);
     }
 
+    /// Lets lines start although a `priority = highest` block runs: for an operator's
+    /// emergency stop, which is above the task's own priorities. The block runs on;
+    /// the lines held back start at the next tick, in the order they came.
+    pub fn lift_priority(&mut self) -> bool {
+        self.priority.take().is_some_and(|p| self.nodes.alive(p))
+    }
+
     fn start_pending(&mut self) {
         if self.pending.is_empty() {
             return;
