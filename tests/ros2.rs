@@ -515,6 +515,47 @@ fn an_oversized_scan_never_becomes_the_robots_and_it_drives_on_the_real_scans() 
     }
 }
 
+/// A second node commanding `cmd_vel` (a teleop that takes over, then lets go): ILMR
+/// sees the other writer, yields the robot while it speaks (a zero twist, then
+/// silence), says so, and drives on to its goal once it has been silent.
+#[test]
+fn a_second_driver_on_cmd_vel_is_seen_and_yielded_to_until_it_lets_go() {
+    let _serial = one_at_a_time();
+    let d = drive_beside(
+        "second-driver",
+        "speed(0.4)\nm=gotoxy(2,1)\nwait(m)\n",
+        &["--duration=60"],
+        &["--max-time", "40"],
+        Some(&format!("{} --seconds 4", hostile("cmd_vel"))),
+    );
+    let others = d
+        .summary
+        .lines()
+        .find(|l| l.trim_start().starts_with("other drivers"))
+        .unwrap_or_else(|| panic!("the other writer went unseen:\n{}", d.summary));
+    assert!(others.contains("from 1 other writer"), "{others}");
+    assert!(!others.contains("yielded the robot 0 times"), "{others}");
+    assert!(
+        d.stderr.contains("another node publishes on /cmd_vel"),
+        "no notice of the other driver: {}",
+        d.stderr
+    );
+    // It let go after 4 s; the task then went on to its goal.
+    let (x, y, _) = d.pose;
+    assert!(
+        (x - 2.0).hypot(y - 1.0) < 0.10,
+        "ended at ({x:.3}, {y:.3})\n{}",
+        d.summary
+    );
+    assert_eq!(
+        d.code,
+        Some(3),
+        "the yield is told as a refusal: {}",
+        d.summary
+    );
+    within_the_model(&d);
+}
+
 /// Runs `command` beside `ilmrc sim --ros2 SIM...` in a namespace of their own, with
 /// DDS on loopback; returns the command's report and the simulator's stdout.
 fn beside_the_simulator(sim: &[&str], command: &[&str]) -> (Value, String) {

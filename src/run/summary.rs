@@ -174,6 +174,12 @@ pub fn render<C: Clock>(
             l.most_in_one_tick,
             l.stale_holds
         ));
+        if l.foreign_commands > 0 {
+            s.push_str(&format!(
+                "  other drivers   {} cmd_vel samples from {} other writer(s); yielded the robot {} times\n",
+                l.foreign_commands, l.foreign_writers, l.yields
+            ));
+        }
     }
     if k.lines_accepted + k.lines_rejected > 0 {
         s.push_str(&format!(

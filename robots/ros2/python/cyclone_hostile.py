@@ -7,6 +7,8 @@ but are not what they claim, as fast as it can or at a steady rate.
     --mode nan        well-formed `odom` samples whose pose is NaN, as fast as Cyclone
                       takes them (a flood)
     --mode oversize   a `scan` of 3 million beams (12 MB) every second
+    --mode cmd_vel    a second driver: zero twists on `cmd_vel` at 20 Hz for
+                      `--seconds` (default 3), then silence, as a teleop that lets go
 
 Prints `ready` once its writer exists; runs until SIGTERM. Prints how many it sent."""
 
@@ -17,6 +19,7 @@ import time
 from dataclasses import dataclass
 
 from cyclonedds.core import Policy, Qos
+from cyclonedds.util import duration
 from cyclonedds.domain import DomainParticipant
 from cyclonedds.idl import IdlStruct
 from cyclonedds.idl.types import int32
@@ -51,7 +54,8 @@ def main():
     p = argparse.ArgumentParser()
     p.add_argument("--domain", type=int, default=0)
     p.add_argument("--namespace", default="")
-    p.add_argument("--mode", choices=["malformed", "nan", "oversize"], required=True)
+    p.add_argument("--mode", choices=["malformed", "nan", "oversize", "cmd_vel"], required=True)
+    p.add_argument("--seconds", type=float, default=3.0)
     args = p.parse_args()
     ns = args.namespace.rstrip("/")
     dp = DomainParticipant(args.domain)
@@ -61,6 +65,11 @@ def main():
     if args.mode == "malformed":
         w = DataWriter(dp, Topic(dp, f"rt{ns}/odom", NotOdometry), qos=qos)
         sample, pause = NotOdometry(only=7), 0.005
+    elif args.mode == "cmd_vel":
+        # Reliable, as a teleop or Nav2 writes it, so the robot obeys it too.
+        reliable = Qos(Policy.Reliability.Reliable(duration(milliseconds=100)), Policy.History.KeepLast(10))
+        w = DataWriter(dp, Topic(dp, f"rt{ns}/cmd_vel", Twist), qos=reliable)
+        sample, pause = Twist(linear=Vector3(x=0.0, y=0.0, z=0.0), angular=Vector3(x=0.0, y=0.0, z=0.0)), 0.05
     elif args.mode == "nan":
         w = DataWriter(dp, Topic(dp, f"rt{ns}/odom", Odometry), qos=qos)
         sample, pause = nan_odometry(), 0.0
@@ -81,9 +90,11 @@ def main():
         pause = 1.0
     print("ready", flush=True)
     sent = 0
+    until = time.monotonic() + args.seconds if args.mode == "cmd_vel" else math.inf
     while not stopping:
-        w.write(sample)
-        sent += 1
+        if time.monotonic() < until:
+            w.write(sample)
+            sent += 1
         if pause:
             time.sleep(pause)
     print(f"sent {sent}", flush=True)

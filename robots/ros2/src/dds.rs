@@ -120,6 +120,12 @@ impl Participant {
         self.participant.domain_id()
     }
 
+    /// Whether a sample's writer belongs to this participant (its GUID prefix).
+    pub fn is_own(&self, writer: rustdds::GUID) -> bool {
+        use rustdds::RTPSEntity;
+        writer.prefix == self.participant.guid().prefix
+    }
+
     fn topic<M: RosMessage>(
         &self,
         name: &TopicName,
@@ -211,12 +217,18 @@ impl<M: RosMessage + 'static> Reader<M> {
     /// Hands `each` up to `max` samples that have arrived, oldest first; a sample that
     /// does not decode is counted, remembered and skipped.
     pub fn drain(&mut self, max: usize, mut each: impl FnMut(M)) -> Drained {
+        self.drain_from(max, |m, _| each(m))
+    }
+
+    /// As [`Reader::drain`], with the GUID of the writer of each sample.
+    pub fn drain_from(&mut self, max: usize, mut each: impl FnMut(M, rustdds::GUID)) -> Drained {
         let mut seen = Drained::default();
         while seen.taken + seen.dropped < max {
             match self.inner.try_take_one() {
                 Ok(Some(change)) => {
                     seen.taken += 1;
-                    each(change.sample);
+                    let writer = change.writer_guid();
+                    each(change.sample, writer);
                 }
                 Ok(None) => break,
                 Err(e) => {

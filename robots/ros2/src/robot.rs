@@ -31,6 +31,14 @@ pub const MAX_SAMPLES_PER_TICK: usize = 64;
 /// drivers (TurtleBot 3: 0.5 s; Nav2's `velocity_smoother`: 1 s).
 pub const KEEPALIVE: f64 = 0.1;
 
+/// Another participant's `cmd_vel` sample within this long, s, means another node
+/// drives the robot (a teleop, a navigation stack): ILMR yields it, sending one zero
+/// twist and then nothing, until that node has been silent this long.
+pub const YIELD_WINDOW: f64 = 0.5;
+
+/// Other writers on `cmd_vel` told apart at most (the rest are counted only).
+const MAX_FOREIGN_WRITERS: usize = 16;
+
 /// The topics, relative to the namespace unless absolute.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Topics {
@@ -84,6 +92,11 @@ pub struct LinkStats {
     pub odometry_unusable: u64,
     /// Times the backend itself held the robot (zero twists) for a stale stream.
     pub stale_holds: u64,
+    /// `cmd_vel` samples from other participants, the writers they came from (up to
+    /// 16 told apart), and the times ILMR yielded the robot to them.
+    pub foreign_commands: u64,
+    pub foreign_writers: usize,
+    pub yields: u64,
     /// The most samples of one topic read in one tick (at most
     /// [`MAX_SAMPLES_PER_TICK`]).
     pub most_in_one_tick: usize,
@@ -116,12 +129,14 @@ impl Recorded {
 struct Endpoints {
     // Dropped last: the readers and the writer belong to it.
     cmd_vel: Writer<Twist>,
+    /// `cmd_vel` read back: any sample of another participant's is a second driver.
+    cmd_vel_watch: Reader<Twist>,
     odom: Reader<Odometry>,
     scan: Reader<LaserScan>,
     battery: Reader<BatteryState>,
     tf: Reader<TFMessage>,
     tf_static: Reader<TFMessage>,
-    _participant: Participant,
+    participant: Participant,
 }
 
 /// Frames mounted on the robot's body frame, as `tf` and `tf_static` place them: where
@@ -171,6 +186,13 @@ pub struct Ros2Robot {
     /// Holding the robot for a stale stream now, and how often it began.
     stale: bool,
     stale_holds: u64,
+    /// When another participant's `cmd_vel` last arrived (VM clock), how many, from
+    /// which writers; yielding the robot to it now, and how often that began.
+    foreign_t: Option<f64>,
+    foreign_commands: u64,
+    foreign_writers: Vec<rustdds::GUID>,
+    yielding: bool,
+    yields: u64,
 }
 
 impl Ros2Robot {
@@ -184,12 +206,14 @@ impl Ros2Robot {
         let participant = Participant::join(config.domain_id, config.reach)?;
         let link = Endpoints {
             cmd_vel: participant.writer(&topic(&config.topics.cmd_vel)?, Profile::Reliable)?,
+            cmd_vel_watch: participant
+                .reader(&topic(&config.topics.cmd_vel)?, Profile::SensorData)?,
             odom: participant.reader(&topic(&config.topics.odom)?, config.sensor_profile)?,
             scan: participant.reader(&topic(&config.topics.scan)?, config.sensor_profile)?,
             battery: participant.reader(&topic(&config.topics.battery)?, config.sensor_profile)?,
             tf: participant.reader(&topic("tf")?, Profile::SensorData)?,
             tf_static: participant.reader(&topic("tf_static")?, Profile::Latched)?,
-            _participant: participant,
+            participant,
         };
         let mut robot = Ros2Robot {
             link,
@@ -216,6 +240,11 @@ impl Ros2Robot {
             scanner_timeout: config.scanner_timeout,
             stale: false,
             stale_holds: 0,
+            foreign_t: None,
+            foreign_commands: 0,
+            foreign_writers: Vec::new(),
+            yielding: false,
+            yields: 0,
         };
         robot.wait_for_streams(config)?;
         Ok(robot)
@@ -381,6 +410,48 @@ impl Ros2Robot {
             self.battery = voltage;
         }
         self.recorded = recorded;
+        self.watch_cmd_vel(now);
+    }
+
+    /// Notes `cmd_vel` samples that another participant wrote.
+    fn watch_cmd_vel(&mut self, now: f64) {
+        let Endpoints {
+            participant,
+            cmd_vel_watch,
+            ..
+        } = &mut self.link;
+        let (mut foreign, writers) = (0, &mut self.foreign_writers);
+        cmd_vel_watch.drain_from(MAX_SAMPLES_PER_TICK, |_, writer| {
+            if participant.is_own(writer) {
+                return;
+            }
+            foreign += 1;
+            if writers.len() < MAX_FOREIGN_WRITERS && !writers.contains(&writer) {
+                writers.push(writer);
+            }
+        });
+        if foreign > 0 {
+            self.foreign_commands += foreign;
+            self.foreign_t = Some(now);
+        }
+    }
+
+    /// Why ILMR must not drive: another node has been commanding the robot.
+    fn contender(&self) -> Option<String> {
+        let at = self.foreign_t?;
+        (self.now - at < YIELD_WINDOW).then(|| {
+            format!(
+                "another node publishes on {} ({} writer{} so far): ILMR yields the robot \
+                 to it until it has been silent {YIELD_WINDOW} s",
+                self.link.cmd_vel.topic(),
+                self.foreign_writers.len(),
+                if self.foreign_writers.len() == 1 {
+                    ""
+                } else {
+                    "s"
+                }
+            )
+        })
     }
 
     fn send(&mut self) -> Result<(), HalError> {
@@ -463,6 +534,9 @@ impl Ros2Robot {
             battery: self.link.battery.counts(),
             odometry_unusable: self.odometry_unusable,
             stale_holds: self.stale_holds,
+            foreign_commands: self.foreign_commands,
+            foreign_writers: self.foreign_writers.len(),
+            yields: self.yields,
             most_in_one_tick: [
                 self.link.odom.most_in_one_drain(),
                 self.link.scan.most_in_one_drain(),
@@ -500,6 +574,14 @@ impl Hal for Ros2Robot {
         }
         self.now = t;
         self.receive(t);
+        if self.contender().is_some() {
+            // One zero twist, then silence: the other node drives.
+            if self.twist != Twist::default() {
+                self.twist = Twist::default();
+                return self.send();
+            }
+            return Ok(());
+        }
         if self.twist != Twist::default() && self.stale_stream().is_some() {
             self.twist = Twist::default();
             return self.send();
@@ -551,14 +633,24 @@ impl Hal for Ros2Robot {
     /// timeout, whatever the VM asks: the VM's supervisor watches a stream from its
     /// second sample, and this holds the robot even for one that never got that far.
     fn set_motion(&mut self, speed: f64, curvature: f64) -> Result<(), HalError> {
+        let contender = self.contender();
         let stale = self.stale_stream();
-        let twist = match stale {
-            Some(_) => Twist::default(),
-            None => convert::cmd_vel(speed, curvature, self.limits),
+        let twist = match (&contender, &stale) {
+            (None, None) => convert::cmd_vel(speed, curvature, self.limits),
+            _ => Twist::default(),
         };
         if twist != self.twist {
             self.twist = twist;
             self.send()?;
+        }
+        let yield_began = contender.is_some() && !self.yielding;
+        self.yielding = contender.is_some();
+        if let Some(why) = contender {
+            if yield_began && speed != 0.0 {
+                self.yields += 1;
+                return Err(HalError::Refused(why));
+            }
+            return Ok(());
         }
         let began = stale.is_some() && !self.stale;
         self.stale = stale.is_some();
