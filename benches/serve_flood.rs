@@ -7,6 +7,9 @@
 //! gap between two ticks (`longest_tick_gap` in `status`). A fresh server per flood,
 //! so each gap is that flood's.
 //!
+//! Before the floods: what an idle client costs, and how long an authenticated driver
+//! waits over TLS, quiet and behind 1,200 connections that hold places.
+//!
 //! `cargo bench -p ilmrc --bench serve_flood` (ILMR_FLOOD_SAMPLES, default 5;
 //! ILMR_FLOOD_CLIENTS, the large floods' clients, default 63; ILMR_SERVE_BIN, another
 //! `ilmrc` to measure, e.g. one built from an older commit).
@@ -18,6 +21,7 @@ use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::time::{Duration, Instant};
 
+use rustls::pki_types::pem::PemObject;
 use serde_json::Value;
 
 struct Server {
@@ -32,18 +36,18 @@ impl Drop for Server {
     }
 }
 
+fn exe() -> String {
+    std::env::var("ILMR_SERVE_BIN").unwrap_or_else(|_| env!("CARGO_BIN_EXE_ilmrc").into())
+}
+
 fn start() -> Server {
-    let exe =
-        std::env::var("ILMR_SERVE_BIN").unwrap_or_else(|_| env!("CARGO_BIN_EXE_ilmrc").into());
-    let mut child = Command::new(exe)
-        .args([
-            "serve",
-            "--no-tls",
-            "--listen",
-            "127.0.0.1:0",
-            "--world",
-            "empty",
-        ])
+    start_with(&["--no-tls"])
+}
+
+fn start_with(security: &[&str]) -> Server {
+    let mut child = Command::new(exe())
+        .args(["serve", "--listen", "127.0.0.1:0", "--world", "empty"])
+        .args(security)
         .stdout(Stdio::piped())
         .stderr(Stdio::null())
         .spawn()
@@ -247,6 +251,80 @@ fn places() {
     );
 }
 
+/// A driver's wall time from connecting to the answer of its first `status` over
+/// TLS: the TCP connection, the handshake (rustls, the server's CA), `{"auth": TOKEN}`
+/// and `status`. Quiet, then with 1,000 silent connections and 200 that sent bytes
+/// that are not TLS held open.
+fn tls_drivers(samples: usize) {
+    let dir = std::env::temp_dir().join(format!("ilmr-bench-creds-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    let made = Command::new(exe())
+        .args(["serve", "--init-credentials"])
+        .arg(&dir)
+        .output()
+        .expect("run ilmrc");
+    assert!(made.status.success(), "--init-credentials failed");
+    let server = start_with(&["--credentials", dir.to_str().expect("UTF-8 path")]);
+    let token = std::fs::read_to_string(dir.join("planner.token")).expect("a token");
+    let mut roots = rustls::RootCertStore::empty();
+    for cert in rustls::pki_types::CertificateDer::pem_file_iter(dir.join("ca.pem"))
+        .expect("ca.pem")
+        .flatten()
+    {
+        roots.add(cert).expect("a CA certificate");
+    }
+    let provider = Arc::new(rustls::crypto::ring::default_provider());
+    let config = Arc::new(
+        rustls::ClientConfig::builder_with_provider(provider)
+            .with_safe_default_protocol_versions()
+            .expect("TLS versions")
+            .with_root_certificates(roots)
+            .with_no_client_auth(),
+    );
+    let drive = || {
+        let asked = Instant::now();
+        let tcp = TcpStream::connect(&server.addr).expect("connect");
+        tcp.set_nodelay(true).expect("nodelay");
+        let name = rustls::pki_types::ServerName::try_from("localhost").expect("a name");
+        let conn = rustls::ClientConnection::new(Arc::clone(&config), name).expect("TLS");
+        let mut tls = rustls::StreamOwned::new(conn, tcp);
+        let request = format!("{{\"auth\": \"{}\"}}\n{{\"status\": true}}\n", token.trim());
+        tls.write_all(request.as_bytes()).expect("send");
+        let mut reader = BufReader::new(tls);
+        let mut line = String::new();
+        for _ in 0..2 {
+            line.clear();
+            reader.read_line(&mut line).expect("an answer");
+        }
+        let status: Value = serde_json::from_str(&line).expect("JSON");
+        assert_eq!(status["you"]["role"], "driver", "{status}");
+        asked.elapsed().as_secs_f64() * 1e3
+    };
+    let figures = |label: &str, drive: &dyn Fn() -> f64| {
+        let mut ms: Vec<f64> = (0..samples).map(|_| drive()).collect();
+        ms.sort_by(f64::total_cmp);
+        println!(
+            "| TLS driver served (connect, handshake, auth, status), {label} | {:.1} / {:.1} ms |",
+            ms[ms.len() / 2],
+            ms[ms.len() - 1]
+        );
+    };
+    println!("| newcomer | median / max of {samples} |");
+    println!("| --- | ---: |");
+    figures("quiet", &drive);
+    let mut held: Vec<TcpStream> = (0..1000)
+        .map(|_| TcpStream::connect(&server.addr).expect("connect"))
+        .collect();
+    for _ in 0..200 {
+        let mut s = TcpStream::connect(&server.addr).expect("connect");
+        let _ = s.write_all(b"GET / HTTP/1.1\r\n\r\n\x16\x03\x01\xff\xff");
+        held.push(s);
+    }
+    figures("after 1,000 silent and 200 garbage connections", &drive);
+    drop(held);
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
 fn main() {
     // `cargo bench` passes `--bench`; nothing else is taken.
     let samples: usize = std::env::var("ILMR_FLOOD_SAMPLES")
@@ -281,6 +359,7 @@ fn main() {
         },
     ];
     places();
+    tls_drivers(samples.max(5));
     println!(
         "| flood | stop acknowledged, ms (median / max of {samples}) | longest tick gap, ms | flood answers | simulated s per wall s |"
     );

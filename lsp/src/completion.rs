@@ -2,7 +2,7 @@
 //! parameters), skills and block keywords; an argument list gets only what its grammar
 //! allows at that argument; conditions and expressions get variables and constants.
 
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, HashMap};
 
 use ilmr_compiler::check::Resolved;
 use ilmr_compiler::diagnostic::FileId;
@@ -11,8 +11,8 @@ use ilmr_stdlib::{
     CATALOGUE, CommandSpec, ModelNames, NameSpace, Occurs, ParamKind, Syntax, VarKind,
 };
 use tower_lsp_server::ls_types::{
-    CompletionItem, CompletionItemKind, CompletionTextEdit, Documentation, InsertTextFormat,
-    MarkupContent, MarkupKind, TextEdit,
+    CompletionItem, CompletionItemKind, CompletionList, CompletionTextEdit, Documentation,
+    InsertTextFormat, MarkupContent, MarkupKind, TextEdit,
 };
 
 use crate::analysis::Program;
@@ -45,10 +45,17 @@ pub struct Request<'a> {
 struct Items<'a> {
     req: &'a Request<'a>,
     /// By label, so that a name offered twice (a keyword of two forms) appears once.
-    items: BTreeMap<String, (Group, CompletionItem)>,
+    /// Each with its group and its rank in the group (variables: nearest first).
+    items: BTreeMap<String, (Group, usize, CompletionItem)>,
 }
 
-pub fn complete(req: &Request<'_>) -> Vec<CompletionItem> {
+/// Variables offered in one list at most. A task of 100,000 lines binds some 26,000;
+/// past this many the list is marked incomplete, so the editor asks again as the
+/// name is typed, and the list holds those that begin with what is typed, then those
+/// that contain it, each the nearest bound above the cursor first.
+pub const MAX_VARIABLE_ITEMS: usize = 100;
+
+pub fn complete(req: &Request<'_>) -> CompletionList {
     let text = req.program.text(req.file);
     let line = req.index.line_of(req.offset);
     let line_start = req.index.line_span(text, line).start as usize;
@@ -57,7 +64,10 @@ pub fn complete(req: &Request<'_>) -> Vec<CompletionItem> {
         req,
         items: BTreeMap::new(),
     };
-    let vars = variables(req.program, req.file, req.offset, line_start);
+    let typed = text
+        .get(cursor.word.start as usize..cursor.word.end as usize)
+        .unwrap_or("");
+    let (vars, incomplete) = variables(req.program, req.file, req.offset, line_start, typed);
     match &cursor.context {
         Context::Nothing => {}
         Context::Statement => {
@@ -89,7 +99,7 @@ pub fn complete(req: &Request<'_>) -> Vec<CompletionItem> {
             ..
         } => {
             let Some(spec) = context::command(name) else {
-                return Vec::new();
+                return CompletionList::default();
             };
             if setting.is_some() {
                 items.variables(&vars, |k| k.numeric_field().is_some());
@@ -103,11 +113,12 @@ pub fn complete(req: &Request<'_>) -> Vec<CompletionItem> {
         }
     }
     let word = req.index.range(text, cursor.word);
-    let mut out: Vec<(Group, CompletionItem)> = items.items.into_values().collect();
-    out.sort_by(|a, b| (a.0, &a.1.label).cmp(&(b.0, &b.1.label)));
-    out.into_iter()
+    let mut out: Vec<(Group, usize, CompletionItem)> = items.items.into_values().collect();
+    out.sort_by(|a, b| (a.0, a.1, &a.2.label).cmp(&(b.0, b.1, &b.2.label)));
+    let items = out
+        .into_iter()
         .enumerate()
-        .map(|(i, (_, mut item))| {
+        .map(|(i, (_, _, mut item))| {
             item.sort_text = Some(format!("{i:04}"));
             let new_text = item
                 .insert_text
@@ -116,49 +127,96 @@ pub fn complete(req: &Request<'_>) -> Vec<CompletionItem> {
             item.text_edit = Some(CompletionTextEdit::Edit(TextEdit::new(word, new_text)));
             item
         })
-        .collect()
+        .collect();
+    CompletionList {
+        is_incomplete: incomplete,
+        items,
+    }
 }
 
-/// The variables visible at `offset`: in a task, those bound on a line above; in a
-/// skill, every variable of the program, since skills share the task's records.
+/// The variables visible at `offset` whose names contain `typed` (any case): in a
+/// task, those bound on a line above; in a skill, every variable of the program,
+/// since skills share the task's records. At most [`MAX_VARIABLE_ITEMS`]: names that
+/// begin with `typed` first, each group the nearest binding above the cursor first;
+/// `true` when some were left out.
 pub fn variables(
     program: &Program,
     file: FileId,
     offset: usize,
     line_start: usize,
-) -> Vec<(String, VarKind)> {
-    let analysis = program.analysis();
-    let mut out: BTreeMap<String, (String, VarKind)> = BTreeMap::new();
+    typed: &str,
+) -> (Vec<(String, VarKind)>, bool) {
+    let typed = typed.to_lowercase();
+    // By lower-case name: (does not begin with `typed`, bytes from the nearest binding
+    // above to the cursor), and the variable.
+    let mut found: HashMap<String, ((bool, usize), VarKind)> = HashMap::new();
+    let mut offer = |spelling: &'_ str, kind: VarKind, distance: usize| {
+        let name = spelling.to_lowercase();
+        let Some(at) = name.find(&typed) else { return };
+        let rank = (at != 0, distance);
+        found
+            .entry(name)
+            .and_modify(|e| e.0 = e.0.min(rank))
+            .or_insert((rank, kind));
+    };
+    let mut spellings: HashMap<String, &str> = HashMap::new();
     match program.unit_at(file, offset) {
         Some(unit) if unit.skill.is_none() => {
             for (_, var) in unit.vars.iter() {
-                if var
+                let nearest = var
                     .defs
                     .iter()
-                    .any(|(f, s)| *f == file && (s.end as usize) <= line_start)
-                {
-                    out.entry(var.spelling.to_lowercase())
-                        .or_insert((var.spelling.clone(), var.kind));
+                    .filter(|(f, s)| *f == file && (s.end as usize) <= line_start)
+                    .map(|(_, s)| line_start - s.end as usize)
+                    .min();
+                if let Some(distance) = nearest {
+                    offer(&var.spelling, var.kind, distance);
+                    spellings
+                        .entry(var.spelling.to_lowercase())
+                        .or_insert(&var.spelling);
                 }
             }
         }
         _ => {
-            for unit in &analysis.units {
+            for unit in &program.analysis().units {
                 for (_, var) in unit.vars.iter().filter(|(_, v)| !v.defs.is_empty()) {
-                    out.entry(var.spelling.to_lowercase())
-                        .or_insert((var.spelling.clone(), var.kind));
+                    offer(&var.spelling, var.kind, 0);
+                    spellings
+                        .entry(var.spelling.to_lowercase())
+                        .or_insert(&var.spelling);
                 }
             }
         }
     }
-    out.into_values().collect()
+    let mut ranked: Vec<((bool, usize), &str, VarKind)> = found
+        .iter()
+        .map(|(name, (rank, kind))| (*rank, spellings.get(name).copied().unwrap_or(name), *kind))
+        .collect();
+    let order = |a: &((bool, usize), &str, VarKind), b: &((bool, usize), &str, VarKind)| {
+        a.0.cmp(&b.0).then_with(|| a.1.cmp(b.1))
+    };
+    let incomplete = ranked.len() > MAX_VARIABLE_ITEMS;
+    if incomplete {
+        ranked.select_nth_unstable_by(MAX_VARIABLE_ITEMS, order);
+        ranked.truncate(MAX_VARIABLE_ITEMS);
+    }
+    ranked.sort_by(order);
+    let vars = ranked
+        .into_iter()
+        .map(|(_, name, kind)| (name.to_string(), kind))
+        .collect();
+    (vars, incomplete)
 }
 
 impl Items<'_> {
     fn add(&mut self, group: Group, item: CompletionItem) {
+        self.add_ranked(group, 0, item);
+    }
+
+    fn add_ranked(&mut self, group: Group, rank: usize, item: CompletionItem) {
         self.items
             .entry(item.label.to_lowercase())
-            .or_insert((group, item));
+            .or_insert((group, rank, item));
     }
 
     fn keyword(&mut self, word: &str, doc: &str) {
@@ -274,9 +332,10 @@ impl Items<'_> {
     }
 
     fn variables(&mut self, vars: &[(String, VarKind)], keep: impl Fn(VarKind) -> bool) {
-        for (name, kind) in vars.iter().filter(|(_, k)| keep(*k)) {
-            self.add(
+        for (rank, (name, kind)) in vars.iter().filter(|(_, k)| keep(*k)).enumerate() {
+            self.add_ranked(
                 Group::Variable,
+                rank,
                 CompletionItem {
                     label: name.clone(),
                     kind: Some(CompletionItemKind::VARIABLE),

@@ -9,10 +9,10 @@ use std::path::PathBuf;
 use ilmr_compiler::Span;
 use ilmr_compiler::diagnostic::FileId;
 use tower_lsp_server::ls_types::{
-    CodeAction, CodeActionKind, CodeActionOrCommand, CompletionItem, Diagnostic, DocumentSymbol,
-    FoldingRange, Hover, HoverContents, Location, MarkupContent, MarkupKind, Position,
-    PrepareRenameResponse, Range, SemanticToken, SignatureHelp, TextDocumentContentChangeEvent,
-    TextEdit, Uri, WorkspaceEdit,
+    CodeAction, CodeActionKind, CodeActionOrCommand, CompletionItem, CompletionList, Diagnostic,
+    DocumentSymbol, FoldingRange, Hover, HoverContents, Location, MarkupContent, MarkupKind,
+    Position, PrepareRenameResponse, Range, SemanticToken, SignatureHelp,
+    TextDocumentContentChangeEvent, TextEdit, Uri, WorkspaceEdit,
 };
 
 use crate::analysis::{Analyzer, Program};
@@ -48,6 +48,9 @@ pub struct Engine {
     analyzer: Analyzer,
     /// Lines for the client's log (`window/logMessage`), taken after each job.
     log: Vec<String>,
+    /// Edits applied since the last check (and whether one was to the robot model):
+    /// a burst of edits is checked once, after its last ([`Engine::apply_change`]).
+    stale: Option<bool>,
 }
 
 impl Default for Engine {
@@ -75,6 +78,7 @@ impl Engine {
             published: BTreeSet::new(),
             analyzer,
             log,
+            stale: None,
         }
     }
 
@@ -108,11 +112,29 @@ impl Engine {
         version: i32,
         changes: Vec<TextDocumentContentChangeEvent>,
     ) -> Vec<Publish> {
+        self.apply_change(uri, version, changes);
+        self.refresh().unwrap_or_default()
+    }
+
+    /// Applies an edit without checking: the server applies every edit of a burst as
+    /// it comes and checks once, when no newer edit waits ([`Engine::refresh`]).
+    pub fn apply_change(
+        &mut self,
+        uri: &Uri,
+        version: i32,
+        changes: Vec<TextDocumentContentChangeEvent>,
+    ) {
         if self.workspace.change(uri, version, changes) {
-            self.recheck(FileKind::of(uri.as_str()) == Some(FileKind::RobotModel))
-        } else {
-            Vec::new()
+            let model = FileKind::of(uri.as_str()) == Some(FileKind::RobotModel);
+            self.stale = Some(self.stale.unwrap_or(false) | model);
         }
+    }
+
+    /// Checks the edits applied since the last check, if any: what to publish.
+    /// Queries call it first, so that they never answer from an older text's analysis.
+    pub fn refresh(&mut self) -> Option<Vec<Publish>> {
+        let model = self.stale.take()?;
+        Some(self.recheck(model))
     }
 
     pub fn close(&mut self, uri: &Uri) -> Vec<Publish> {
@@ -149,6 +171,8 @@ impl Engine {
     }
 
     fn recheck(&mut self, model_changed: bool) -> Vec<Publish> {
+        // Whatever asked, this check covers the edits applied before it.
+        let model_changed = model_changed | self.stale.take().unwrap_or(false);
         if model_changed {
             self.robot = robot::choose(&self.workspace, self.settings.robot.as_deref());
         }
@@ -242,8 +266,14 @@ impl Engine {
     }
 
     pub fn completion(&self, uri: &Uri, position: Position) -> Vec<CompletionItem> {
+        self.completion_list(uri, position).items
+    }
+
+    /// Completion as the client gets it: incomplete when variables were left out
+    /// ([`completion::MAX_VARIABLE_ITEMS`]), so that it asks again as a name is typed.
+    pub fn completion_list(&self, uri: &Uri, position: Position) -> CompletionList {
         let Some((doc, file, offset)) = self.at(uri, position) else {
-            return Vec::new();
+            return CompletionList::default();
         };
         completion::complete(&completion::Request {
             program: &self.program,

@@ -9,7 +9,8 @@
 use std::panic::AssertUnwindSafe;
 use std::path::PathBuf;
 use std::process::ExitCode;
-use std::sync::mpsc;
+use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::{Arc, mpsc};
 
 use serde_json::Value;
 use tower_lsp_server::jsonrpc::{Error, Result};
@@ -96,6 +97,9 @@ impl EngineHandle {
 struct Backend {
     client: Client,
     engine: EngineHandle,
+    /// Edits received: an edit's job checks only when no newer edit has come, so a
+    /// burst of keystrokes costs one check after the last, not one per keystroke.
+    edits: Arc<AtomicU64>,
 }
 
 impl Backend {
@@ -120,12 +124,25 @@ impl Backend {
         }
     }
 
+    /// Runs a query on the analysis of the latest text (checked first if an edit's
+    /// check was left to a newer edit that has not been checked yet).
+    async fn query<R: Send + 'static>(
+        &self,
+        f: impl FnOnce(&Engine) -> R + Send + 'static,
+    ) -> Option<R> {
+        self.ask(move |e| {
+            e.refresh();
+            f(e)
+        })
+        .await
+    }
+
     async fn position_query<R: Send + 'static>(
         &self,
         doc: TextDocumentPositionParams,
         f: impl FnOnce(&Engine, &Uri, Position) -> R + Send + 'static,
     ) -> Option<R> {
-        self.ask(move |e| f(e, &doc.text_document.uri, doc.position))
+        self.query(move |e| f(e, &doc.text_document.uri, doc.position))
             .await
     }
 }
@@ -145,6 +162,7 @@ pub fn run_stdio() -> ExitCode {
         let (service, socket) = LspService::new(|client| Backend {
             client,
             engine: EngineHandle::spawn(),
+            edits: Arc::default(),
         });
         let output = Output::new(std::io::stdout());
         let input = match transport::incoming(std::io::stdin(), output.clone()) {
@@ -255,8 +273,18 @@ impl LanguageServer for Backend {
     async fn did_change(&self, params: DidChangeTextDocumentParams) {
         let d = params.text_document;
         let changes = params.content_changes;
-        let out = self.ask(move |e| e.change(&d.uri, d.version, changes));
-        self.publish(out.await).await;
+        let this = self.edits.fetch_add(1, Ordering::SeqCst) + 1;
+        let edits = Arc::clone(&self.edits);
+        let out = self.ask(move |e| {
+            e.apply_change(&d.uri, d.version, changes);
+            // A newer edit's job comes behind this one and checks both.
+            if edits.load(Ordering::SeqCst) == this {
+                e.refresh()
+            } else {
+                None
+            }
+        });
+        self.publish(out.await.flatten()).await;
     }
 
     async fn did_close(&self, params: DidCloseTextDocumentParams) {
@@ -287,9 +315,11 @@ impl LanguageServer for Backend {
 
     async fn completion(&self, params: CompletionParams) -> Result<Option<CompletionResponse>> {
         let items = self
-            .position_query(params.text_document_position, |e, u, p| e.completion(u, p))
+            .position_query(params.text_document_position, |e, u, p| {
+                e.completion_list(u, p)
+            })
             .await;
-        Ok(items.map(CompletionResponse::Array))
+        Ok(items.map(CompletionResponse::List))
     }
 
     async fn hover(&self, params: HoverParams) -> Result<Option<Hover>> {
@@ -362,13 +392,13 @@ impl LanguageServer for Backend {
         params: DocumentSymbolParams,
     ) -> Result<Option<DocumentSymbolResponse>> {
         let uri = params.text_document.uri;
-        let symbols = self.ask(move |e| e.document_symbols(&uri)).await;
+        let symbols = self.query(move |e| e.document_symbols(&uri)).await;
         Ok(symbols.map(DocumentSymbolResponse::Nested))
     }
 
     async fn folding_range(&self, params: FoldingRangeParams) -> Result<Option<Vec<FoldingRange>>> {
         let uri = params.text_document.uri;
-        Ok(self.ask(move |e| e.folding_ranges(&uri)).await)
+        Ok(self.query(move |e| e.folding_ranges(&uri)).await)
     }
 
     async fn semantic_tokens_full(
@@ -376,7 +406,7 @@ impl LanguageServer for Backend {
         params: SemanticTokensParams,
     ) -> Result<Option<SemanticTokensResult>> {
         let uri = params.text_document.uri;
-        let data = self.ask(move |e| e.semantic_tokens(&uri)).await;
+        let data = self.query(move |e| e.semantic_tokens(&uri)).await;
         Ok(data.map(|data| {
             SemanticTokensResult::Tokens(SemanticTokens {
                 result_id: None,
@@ -387,13 +417,13 @@ impl LanguageServer for Backend {
 
     async fn formatting(&self, params: DocumentFormattingParams) -> Result<Option<Vec<TextEdit>>> {
         let uri = params.text_document.uri;
-        Ok(self.ask(move |e| e.formatting(&uri)).await.flatten())
+        Ok(self.query(move |e| e.formatting(&uri)).await.flatten())
     }
 
     async fn code_action(&self, params: CodeActionParams) -> Result<Option<CodeActionResponse>> {
         let uri = params.text_document.uri;
         let range = params.range;
-        let actions = self.ask(move |e| e.code_actions(&uri, range)).await;
+        let actions = self.query(move |e| e.code_actions(&uri, range)).await;
         Ok(actions)
     }
 }

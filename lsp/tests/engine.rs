@@ -98,8 +98,9 @@ fn turn_offers_directions_settings_and_positions() {
     let text = "door = sensor(scanner,door)\nn = 3\nm = goahead(1)\nwait(door)\nt = turn($0";
     assert_eq!(
         labels(text),
-        ["left", "right", "c=", "d=", "door", "m"],
-        "`m` is a movement, whose end pose is a position; `t` is bound only by this line"
+        ["left", "right", "c=", "d=", "m", "door"],
+        "`m` is a movement, whose end pose is a position, bound nearer than `door`; `t` \
+         is bound only by this line"
     );
 }
 
@@ -158,10 +159,57 @@ fn a_half_typed_line_keeps_the_rest_of_the_file() {
 
 #[test]
 fn conditions_offer_variables_and_model_constants() {
-    let got = labels("b = sensor(battery)\nif(b < Lo$0");
+    let got = labels("b = sensor(battery)\nif(b < $0");
     assert!(got.contains(&"b".to_string()), "{got:?}");
     assert!(got.contains(&"LowBattery".to_string()), "{got:?}");
     assert!(!got.contains(&"goahead".to_string()), "{got:?}");
+    // Variables are filtered by what is typed (there may be thousands); the model's
+    // names are few and left to the editor's filter.
+    let got = labels("b = sensor(battery)\nlow = 1\nif(b < Lo$0");
+    assert!(got.contains(&"low".to_string()), "{got:?}");
+    assert!(!got.contains(&"b".to_string()), "{got:?}");
+    assert!(got.contains(&"LowBattery".to_string()), "{got:?}");
+}
+
+/// A task that binds more variables than one list holds: the list is marked
+/// incomplete, holds the nearest ones above the cursor first, and narrows to what is
+/// typed, names that begin with it before names that contain it.
+#[test]
+fn a_long_list_of_variables_is_capped_ranked_and_incomplete() {
+    let count = ilmr_lsp::completion::MAX_VARIABLE_ITEMS * 3;
+    let mut text: String = (0..count).map(|i| format!("v{i} = {i}\n")).collect();
+    text.push_str("x_v7 = 1\ngoahead($0");
+    let (engine, u, p) = setup(&[(TASK, &text)]);
+    let list = engine.completion_list(&u, p);
+    assert!(list.is_incomplete);
+    let vars: Vec<&str> = list
+        .items
+        .iter()
+        .filter(|i| i.kind == Some(tower_lsp_server::ls_types::CompletionItemKind::VARIABLE))
+        .map(|i| i.label.as_str())
+        .collect();
+    assert_eq!(vars.len(), ilmr_lsp::completion::MAX_VARIABLE_ITEMS);
+    assert_eq!(
+        &vars[..3],
+        [
+            "x_v7",
+            &format!("v{}", count - 1),
+            &format!("v{}", count - 2)
+        ]
+    );
+    let text = text.replace("goahead($0", "goahead(v7$0");
+    let (engine, u, p) = setup(&[(TASK, &text)]);
+    let list = engine.completion_list(&u, p);
+    let vars: Vec<&str> = list
+        .items
+        .iter()
+        .filter(|i| i.kind == Some(tower_lsp_server::ls_types::CompletionItemKind::VARIABLE))
+        .map(|i| i.label.as_str())
+        .collect();
+    // v7 and v70..v79 begin with it, the nearest (v79) first; x_v7 only contains it.
+    assert!(!list.is_incomplete, "{}", vars.len());
+    assert_eq!(vars.len(), 12, "{vars:?}");
+    assert_eq!((vars[0], vars[10], vars[11]), ("v79", "v7", "x_v7"));
 }
 
 #[test]

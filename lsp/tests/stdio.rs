@@ -400,7 +400,7 @@ fn without_a_workspace_the_setting_names_the_robot() {
         "textDocument/completion",
         json!({"textDocument": {"uri": task}, "position": position(1, 0)}),
     );
-    let items = completion["result"].as_array().expect("a list");
+    let items = completion["result"]["items"].as_array().expect("a list");
     let turn = items.iter().find(|i| i["label"] == "turn").expect("turn");
     assert_eq!(turn["textEdit"]["newText"], "turn");
     s.request("shutdown", Value::Null);

@@ -1,0 +1,141 @@
+#!/usr/bin/env python3
+"""The language server as an editor sees it, measured with a client this project did
+not write the protocol side of (plain JSON-RPC over the server's stdio, from Python's
+standard library): how late the diagnostics of the last of a burst of quick edits
+arrive, and how long completion takes, at 10,000 and 100,000 lines.
+
+    python3 tools/lsp_edits.py [--server target/release/ilmr-lsp] [--lines 10000 100000]
+                               [--edits 200]
+
+Each size: open a generated task (the shape of lsp/benches/latency.rs: searches,
+guards, waits, counting loops, skill calls, 12 lines a block), wait for its first
+diagnostics, send EDITS one-character edits as fast as the pipe takes them, and time
+from the last edit sent to the diagnostics of its version; then completion after
+`gotoxy(` in the middle of the file (median of 20) and the number of items it offered.
+Prints a Markdown table row per size (docs/performance.md).
+"""
+
+import argparse
+import json
+import statistics
+import subprocess
+import sys
+import threading
+import time
+import queue
+
+
+def task(lines):
+    out, i = [], 0
+    while i * 12 < lines:
+        k = i % 50
+        out.append(
+            f"ovi_ö{i} = sensor(scanner,door,left)\nif(ovi_ö{i})\n    speed(0.3)\n"
+            f"    g{i} = gotoxy(ovi_ö{i})\n    wait(g{i})\n    taito{k}\nendif\n"
+            f"käännös{i} = 0\nwhile(käännös{i} < 3)\n    käännös{i} = käännös{i} + 1\nendwhile\n\n"
+        )
+        i += 1
+    return "".join(out)
+
+
+def skills():
+    return "".join(f"taito{k}:\nspeed(-0.3)\nt{k}=turn(d=90,c=0.5)\nwait(t{k})\n\n" for k in range(50))
+
+
+class Client:
+    def __init__(self, server):
+        self.proc = subprocess.Popen([server], stdin=subprocess.PIPE, stdout=subprocess.PIPE,
+                                     stderr=subprocess.DEVNULL)
+        self.messages = queue.Queue()
+        self.next_id = 0
+        threading.Thread(target=self.read, daemon=True).start()
+
+    def read(self):
+        out = self.proc.stdout
+        while True:
+            length = None
+            while True:
+                line = out.readline()
+                if not line:
+                    return
+                line = line.strip()
+                if not line:
+                    break
+                if line.lower().startswith(b"content-length:"):
+                    length = int(line.split(b":")[1])
+            self.messages.put((time.perf_counter(), json.loads(out.read(length))))
+
+    def send(self, message):
+        body = json.dumps(message).encode()
+        self.proc.stdin.write(b"Content-Length: %d\r\n\r\n" % len(body) + body)
+        self.proc.stdin.flush()
+
+    def notify(self, method, params):
+        self.send({"jsonrpc": "2.0", "method": method, "params": params})
+
+    def request(self, method, params):
+        self.next_id += 1
+        me = self.next_id
+        self.send({"jsonrpc": "2.0", "id": me, "method": method, "params": params})
+        return self.wait(lambda m: m.get("id") == me)
+
+    def wait(self, found, patience=600):
+        deadline = time.perf_counter() + patience
+        while True:
+            at, m = self.messages.get(timeout=max(0.0, deadline - time.perf_counter()))
+            if found(m):
+                return at, m
+
+
+def measure(server, lines, edits):
+    c = Client(server)
+    c.request("initialize", {"processId": None, "rootUri": None, "capabilities": {}})
+    c.notify("initialized", {})
+    uri = f"file:///bench/task{lines}.ilmr"
+    c.notify("textDocument/didOpen", {"textDocument": {
+        "uri": "file:///bench/skills.ilms", "languageId": "ilmr", "version": 1, "text": skills()}})
+    text = task(lines)
+    c.notify("textDocument/didOpen", {"textDocument": {
+        "uri": uri, "languageId": "ilmr", "version": 1, "text": text}})
+    diagnostics_of = lambda v: (lambda m: m.get("method") == "textDocument/publishDiagnostics"
+                                and m["params"]["uri"] == uri and m["params"].get("version") == v)
+    c.wait(diagnostics_of(1))
+    middle = (lines // 2) // 12 * 12 + 3
+    edit = {"start": {"line": middle, "character": 4}, "end": {"line": middle, "character": 5}}
+    for v in range(2, edits + 2):
+        c.notify("textDocument/didChange", {"textDocument": {"uri": uri, "version": v},
+                                            "contentChanges": [{"range": edit, "text": "g"}]})
+    sent = time.perf_counter()
+    at, _ = c.wait(diagnostics_of(edits + 1))
+    late = at - sent
+    times, count = [], 0
+    for _ in range(20):
+        t0 = time.perf_counter()
+        at, m = c.request("textDocument/completion", {
+            "textDocument": {"uri": uri}, "position": {"line": middle, "character": 18}})
+        times.append(at - t0)
+        result = m.get("result") or []
+        items = result["items"] if isinstance(result, dict) else result
+        count = len(items)
+    c.request("shutdown", None)
+    c.notify("exit", None)
+    c.proc.wait(timeout=60)
+    return late, statistics.median(times), count
+
+
+def main():
+    p = argparse.ArgumentParser()
+    p.add_argument("--server", default="target/release/ilmr-lsp")
+    p.add_argument("--lines", type=int, nargs="+", default=[10_000, 100_000])
+    p.add_argument("--edits", type=int, default=200)
+    a = p.parse_args()
+    print(f"| lines | last of {a.edits} edits: diagnostics after, s | completion after `gotoxy(`, ms (median of 20) | items |")
+    print("| ---: | ---: | ---: | ---: |")
+    for n in a.lines:
+        late, completion, count = measure(a.server, n, a.edits)
+        print(f"| {n:,} | {late:.2f} | {completion * 1e3:.1f} | {count:,} |")
+        sys.stdout.flush()
+
+
+if __name__ == "__main__":
+    main()
