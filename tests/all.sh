@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # Every test of the repository: the Rust workspace (unit, integration, snapshot and
 # property tests; the ROS 2 ones in network namespaces of their own, which needs root
-# or CAP_SYS_ADMIN, `unshare` and `ip`) and the VS Code extension (grammar tests and
-# packaging).
+# or CAP_SYS_ADMIN, `unshare` and `ip`), the language server driven by headless Neovim,
+# and the VS Code extension (grammar tests and packaging).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -16,6 +16,9 @@ fi
 python3 -c 'import cyclonedds.idl, mcap.reader, mcap_ros2.decoder'
 
 cargo test --workspace
+
+# The language server with a real editor as its client: headless Neovim.
+bash lsp/tests/nvim/run.sh
 
 if command -v npm >/dev/null 2>&1; then
     bash vscode-extension/test.sh

@@ -171,6 +171,11 @@ fn the_readme_quotes_every_limit() {
             workspace::MAX_SCANNED_ENTRIES,
             false,
         ),
+        (
+            "completion::MAX_VARIABLE_ITEMS",
+            ilmr_lsp::completion::MAX_VARIABLE_ITEMS,
+            false,
+        ),
     ];
     let readme = include_str!("../README.md");
     let table = readme.split("### Limits").nth(1).expect("a Limits section");
