@@ -48,6 +48,7 @@ class Client:
                                      stderr=subprocess.DEVNULL)
         self.messages = queue.Queue()
         self.next_id = 0
+        self.lock = threading.Lock()
         threading.Thread(target=self.read, daemon=True).start()
 
     def read(self):
@@ -63,12 +64,18 @@ class Client:
                     break
                 if line.lower().startswith(b"content-length:"):
                     length = int(line.split(b":")[1])
-            self.messages.put((time.perf_counter(), json.loads(out.read(length))))
+            message = json.loads(out.read(length))
+            if "method" in message and "id" in message:
+                # The server's own requests (client/registerCapability): accepted.
+                self.send({"jsonrpc": "2.0", "id": message["id"], "result": None})
+                continue
+            self.messages.put((time.perf_counter(), message))
 
     def send(self, message):
         body = json.dumps(message).encode()
-        self.proc.stdin.write(b"Content-Length: %d\r\n\r\n" % len(body) + body)
-        self.proc.stdin.flush()
+        with self.lock:
+            self.proc.stdin.write(b"Content-Length: %d\r\n\r\n" % len(body) + body)
+            self.proc.stdin.flush()
 
     def notify(self, method, params):
         self.send({"jsonrpc": "2.0", "method": method, "params": params})
@@ -77,7 +84,7 @@ class Client:
         self.next_id += 1
         me = self.next_id
         self.send({"jsonrpc": "2.0", "id": me, "method": method, "params": params})
-        return self.wait(lambda m: m.get("id") == me)
+        return self.wait(lambda m: m.get("id") == me and "method" not in m)
 
     def wait(self, found, patience=600):
         deadline = time.perf_counter() + patience
@@ -119,7 +126,12 @@ def measure(server, lines, edits):
         count = len(items)
     c.request("shutdown", None)
     c.notify("exit", None)
-    c.proc.wait(timeout=60)
+    c.proc.stdin.close()
+    try:
+        c.proc.wait(timeout=60)
+    except subprocess.TimeoutExpired:
+        c.proc.kill()
+        raise SystemExit("the server did not exit after `exit`")
     return late, statistics.median(times), count
 
 

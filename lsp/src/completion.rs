@@ -2,7 +2,7 @@
 //! parameters), skills and block keywords; an argument list gets only what its grammar
 //! allows at that argument; conditions and expressions get variables and constants.
 
-use std::collections::{BTreeMap, HashMap};
+use std::collections::{BTreeMap, HashSet};
 
 use ilmr_compiler::check::Resolved;
 use ilmr_compiler::diagnostic::FileId;
@@ -147,20 +147,21 @@ pub fn variables(
     typed: &str,
 ) -> (Vec<(String, VarKind)>, bool) {
     let typed = typed.to_lowercase();
-    // By lower-case name: (does not begin with `typed`, bytes from the nearest binding
-    // above to the cursor), and the variable.
-    let mut found: HashMap<String, ((bool, usize), VarKind)> = HashMap::new();
-    let mut offer = |spelling: &'_ str, kind: VarKind, distance: usize| {
-        let name = spelling.to_lowercase();
-        let Some(at) = name.find(&typed) else { return };
-        let rank = (at != 0, distance);
-        found
-            .entry(name)
-            .and_modify(|e| e.0 = e.0.min(rank))
-            .or_insert((rank, kind));
+    // Where `typed` begins in a name (any case), without a copy of the name when
+    // nothing is typed: the usual case, with every variable to rank.
+    let found_at = |spelling: &str| -> Option<usize> {
+        if typed.is_empty() {
+            Some(0)
+        } else {
+            spelling.to_lowercase().find(&typed)
+        }
     };
-    let mut spellings: HashMap<String, &str> = HashMap::new();
+    // (does not begin with `typed`, bytes from the nearest binding above to the
+    // cursor), the spelling and the kind.
+    type Ranked<'a> = ((bool, usize), &'a str, VarKind);
+    let mut ranked: Vec<Ranked<'_>> = Vec::new();
     match program.unit_at(file, offset) {
+        // A unit's variables are one per name already.
         Some(unit) if unit.skill.is_none() => {
             for (_, var) in unit.vars.iter() {
                 let nearest = var
@@ -169,32 +170,26 @@ pub fn variables(
                     .filter(|(f, s)| *f == file && (s.end as usize) <= line_start)
                     .map(|(_, s)| line_start - s.end as usize)
                     .min();
-                if let Some(distance) = nearest {
-                    offer(&var.spelling, var.kind, distance);
-                    spellings
-                        .entry(var.spelling.to_lowercase())
-                        .or_insert(&var.spelling);
+                if let (Some(distance), Some(at)) = (nearest, found_at(&var.spelling)) {
+                    ranked.push(((at != 0, distance), &var.spelling, var.kind));
                 }
             }
         }
+        // Every unit's, once per name (the first unit's spelling and kind).
         _ => {
+            let mut seen = HashSet::new();
             for unit in &program.analysis().units {
                 for (_, var) in unit.vars.iter().filter(|(_, v)| !v.defs.is_empty()) {
-                    offer(&var.spelling, var.kind, 0);
-                    spellings
-                        .entry(var.spelling.to_lowercase())
-                        .or_insert(&var.spelling);
+                    if let Some(at) = found_at(&var.spelling)
+                        && seen.insert(var.spelling.to_lowercase())
+                    {
+                        ranked.push(((at != 0, 0), &var.spelling, var.kind));
+                    }
                 }
             }
         }
     }
-    let mut ranked: Vec<((bool, usize), &str, VarKind)> = found
-        .iter()
-        .map(|(name, (rank, kind))| (*rank, spellings.get(name).copied().unwrap_or(name), *kind))
-        .collect();
-    let order = |a: &((bool, usize), &str, VarKind), b: &((bool, usize), &str, VarKind)| {
-        a.0.cmp(&b.0).then_with(|| a.1.cmp(b.1))
-    };
+    let order = |a: &Ranked<'_>, b: &Ranked<'_>| a.0.cmp(&b.0).then_with(|| a.1.cmp(b.1));
     let incomplete = ranked.len() > MAX_VARIABLE_ITEMS;
     if incomplete {
         ranked.select_nth_unstable_by(MAX_VARIABLE_ITEMS, order);

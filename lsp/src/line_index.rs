@@ -6,7 +6,7 @@
 use ilmr_compiler::Span;
 use tower_lsp_server::ls_types::{Position, Range};
 
-#[derive(Debug, Clone, Default)]
+#[derive(Debug, Clone, Default, PartialEq, Eq)]
 pub struct LineIndex {
     /// Byte offset where each line starts; the first is 0.
     starts: Vec<u32>,
@@ -21,40 +21,102 @@ pub struct LineIndex {
 /// How far apart checkpoints are, in bytes: the most one conversion walks.
 const CHECKPOINT: usize = 1024;
 
+/// The lines of `text[from..to]` (`from` a line's start; `to` the text's end when
+/// `to_end`, else one past a line break): the starts of all but the first, each line's
+/// ASCII flag, and the checkpoints of the lines that are not ASCII.
+struct Scanned {
+    starts: Vec<u32>,
+    ascii: Vec<bool>,
+    checkpoints: Vec<(u32, u32)>,
+}
+
+fn scan(text: &str, from: usize, to: usize, to_end: bool) -> Scanned {
+    let mut starts = Vec::new();
+    let mut ascii = Vec::new();
+    let mut line_ascii = true;
+    for (i, b) in text.as_bytes()[from..to].iter().enumerate() {
+        if *b == b'\n' {
+            ascii.push(line_ascii);
+            line_ascii = true;
+            starts.push((from + i) as u32 + 1);
+        } else if !b.is_ascii() {
+            line_ascii = false;
+        }
+    }
+    // The text's last line has no break; a region that ends at a break has no more.
+    if to_end {
+        ascii.push(line_ascii);
+    } else {
+        starts.pop();
+    }
+    let mut checkpoints = Vec::new();
+    for (line, _) in ascii.iter().enumerate().filter(|(_, a)| !**a) {
+        let start = if line == 0 {
+            from
+        } else {
+            starts[line - 1] as usize
+        };
+        let end = starts.get(line).map_or(to, |&s| s as usize);
+        let (mut last, mut column) = (start, 0);
+        for (i, c) in text[start..end].char_indices() {
+            if i + start - last >= CHECKPOINT {
+                last = i + start;
+                checkpoints.push((last as u32, column));
+            }
+            column += c.len_utf16() as u32;
+        }
+    }
+    Scanned {
+        starts,
+        ascii,
+        checkpoints,
+    }
+}
+
 impl LineIndex {
     pub fn new(text: &str) -> LineIndex {
-        let mut starts = vec![0];
-        let mut ascii = Vec::new();
-        let mut line_ascii = true;
-        for (i, b) in text.bytes().enumerate() {
-            if b == b'\n' {
-                ascii.push(line_ascii);
-                line_ascii = true;
-                starts.push(i as u32 + 1);
-            } else if !b.is_ascii() {
-                line_ascii = false;
-            }
-        }
-        ascii.push(line_ascii);
-        let mut checkpoints = Vec::new();
-        for (line, _) in ascii.iter().enumerate().filter(|(_, a)| !**a) {
-            let start = starts[line] as usize;
-            let end = starts.get(line + 1).map_or(text.len(), |&s| s as usize);
-            let (mut last, mut column) = (start, 0);
-            for (i, c) in text[start..end].char_indices() {
-                if i + start - last >= CHECKPOINT {
-                    last = i + start;
-                    checkpoints.push((last as u32, column));
-                }
-                column += c.len_utf16() as u32;
-            }
-        }
+        let scanned = scan(text, 0, text.len(), true);
+        let mut starts = Vec::with_capacity(scanned.starts.len() + 1);
+        starts.push(0);
+        starts.extend(scanned.starts);
         LineIndex {
             starts,
-            ascii,
-            checkpoints,
+            ascii: scanned.ascii,
+            checkpoints: scanned.checkpoints,
             len: text.len() as u32,
         }
+    }
+
+    /// The index of `text`, which is the indexed text with the bytes `old` replaced by
+    /// `inserted` bytes: the lines the edit touched are read again and the rest
+    /// shifted, so that a keystroke in a 100,000-line file does not read the file.
+    pub fn edit(&mut self, text: &str, old: std::ops::Range<usize>, inserted: usize) {
+        let first = self.line_of(old.start);
+        let last = self.line_of(old.end);
+        let from = self.starts[first] as usize;
+        let shift = |offset: u32| (offset as i64 + inserted as i64 - old.len() as i64) as u32;
+        // Where the lines after the edit begin, before and after it.
+        let (next_old, next_new, to_end) = match self.starts.get(last + 1) {
+            Some(&s) => (s as usize, shift(s) as usize, false),
+            None => (self.len as usize + 1, text.len(), true),
+        };
+        let scanned = scan(text, from, next_new, to_end);
+        let after = first + 1 + scanned.starts.len();
+        self.starts.splice(first + 1..=last, scanned.starts);
+        for s in &mut self.starts[after..] {
+            *s = shift(*s);
+        }
+        self.ascii.splice(first..=last, scanned.ascii);
+        let lo = self.checkpoints.partition_point(|c| (c.0 as usize) < from);
+        let hi = self
+            .checkpoints
+            .partition_point(|c| (c.0 as usize) < next_old);
+        let added = scanned.checkpoints.len();
+        self.checkpoints.splice(lo..hi, scanned.checkpoints);
+        for c in &mut self.checkpoints[lo + added..] {
+            c.0 = shift(c.0);
+        }
+        self.len = text.len() as u32;
     }
 
     /// The checkpoint of a line nearest before `offset` (a byte offset, or a column
@@ -256,6 +318,51 @@ mod tests {
         assert_eq!(idx.offset(text, Position::new(0, 99)), 2);
         assert_eq!(idx.offset(text, Position::new(9, 0)), 5);
         assert_eq!(idx.position(text, 99), Position::new(1, 2));
+    }
+
+    /// Edits of every shape (within a line, across lines, adding and removing breaks,
+    /// at both ends, on long lines that are not ASCII) leave the index as reading the
+    /// whole text again would.
+    #[test]
+    fn an_edited_index_is_the_index_of_the_edited_text() {
+        let pieces = ["a", "ä", "\n", "\r\n", "𝔸", "xyz", "", "\n\n"];
+        let mut seed: u64 = 0x9e37_79b9_7f4a_7c15;
+        let mut next = |n: usize| {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed % n as u64) as usize
+        };
+        let long: String = "ä".repeat(CHECKPOINT);
+        let mut text = format!("start\n{long}\nmiddle\n{long}b\nend");
+        let mut index = LineIndex::new(&text);
+        for _ in 0..3_000 {
+            let boundaries: Vec<usize> = text
+                .char_indices()
+                .map(|(i, _)| i)
+                .chain([text.len()])
+                .collect();
+            let a = boundaries[next(boundaries.len())];
+            let b = boundaries[next(boundaries.len())];
+            let (a, b) = (a.min(b), a.max(b));
+            let (a, b) = if next(4) == 0 {
+                (a, a)
+            } else {
+                (a, b.min(a + 40))
+            };
+            let b = *boundaries.iter().find(|&&x| x >= b).expect("a boundary");
+            let mut inserted: String = (0..next(4)).map(|_| pieces[next(pieces.len())]).collect();
+            if next(50) == 0 {
+                inserted.push_str(&long);
+            }
+            text.replace_range(a..b, &inserted);
+            index.edit(&text, a..b, inserted.len());
+            assert_eq!(
+                index,
+                LineIndex::new(&text),
+                "after replacing {a}..{b} by {inserted:?}"
+            );
+        }
     }
 
     #[test]

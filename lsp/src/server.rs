@@ -100,6 +100,8 @@ struct Backend {
     /// Edits received: an edit's job checks only when no newer edit has come, so a
     /// burst of keystrokes costs one check after the last, not one per keystroke.
     edits: Arc<AtomicU64>,
+    /// Diagnostics from edits' jobs, published in the order the jobs ran.
+    publishes: tokio::sync::mpsc::UnboundedSender<Vec<Publish>>,
 }
 
 impl Backend {
@@ -116,12 +118,26 @@ impl Backend {
         done.value
     }
 
+    /// Publishes through the one queue edits' jobs use, so that every document's
+    /// diagnostics go out in the order the engine made them.
     async fn publish(&self, publishes: Option<Vec<Publish>>) {
-        for p in publishes.unwrap_or_default() {
-            self.client
-                .publish_diagnostics(p.uri, p.diagnostics, p.version)
-                .await;
+        if let Some(p) = publishes {
+            let _ = self.publishes.send(p);
         }
+    }
+
+    /// Queues `f` on the engine without waiting for it; its log reaches the client.
+    fn tell(&self, f: impl FnOnce(&mut Engine) + Send + 'static) {
+        let done = self.engine.run(f);
+        let client = self.client.clone();
+        tokio::spawn(async move {
+            if let Ok(done) = done.await {
+                for line in done.log {
+                    eprintln!("{line}");
+                    client.log_message(MessageType::ERROR, line).await;
+                }
+            }
+        });
     }
 
     /// Runs a query on the analysis of the latest text (checked first if an edit's
@@ -159,10 +175,15 @@ pub fn run_stdio() -> ExitCode {
         }
     };
     runtime.block_on(async {
-        let (service, socket) = LspService::new(|client| Backend {
-            client,
-            engine: EngineHandle::spawn(),
-            edits: Arc::default(),
+        let (service, socket) = LspService::new(|client| {
+            let (publishes, queue) = tokio::sync::mpsc::unbounded_channel();
+            tokio::spawn(forward(client.clone(), queue));
+            Backend {
+                client,
+                engine: EngineHandle::spawn(),
+                edits: Arc::default(),
+                publishes,
+            }
         });
         let output = Output::new(std::io::stdout());
         let input = match transport::incoming(std::io::stdin(), output.clone()) {
@@ -177,6 +198,21 @@ pub fn run_stdio() -> ExitCode {
             .await;
         ExitCode::SUCCESS
     })
+}
+
+async fn publish(client: &Client, publishes: Vec<Publish>) {
+    for p in publishes {
+        client
+            .publish_diagnostics(p.uri, p.diagnostics, p.version)
+            .await;
+    }
+}
+
+/// Publishes what edits' jobs checked, in order, for as long as the server runs.
+async fn forward(client: Client, mut queue: tokio::sync::mpsc::UnboundedReceiver<Vec<Publish>>) {
+    while let Some(publishes) = queue.recv().await {
+        publish(&client, publishes).await;
+    }
 }
 
 /// `{"robot": "workpartner"}` in initialization options, or `{"ilmr": {"robot": ..}}`
@@ -275,16 +311,18 @@ impl LanguageServer for Backend {
         let changes = params.content_changes;
         let this = self.edits.fetch_add(1, Ordering::SeqCst) + 1;
         let edits = Arc::clone(&self.edits);
-        let out = self.ask(move |e| {
+        let publishes = self.publishes.clone();
+        // Not waited for, so that the next edits are read (and counted) while this
+        // one's job waits or runs.
+        self.tell(move |e| {
             e.apply_change(&d.uri, d.version, changes);
             // A newer edit's job comes behind this one and checks both.
-            if edits.load(Ordering::SeqCst) == this {
-                e.refresh()
-            } else {
-                None
+            if edits.load(Ordering::SeqCst) == this
+                && let Some(out) = e.refresh()
+            {
+                let _ = publishes.send(out);
             }
         });
-        self.publish(out.await.flatten()).await;
     }
 
     async fn did_close(&self, params: DidCloseTextDocumentParams) {

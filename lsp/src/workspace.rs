@@ -188,10 +188,13 @@ impl Workspace {
                 Some(range) => {
                     let span = doc.index.span(&doc.text, range);
                     doc.text.replace_range(span.range(), &change.text);
+                    doc.index.edit(&doc.text, span.range(), change.text.len());
                 }
-                None => doc.text = change.text,
+                None => {
+                    doc.text = change.text;
+                    doc.index = LineIndex::new(&doc.text);
+                }
             }
-            doc.index = LineIndex::new(&doc.text);
         }
         doc.version = Some(version);
         true
