@@ -5,7 +5,7 @@
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
-use ilmr_compiler::check::{Analysis, Source, analyze};
+use ilmr_compiler::check::{Analysis, Detail, Given, Source, analyze_given};
 use ilmr_compiler::render::{self, RenderFile, Style};
 use ilmr_compiler::{Diagnostic, FileId};
 use ilmr_vm::Module;
@@ -18,7 +18,7 @@ pub struct BuildArgs {
     /// Robot model: `moro`, `workpartner`, or a path to a ROBO.INI file.
     #[arg(long, default_value = "moro")]
     pub robot: String,
-    /// A directory of skill files (`*.ilms`) the task may call.
+    /// A skill file, or a directory of skill files (`*.ilms`), the task may call.
     #[arg(long)]
     pub skills: Option<PathBuf>,
     /// Where to write the module.
@@ -61,7 +61,19 @@ pub fn compile(
     skills: Option<&Path>,
     extra: impl Fn(&Module) -> Vec<Diagnostic>,
 ) -> Result<Compiled, String> {
-    compile_leaving(task, robot, skills, extra, false)
+    compile_leaving(task, robot, skills, &Given::default(), extra, false)
+}
+
+/// [`compile`], telling the check what the run is given from outside the program (a
+/// scenario's taught paths).
+pub fn compile_given(
+    task: &Path,
+    robot: &str,
+    skills: Option<&Path>,
+    given: &Given,
+    extra: impl Fn(&Module) -> Vec<Diagnostic>,
+) -> Result<Compiled, String> {
+    compile_leaving(task, robot, skills, given, extra, false)
 }
 
 /// [`compile`]; with `leave`, the analysis is left to the operating system instead of
@@ -70,6 +82,7 @@ fn compile_leaving(
     task: &Path,
     robot: &str,
     skills: Option<&Path>,
+    given: &Given,
     extra: impl Fn(&Module) -> Vec<Diagnostic>,
     leave: bool,
 ) -> Result<Compiled, String> {
@@ -89,7 +102,7 @@ fn compile_leaving(
     }
     // One analysis, the full one the lowering reads; what `check` reports of it is what
     // `check` reports of its own lighter one (`compiler/tests/detail.rs`).
-    let analysis = analyze(&sources, &loaded.model);
+    let analysis = analyze_given(&sources, &loaded.model, Detail::Full, given);
     let report = crate::check::report(&args, &loaded, &analysis);
     inputs::warn_about(robot, &loaded.warnings);
     let model = &loaded.model;
@@ -207,6 +220,7 @@ pub fn build(args: BuildArgs) -> ExitCode {
         &args.task,
         &args.robot,
         args.skills.as_deref(),
+        &Given::default(),
         |_| Vec::new(),
         true,
     );

@@ -15,7 +15,7 @@ pub struct CheckArgs {
     /// Robot model: `moro`, `workpartner`, or a path to a ROBO.INI file.
     #[arg(long, default_value = "moro")]
     pub robot: String,
-    /// A directory of skill files (`*.ilms`) the tasks may call.
+    /// A skill file, or a directory of skill files (`*.ilms`), the tasks may call.
     #[arg(long)]
     pub skills: Option<PathBuf>,
     /// `human` for people, `json` for tools (one JSON array).
@@ -37,7 +37,16 @@ pub fn run(args: CheckArgs) -> ExitCode {
         Ok(report) => {
             let mut out = std::io::stdout().lock();
             let _ = out.write_all(report.output.as_bytes());
-            ExitCode::from(if report.errors { crate::EXIT_ERRORS } else { 0 })
+            for problem in &report.unread {
+                eprintln!("error: {problem}");
+            }
+            ExitCode::from(if !report.unread.is_empty() {
+                crate::EXIT_USAGE
+            } else if report.errors {
+                crate::EXIT_ERRORS
+            } else {
+                0
+            })
         }
         Err(message) => {
             eprintln!("error: {message}");
@@ -49,20 +58,75 @@ pub fn run(args: CheckArgs) -> ExitCode {
 pub struct Report {
     pub output: String,
     pub errors: bool,
+    /// Files that could not be read, each said as "cannot read `PATH`: why" (they
+    /// are diagnostics of the output too).
+    pub unread: Vec<String>,
+}
+
+/// A file given to check that could not be read, as a diagnostic: E0001 for the file
+/// (at its start), E0002 at the line and column of the first byte that is not UTF-8.
+struct Unread {
+    path: String,
+    /// What is shown of the file: its text as far as it could be read.
+    text: String,
+    code: Code,
+    span: Span,
+    message: String,
+}
+
+impl Unread {
+    fn read(path: &std::path::Path) -> Result<Source, Unread> {
+        let shown = path.display().to_string();
+        let bytes = ilmr_files::read(path, ilmr_files::Kind::Source).map_err(|e| Unread {
+            path: shown.clone(),
+            text: String::new(),
+            code: Code::UnreadableFile,
+            span: Span::empty(0),
+            message: format!("cannot read `{shown}`: {e}"),
+        })?;
+        String::from_utf8(bytes)
+            .map(|text| Source::new(shown.clone(), text))
+            .map_err(|e| {
+                let offset = e.utf8_error().valid_up_to();
+                let (line, column) = ilmr_files::line_column(&e.as_bytes()[..offset]);
+                let text = String::from_utf8_lossy(e.as_bytes()).into_owned();
+                // The lossy text keeps the valid prefix byte for byte; the bad byte
+                // became U+FFFD.
+                let span = Span::new(offset, offset + '\u{FFFD}'.len_utf8());
+                let why = ilmr_files::ReadError {
+                    kind: ilmr_files::Kind::Source,
+                    problem: ilmr_files::Problem::NotUtf8 {
+                        offset,
+                        line,
+                        column,
+                    },
+                };
+                Unread {
+                    path: shown.clone(),
+                    text,
+                    code: Code::NotUtf8,
+                    span,
+                    message: format!("cannot read `{shown}`: {why}"),
+                }
+            })
+    }
 }
 
 pub fn check(args: &CheckArgs) -> Result<Report, String> {
     let robot = inputs::load_robot(&args.robot)?;
-    let mut sources: Vec<Source> = args
-        .files
-        .iter()
-        .map(|p| inputs::read_source(p))
-        .collect::<Result<_, _>>()?;
+    let mut sources: Vec<Source> = Vec::with_capacity(args.files.len());
+    let mut unread = Vec::new();
+    for path in &args.files {
+        match Unread::read(path) {
+            Ok(source) => sources.push(source),
+            Err(u) => unread.push(u),
+        }
+    }
     if let Some(dir) = &args.skills {
         sources.extend(inputs::read_skill_dir(dir)?);
     }
     let analysis = analyze_with(&sources, &robot.model, Detail::Diagnostics);
-    let report = report(args, &robot, &analysis);
+    let report = report_with(args, &robot, &analysis, &unread);
     // Freeing a large program's trees and tables costs a tenth of checking it, and the
     // process ends right after: let the operating system reclaim them.
     std::mem::forget(analysis);
@@ -73,6 +137,15 @@ pub fn check(args: &CheckArgs) -> Result<Report, String> {
 /// What `check` says about an analysis of `args.files` (with the robot model's own
 /// warnings): `build` and `run` print the same of the analysis they lower.
 pub fn report(args: &CheckArgs, robot: &inputs::Robot, analysis: &Analysis<'_>) -> Report {
+    report_with(args, robot, analysis, &[])
+}
+
+fn report_with(
+    args: &CheckArgs,
+    robot: &inputs::Robot,
+    analysis: &Analysis<'_>,
+    unread: &[Unread],
+) -> Report {
     let mut files: Vec<RenderFile<'_>> = analysis
         .files
         .iter()
@@ -107,6 +180,17 @@ pub fn report(args: &CheckArgs, robot: &inputs::Robot, analysis: &Analysis<'_>) 
         }
     }
     let errors = diagnostics.iter().any(Diagnostic::is_error);
+    // Said on stderr in human output; a tool reading JSON finds them in the array.
+    if args.format == Format::Json {
+        for u in unread {
+            let file = FileId(files.len() as u32);
+            files.push(RenderFile {
+                path: &u.path,
+                text: &u.text,
+            });
+            diagnostics.push(Diagnostic::new(u.code, file, u.span, u.message.clone()));
+        }
+    }
     let output = match args.format {
         Format::Json => {
             let json = render::json(&diagnostics, &files);
@@ -132,5 +216,9 @@ pub fn report(args: &CheckArgs, robot: &inputs::Robot, analysis: &Analysis<'_>) 
             s
         }
     };
-    Report { output, errors }
+    Report {
+        output,
+        errors,
+        unread: unread.iter().map(|u| u.message.clone()).collect(),
+    }
 }

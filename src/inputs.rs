@@ -12,18 +12,41 @@ pub fn read_source(path: &Path) -> Result<Source, String> {
 }
 
 /// The skill files of a directory (`*.ilms`, and `*.ilmr` files that hold skills), in
-/// name order so that every run sees them the same way.
+/// name order so that every run sees them the same way; or the one skill file given.
+/// Files of other extensions in the directory are named in a note on stderr, so that a
+/// `turns.ilm` is not silently left out.
 pub fn read_skill_dir(dir: &Path) -> Result<Vec<Source>, String> {
+    if std::fs::metadata(dir).is_ok_and(|m| m.is_file()) {
+        return read_source(dir).map(|s| vec![Source::library(s.path, s.text)]);
+    }
     let entries = std::fs::read_dir(dir)
         .map_err(|e| format!("cannot read skill directory `{}`: {e}", dir.display()))?;
-    let mut paths: Vec<PathBuf> = entries
+    let (mut paths, mut ignored): (Vec<PathBuf>, Vec<PathBuf>) = entries
         .filter_map(|e| e.ok().map(|e| e.path()))
-        .filter(|p| {
+        // Sub-directories are not read; anything else named as a skill file is, so
+        // that a FIFO or a device is refused rather than passed over.
+        .filter(|p| !p.is_dir())
+        .partition(|p| {
             p.extension()
                 .is_some_and(|x| x.eq_ignore_ascii_case("ilms") || x.eq_ignore_ascii_case("ilmr"))
-        })
-        .collect();
+        });
     paths.sort();
+    ignored.retain(|p| {
+        !p.file_name()
+            .is_some_and(|n| n.to_string_lossy().starts_with('.'))
+    });
+    if !ignored.is_empty() {
+        ignored.sort();
+        let names: Vec<String> = ignored
+            .iter()
+            .filter_map(|p| p.file_name().map(|n| format!("`{}`", n.to_string_lossy())))
+            .collect();
+        eprintln!(
+            "note: --skills `{}`: {} not read (only `.ilms` and `.ilmr` files hold skills)",
+            dir.display(),
+            names.join(", ")
+        );
+    }
     paths
         .iter()
         .map(|p| read_source(p).map(|s| Source::library(s.path, s.text)))

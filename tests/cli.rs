@@ -44,6 +44,96 @@ fn usage_and_unreadable_files_exit_two() {
     assert!(err.contains("unknown robot"), "{err}");
 }
 
+/// An unreadable or non-UTF-8 file is a diagnostic of the JSON output (E0001, E0002 at
+/// the line and column of the bad byte), the other files are still checked, and the
+/// exit code is 2.
+#[test]
+fn unreadable_files_are_diagnostics_in_json() {
+    let dir = std::env::temp_dir().join(format!("ilmr-cli-unread-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let bad = dir.join("latin1.ilmr");
+    std::fs::write(&bad, b"speed(0.2)\ngo\xe4ahead(1)\n").unwrap();
+    let (code, out, err) = ilmrc(&[
+        "check",
+        "--format",
+        "json",
+        "no/such/file.ilmr",
+        bad.to_str().unwrap(),
+        "tests/check/broken/commands.ilmr",
+    ]);
+    assert_eq!(code, 2, "{out}{err}");
+    assert!(
+        err.contains("cannot read `no/such/file.ilmr`: no such file"),
+        "{err}"
+    );
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    let all = v.as_array().unwrap();
+    let missing = all.iter().find(|d| d["code"] == "E0001").expect("E0001");
+    assert_eq!(missing["file"], "no/such/file.ilmr");
+    assert_eq!(
+        (missing["line"].as_u64(), missing["column"].as_u64()),
+        (Some(1), Some(1))
+    );
+    let latin = all.iter().find(|d| d["code"] == "E0002").expect("E0002");
+    assert_eq!(latin["file"], bad.to_str().unwrap());
+    assert_eq!(
+        (latin["line"].as_u64(), latin["column"].as_u64()),
+        (Some(2), Some(3))
+    );
+    assert!(
+        latin["message"]
+            .as_str()
+            .unwrap()
+            .contains("line 2, column 3"),
+        "{latin}"
+    );
+    assert!(
+        all.iter().any(|d| d["code"] == "E0301"),
+        "the readable file is checked"
+    );
+    // Human output says it on stderr, with the same place.
+    let (code, _, err) = ilmrc(&["check", bad.to_str().unwrap()]);
+    assert_eq!(code, 2);
+    assert!(err.contains("invalid byte at line 2, column 3"), "{err}");
+}
+
+/// `--skills` takes one skill file as well as a directory, and names the files of a
+/// directory it does not read.
+#[test]
+fn skills_take_a_file_and_name_what_a_directory_leaves_out() {
+    let dir = std::env::temp_dir().join(format!("ilmr-cli-skills-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    let lib = dir.join("lib");
+    std::fs::create_dir_all(&lib).unwrap();
+    let skill = lib.join("hello.ilms");
+    std::fs::write(&skill, "Hello:\nspeed(0.2)\n").unwrap();
+    std::fs::write(lib.join("notes.txt"), "not a skill").unwrap();
+    std::fs::write(lib.join("old.ilm"), "Old:\nspeed(0.1)\n").unwrap();
+    let task = dir.join("task.ilmr");
+    std::fs::write(&task, "Hello\n").unwrap();
+    let (code, out, err) = ilmrc(&[
+        "check",
+        "--skills",
+        skill.to_str().unwrap(),
+        task.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{out}{err}");
+    assert!(err.is_empty(), "{err}");
+    let (code, out, err) = ilmrc(&[
+        "check",
+        "--skills",
+        lib.to_str().unwrap(),
+        task.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{out}{err}");
+    assert!(
+        err.contains(
+            "`notes.txt`, `old.ilm` not read (only `.ilms` and `.ilmr` files hold skills)"
+        ),
+        "{err}"
+    );
+}
+
 #[test]
 fn json_has_the_documented_fields_with_one_based_positions() {
     let (code, out, _) = ilmrc(&[
@@ -135,4 +225,41 @@ fn fmt_rewrites_to_the_canonical_form_and_check_reports_it() {
     let (code, out, _) = ilmrc(&["fmt", &path]);
     assert_eq!(code, 1);
     assert!(out.contains("E0102"), "{out}");
+}
+
+/// A path a scenario teaches is known to the check `run` makes: Figure 56's `PATH` is
+/// W0903 for `check` alone and for a run without the scenario, not with it.
+#[test]
+fn a_scenario_path_is_known_to_the_check_of_a_run() {
+    let (_, out, _) = ilmrc(&["check", "--skills", "examples/skills", "examples/loop.ilmr"]);
+    assert!(out.contains("W0903"), "{out}");
+    let (_, out, err) = ilmrc(&[
+        "run",
+        "--robot",
+        "scripted",
+        "--model",
+        "workpartner",
+        "--skills",
+        "examples/skills",
+        "--scenario",
+        "tests/run/fig56_loop.json",
+        "--max-time",
+        "0.1",
+        "examples/loop.ilmr",
+    ]);
+    assert!(
+        !out.contains("W0903") && !err.contains("W0903"),
+        "{out}{err}"
+    );
+    let (_, out, _) = ilmrc(&[
+        "run",
+        "--world",
+        "empty",
+        "--skills",
+        "examples/skills",
+        "--max-time",
+        "0.1",
+        "examples/loop.ilmr",
+    ]);
+    assert!(out.contains("W0903"), "{out}");
 }

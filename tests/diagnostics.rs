@@ -54,8 +54,11 @@ fn every_code_is_exercised_by_the_corpus() {
         let (analysis, _) = check(&sources, &robot);
         seen.extend(analysis.diagnostics.iter().map(|d| d.code));
     }
-    // The robot model's own warnings come from loading a model file (tests/cli.rs).
+    // The robot model's own warnings come from loading a model file, and unreadable
+    // files are said by `ilmrc check` itself (tests/cli.rs).
     seen.insert(Code::RobotModel);
+    seen.insert(Code::UnreadableFile);
+    seen.insert(Code::NotUtf8);
     let missing: Vec<&str> = Code::ALL
         .iter()
         .filter(|c| !seen.contains(c))
@@ -110,4 +113,157 @@ fn checking_an_empty_program_is_clean() {
     let sources = vec![Source::new("empty.ilmr", "")];
     let m = model("moro");
     assert!(analyze(&sources, &m).diagnostics.is_empty());
+}
+
+/// A scratch directory of this test binary, emptied first.
+fn scratch(name: &str) -> std::path::PathBuf {
+    let dir = std::env::temp_dir().join(format!("ilmr-diagnostics-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// The passes a `while` on line 2 made in the first tick that started it, from the
+/// trace of `task` run on a simulated Workpartner in the empty world.
+fn passes_in_first_tick(dir: &std::path::Path, name: &str, task: &str) -> u64 {
+    let path = dir.join(format!("{name}.ilmr"));
+    let trace = dir.join(format!("{name}.jsonl"));
+    std::fs::write(&path, task).unwrap();
+    let (code, out, err) = ilmrc(&[
+        "run",
+        "--robot",
+        "workpartner",
+        "--world",
+        "empty",
+        "--max-time",
+        "0.03",
+        "--trace",
+        trace.to_str().unwrap(),
+        path.to_str().unwrap(),
+    ]);
+    assert!(code == 0 || code == 5, "{task}\n{out}{err}");
+    let text = std::fs::read_to_string(&trace).unwrap();
+    let first = text
+        .lines()
+        .map(|l| serde_json::from_str::<serde_json::Value>(l).unwrap())
+        .find(|e| e["event"] == "start" && e["line"] == 2)
+        .unwrap_or_else(|| panic!("no start of the loop in\n{text}"));
+    first["iteration"].as_u64().unwrap_or(1)
+}
+
+/// W0902 rests on the catalogue's `Ends::AtIssue`: every example of every command it
+/// marks so, alone in a loop whose condition stays true, keeps the VM passing through
+/// the loop until the first tick's budget is spent.
+#[test]
+fn commands_the_catalogue_says_end_at_issue_end_at_issue_in_the_vm() {
+    use ilmr_stdlib::{CATALOGUE, Syntax};
+    let dir = scratch("at_issue");
+    let m = model("workpartner");
+    let budget = u64::from(ilmr_vm::Config::default().budget_ops);
+    for spec in CATALOGUE
+        .iter()
+        .filter(|s| s.syntax == Syntax::Call && s.ends.at_issue(std::iter::empty()))
+    {
+        let mut tried = 0;
+        for (i, example) in spec.examples.iter().enumerate() {
+            if !spec
+                .ends
+                .at_issue(example.split([',', '(', ')']).map(str::trim))
+            {
+                continue;
+            }
+            let task = format!("counter = 0\nwhile(1)\n{example}\nendwhile\n");
+            let sources = vec![Source::new("t.ilmr", task.clone())];
+            if analyze(&sources, &m).has_errors() {
+                continue;
+            }
+            tried += 1;
+            let passes = passes_in_first_tick(&dir, &format!("{}_{i}", spec.name), &task);
+            assert!(
+                passes > budget / 100,
+                "`{example}` made {passes} passes in a tick: it does not end at issue"
+            );
+        }
+        assert!(tried > 0, "no example of `{}` checks clean", spec.name);
+    }
+}
+
+/// The passes a tick W0902 announces are the VM's, within a factor of two (the count
+/// is a lower bound of each pass's operations).
+#[test]
+fn a_starving_loop_makes_about_the_passes_it_is_said_to() {
+    let dir = scratch("passes");
+    for (name, task) in [
+        ("leg", "n = 5\nwhile(n > 1)\nactuator(leg1,90)\nendwhile\n"),
+        (
+            "arithmetic",
+            "n = 5\nwhile(n * 2 > 1)\nk = n + 1\nspeed(0.1)\nendwhile\nm = k\n",
+        ),
+        ("empty", "n = 1\nwhile(n)\nendwhile\n"),
+    ] {
+        let sources = vec![Source::new("t.ilmr", task)];
+        let analysis = analyze(&sources, &model("workpartner"));
+        let d = analysis
+            .diagnostics
+            .iter()
+            .find(|d| d.code == Code::StarvingLoop)
+            .unwrap_or_else(|| panic!("no W0902 for {task}"));
+        let said: u64 = d
+            .label
+            .split("up to ")
+            .nth(1)
+            .and_then(|rest| rest.split(' ').next())
+            .map(|n| n.replace(',', "").parse().unwrap())
+            .unwrap_or_else(|| panic!("{}", d.label));
+        let passes = passes_in_first_tick(&dir, name, task);
+        assert!(
+            passes <= said && passes * 2 >= said,
+            "{task}: said up to {said} passes a tick, the VM made {passes}"
+        );
+    }
+}
+
+/// W0902's reference text quotes the VM's budget and tick.
+#[test]
+fn the_starving_loop_reference_quotes_the_vm_budget() {
+    let c = ilmr_vm::Config::default();
+    let budget = c.budget_ops.to_string();
+    let grouped = format!(
+        "{},{}",
+        &budget[..budget.len() - 3],
+        &budget[budget.len() - 3..]
+    );
+    let doc = Code::StarvingLoop.doc();
+    assert!(doc.contains(&format!("{grouped} operations")), "{doc}");
+    assert!(
+        doc.contains(&format!("every {} ms tick", c.period * 1000.0)),
+        "{doc}"
+    );
+}
+
+/// `approach(door)`: a model object that no variable above is named after is that
+/// object (it was read as an unbound variable, E0501), and lowers; a variable of that
+/// name bound above stays the variable.
+#[test]
+fn approach_takes_an_object_of_the_model() {
+    let m = model("moro");
+    for task in [
+        "approach(door)\napproach(door,0.5)\n",
+        "door = sensor(scanner,door)\nwait(door)\napproach(door)\n",
+    ] {
+        let sources = vec![Source::new("t.ilmr", task)];
+        let analysis = analyze(&sources, &m);
+        assert!(
+            analysis.diagnostics.is_empty(),
+            "{task}: {:?}",
+            analysis.diagnostics
+        );
+        assert!(
+            ilmr_compiler::lower::lower(&analysis, &m, ilmr_compiler::FileId(0)).is_ok(),
+            "{task}"
+        );
+    }
+    let sources = vec![Source::new("t.ilmr", "approach(dor)\n")];
+    let analysis = analyze(&sources, &m);
+    assert!(analysis.has_errors(), "an unknown name is still an error");
 }

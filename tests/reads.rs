@@ -157,7 +157,7 @@ fn a_task_that_is_not_utf8_says_where() {
     std::fs::write(&task, b"speed(0.2)\ngo\xffahead(1)\n").expect("write");
     refused(
         &["check", text(&task)],
-        "it is not UTF-8 text (invalid byte at offset 13)",
+        "it is not UTF-8 text (invalid byte at line 2, column 3)",
     );
 }
 

@@ -48,6 +48,10 @@ macro_rules! codes {
 }
 
 codes! {
+    UnreadableFile = "E0001", Error, "file cannot be read",
+        "`ilmrc check` was given a file it could not read: missing, a directory, a device or FIFO, larger than the limit for a task or skill file (`MAX_SOURCE_BYTES`, docs/run.md), or refused by the system. The message says which. The other files are still checked; the exit code is 2.";
+    NotUtf8 = "E0002", Error, "file is not UTF-8 text",
+        "ILMR files are UTF-8 text. The diagnostic points at the line and column of the first byte that is not UTF-8 (a file saved as Latin-1 or UTF-16 by an editor, or a binary file); save the file as UTF-8. The other files are still checked; the exit code is 2.";
     Syntax = "E0101", Error, "syntax error",
         "The line does not follow ILMR's grammar. The rest of the file is still checked: each broken line gives one diagnostic.";
     UnclosedArgs = "E0102", Error, "unclosed argument list",
@@ -130,6 +134,12 @@ codes! {
         "The robot model file is missing or has lines that could not be read; defaults are used in their place.";
     FrozenLoop = "W0901", Warning, "loop that cannot end by itself",
         "A `while` whose condition reads only variables that nothing can change while the loop runs: no statement in its body changes them, no command is bound to them, and no assignment can run at the same time (after the loop in its block, in a guard, in another block or a skill). Only the assignments made before the loop, one after another, set them, so the condition never turns false and the loop runs until a `break` ends it or a typed line changes the variable. Figure 27's `claps=0` / `while(claps<2)` / `clap_hands` / `endwhile` is one: count in the body (`claps = claps + 1`).";
+    StarvingLoop = "W0902", Warning, "loop that never gives the tick back",
+        "A `while` whose body holds only statements that end the instant they are issued (assignments and the commands the command reference marks \"ends when issued\": settings, `record`, `actuator`, `stop` ...) and that change nothing its condition reads. The VM looks at the condition again as soon as a pass has ended, so while the condition holds each pass starts the next at once, in the same tick, until the tick's budget (200,000 operations, `Config::budget_ops`, every 10 ms tick) is spent; the VM suspends the loop and resumes it next tick, where the same happens. The robot's control still runs, but the blocks queued behind the loop wait for the next tick, and the trace shows an `overrun` every tick. The message gives the operations a pass costs at least and the passes a tick that makes. Give the tick back in the body (`wait(0.1)`), or wait for the condition with a guard `if(...)` or `wait(v)`.";
+    PathNeverRecorded = "W0903", Warning, "path followed but never recorded",
+        "`followpath(P)` drives a path the robot holds by name: recorded with `record(P)` (up to `record(close)`), made with `createpath(P, x1, y1, ...)`, or taught beforehand in a scenario's `paths` (`ilmrc run --scenario`, which tells the check). No statement of the program that can run records or creates `P` (one inside `check` ... `checkend` never runs), and nothing gave it, so the movement is refused when it starts. Record it before the `followpath` in its block, or give it in the scenario. A `record(P)` anywhere in the program silences the warning, even one that may come too late.";
+    WaitNeverWakes = "W0904", Warning, "wait that never wakes",
+        "`wait(v)` holds its block until `v`'s status is 1, which the command bound to `v` sets when it ends. Every statement that sets `v` is one that never ends by itself (`followwall`, `goahead()` without a distance, a `while` whose condition is a constant other than 0: the command reference says which), and the program holds nothing that could end it: no bare `break`, no `break(pattern)` whose pattern is found in it or in the `if` or `while` round it, no `priority` block. Only a refusal, or a line typed while the task runs, would wake the wait. End the command with a `break` in a guard (`if(w > 5)` / `break(followwall)` / `endif`), or wait for something that ends.";
     UnusedVariable = "W0502", Warning, "variable never used",
         "A variable is bound but nothing reads it. Its command still runs.";
 }

@@ -124,9 +124,12 @@ pub enum Problem {
     Special(&'static str),
     /// Larger than its kind's limit.
     TooLarge,
-    /// [`read_text`] only: the first byte that is not UTF-8.
+    /// [`read_text`] only: the first byte that is not UTF-8, and where it stands
+    /// (1-based line, and column in characters).
     NotUtf8 {
         offset: usize,
+        line: usize,
+        column: usize,
     },
     Io(io::Error),
 }
@@ -158,9 +161,10 @@ impl fmt::Display for ReadError {
                 self.kind.noun(),
                 self.kind.limit_name()
             ),
-            Problem::NotUtf8 { offset } => {
-                write!(f, "it is not UTF-8 text (invalid byte at offset {offset})")
-            }
+            Problem::NotUtf8 { line, column, .. } => write!(
+                f,
+                "it is not UTF-8 text (invalid byte at line {line}, column {column})"
+            ),
             Problem::Io(e) => write!(f, "{e}"),
         }
     }
@@ -201,12 +205,27 @@ pub fn read(path: &Path, kind: Kind) -> Result<Vec<u8>, ReadError> {
 /// an error.
 pub fn read_text(path: &Path, kind: Kind) -> Result<String, ReadError> {
     let bytes = read(path, kind)?;
-    String::from_utf8(bytes).map_err(|e| ReadError {
-        kind,
-        problem: Problem::NotUtf8 {
-            offset: e.utf8_error().valid_up_to(),
-        },
+    String::from_utf8(bytes).map_err(|e| {
+        let offset = e.utf8_error().valid_up_to();
+        let (line, column) = line_column(&e.as_bytes()[..offset]);
+        ReadError {
+            kind,
+            problem: Problem::NotUtf8 {
+                offset,
+                line,
+                column,
+            },
+        }
     })
+}
+
+/// Where the byte after `valid` (UTF-8 text) stands: 1-based line, and column in
+/// characters.
+pub fn line_column(valid: &[u8]) -> (usize, usize) {
+    let line_start = valid.iter().rposition(|b| *b == b'\n').map_or(0, |i| i + 1);
+    let line = valid.iter().filter(|b| **b == b'\n').count() + 1;
+    let column = std::str::from_utf8(&valid[line_start..]).map_or(0, |t| t.chars().count()) + 1;
+    (line, column)
 }
 
 fn read_limited(path: &Path, limit: u64) -> Result<Vec<u8>, Problem> {

@@ -110,11 +110,19 @@ fn what_is_read_stops_one_byte_past_the_limit() {
 fn text_that_is_not_utf8_says_where() {
     let dir = scratch("utf8");
     let path = dir.join("bad.ilmr");
-    std::fs::write(&path, b"ok\n\xff\n").unwrap_or_else(|e| panic!("{e}"));
+    std::fs::write(&path, b"ok\n\xc3\xa4\xff\n").unwrap_or_else(|e| panic!("{e}"));
     assert_eq!(
         read_text(&path, Kind::Source).err().map(|e| e.to_string()),
-        Some("it is not UTF-8 text (invalid byte at offset 3)".into())
+        Some("it is not UTF-8 text (invalid byte at line 2, column 2)".into())
     );
+    assert!(matches!(
+        read_text(&path, Kind::Source).map_err(|e| e.problem),
+        Err(Problem::NotUtf8 {
+            offset: 5,
+            line: 2,
+            column: 2
+        })
+    ));
     // Bytes are bytes: the module reader takes them.
     assert!(read(&path, Kind::Module).is_ok());
 }

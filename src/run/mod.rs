@@ -20,7 +20,7 @@ use std::process::ExitCode;
 
 use ilmr_vm::{Clock, RealClock, SimClock, TraceLevel, Vm};
 
-use crate::build::{Compiled, compile};
+use crate::build::{Compiled, compile_given};
 use backend::{AnyRobot, Robot};
 use progress::Progress;
 use record::{Extra, Sink};
@@ -50,7 +50,7 @@ pub struct RunArgs {
     /// the world's start).
     #[arg(long, allow_hyphen_values = true)]
     pub start: Option<String>,
-    /// A directory of skill files (`*.ilms`) the task may call.
+    /// A skill file, or a directory of skill files (`*.ilms`), the task may call.
     #[arg(long)]
     pub skills: Option<PathBuf>,
     /// Taught paths and timed interactive lines; for `--robot scripted` also what its
@@ -186,13 +186,22 @@ fn execute(args: &RunArgs, reached: &mut Reached) -> Result<Ran, String> {
         None => None,
     };
     let robotless = setup.backend == Backend::None;
-    let compiled = compile(&args.task, &setup.model_spec, args.skills.as_deref(), |m| {
-        if robotless {
-            ilmr_compiler::lower::robot_uses(m)
-        } else {
-            Vec::new()
-        }
-    })?;
+    let given = ilmr_compiler::check::Given {
+        paths: scenario.paths.keys().cloned().collect(),
+    };
+    let compiled = compile_given(
+        &args.task,
+        &setup.model_spec,
+        args.skills.as_deref(),
+        &given,
+        |m| {
+            if robotless {
+                ilmr_compiler::lower::robot_uses(m)
+            } else {
+                Vec::new()
+            }
+        },
+    )?;
     let module = match compiled {
         Compiled::Module(m) => *m,
         Compiled::Rejected => return Ok(Ran::Rejected),

@@ -4,8 +4,8 @@
 use crate::Command;
 use crate::spec::{
     Category::{self, *},
-    CommandSpec, Form, Limit, ModelNames, NameSpace, Occurs, Param, ParamKind, Range, Syntax, Unit,
-    VarKind,
+    CommandSpec, Ends, Form, Limit, ModelNames, NameSpace, Occurs, Param, ParamKind, Range, Syntax,
+    Unit, VarKind,
 };
 
 const fn param(name: &'static str, kind: ParamKind, occurs: Occurs, doc: &'static str) -> Param {
@@ -103,6 +103,7 @@ const fn spec(
         movement,
         holds_block: false,
         needs_device: None,
+        ends: Ends::Later,
         grammar,
         forms,
         summary,
@@ -110,6 +111,21 @@ const fn spec(
         examples,
         section,
     }
+}
+
+const fn at_issue(mut s: CommandSpec) -> CommandSpec {
+    s.ends = Ends::AtIssue;
+    s
+}
+
+const fn at_issue_without(mut s: CommandSpec, keyword: &'static str) -> CommandSpec {
+    s.ends = Ends::AtIssueWithout { keyword };
+    s
+}
+
+const fn ends(mut s: CommandSpec, ends: Ends) -> CommandSpec {
+    s.ends = ends;
+    s
 }
 
 const fn holds_block(mut s: CommandSpec) -> CommandSpec {
@@ -155,7 +171,7 @@ pub static CATALOGUE: [CommandSpec; Command::COUNT] = [
         &["movemode(wheels)"],
         "4.5.1",
     ),
-    define(
+    at_issue(define(
         Command::LocMode,
         "locmode",
         "LocMode",
@@ -178,45 +194,48 @@ pub static CATALOGUE: [CommandSpec; Command::COUNT] = [
         "The modes a robot has are listed in the `[IDENTIFIERS]` of its model.",
         &["locmode(odo)"],
         "4.5.1",
-    ),
-    define(
-        Command::Speed,
-        "speed",
-        "Speed",
-        "speed ::= \"speed\" \"(\" value [\",\" \"w\"] \")\"\nvalue ::= number | variable  (-max_speed ... max_speed m/s)",
-        &[form(
-            &[
-                param(
-                    "value",
-                    value(
-                        Unit::MetresPerSecond,
-                        Range::Symmetric {
-                            param: "max_speed",
-                            limit: Limit::Refuse,
-                        },
-                    ),
-                    Occurs::One,
-                    "speed in m/s; negative drives backwards",
-                ),
-                param(
-                    "w",
-                    keyword(&["w"]),
-                    Occurs::Optional,
-                    "wait: the speed is set only when the running movement command has ended",
-                ),
-            ],
-            1,
-            VarKind::Status,
+    )),
+    at_issue_without(
+        define(
+            Command::Speed,
             "speed",
-        )],
-        "Sets the speed for the current or next movement command.",
-        "Takes effect at once (or, with `w`, when the running movement command ends). The robot \
+            "Speed",
+            "speed ::= \"speed\" \"(\" value [\",\" \"w\"] \")\"\nvalue ::= number | variable  (-max_speed ... max_speed m/s)",
+            &[form(
+                &[
+                    param(
+                        "value",
+                        value(
+                            Unit::MetresPerSecond,
+                            Range::Symmetric {
+                                param: "max_speed",
+                                limit: Limit::Refuse,
+                            },
+                        ),
+                        Occurs::One,
+                        "speed in m/s; negative drives backwards",
+                    ),
+                    param(
+                        "w",
+                        keyword(&["w"]),
+                        Occurs::Optional,
+                        "wait: the speed is set only when the running movement command has ended",
+                    ),
+                ],
+                1,
+                VarKind::Status,
+                "speed",
+            )],
+            "Sets the speed for the current or next movement command.",
+            "Takes effect at once (or, with `w`, when the running movement command ends). The robot \
          does not move from this command alone. Without it the robot uses the model's \
          `default_speed`. Speeds beyond the model's `max_speed` are refused.",
-        &["speed(0.4)", "speed(-0.5)", "speed(-0.6,w)"],
-        "4.5.1",
+            &["speed(0.4)", "speed(-0.5)", "speed(-0.6,w)"],
+            "4.5.1",
+        ),
+        "w",
     ),
-    define(
+    at_issue(define(
         Command::BodyPose,
         "bodypose",
         "BodyPose",
@@ -273,8 +292,8 @@ pub static CATALOGUE: [CommandSpec; Command::COUNT] = [
          none cannot take a body pose.",
         &["bodypose(r=10,p=20,rc=0.5)"],
         "4.5.1",
-    ),
-    define(
+    )),
+    at_issue(define(
         Command::Locate,
         "locate",
         "Locate",
@@ -319,8 +338,8 @@ pub static CATALOGUE: [CommandSpec; Command::COUNT] = [
          x (or y, or h in radians) into `v`.",
         &["locate(2.5,7.8,180)", "x=locate(x)"],
         "4.5.1",
-    ),
-    define(
+    )),
+    at_issue(define(
         Command::AdvanceStop,
         "advancestop",
         "AdvanceStop",
@@ -341,8 +360,8 @@ pub static CATALOGUE: [CommandSpec; Command::COUNT] = [
          output of the movement command.",
         &["advancestop(1.0)"],
         "4.5.1",
-    ),
-    define(
+    )),
+    at_issue(define(
         Command::ObsAvoid,
         "obsavoid",
         "ObsAvoid",
@@ -364,8 +383,8 @@ pub static CATALOGUE: [CommandSpec; Command::COUNT] = [
          the way back to its path is free (section 4.5.7).",
         &["obsavoid(on)"],
         "4.5.1",
-    ),
-    define(
+    )),
+    at_issue(define(
         Command::Record,
         "record",
         "Record",
@@ -392,8 +411,8 @@ pub static CATALOGUE: [CommandSpec; Command::COUNT] = [
         "The recorded path can later be driven with `followpath(name)`.",
         &["record(path_1)", "record(close)"],
         "4.5.1",
-    ),
-    define(
+    )),
+    at_issue(define(
         Command::Use,
         "use",
         "Use",
@@ -414,8 +433,8 @@ pub static CATALOGUE: [CommandSpec; Command::COUNT] = [
          command instead of the robot's current pose, so errors do not accumulate.",
         &["use(goalpos)"],
         "4.5.1",
-    ),
-    define(
+    )),
+    at_issue(define(
         Command::SavePos,
         "savepos",
         "SavePos",
@@ -445,8 +464,8 @@ pub static CATALOGUE: [CommandSpec; Command::COUNT] = [
         "The name becomes a position variable usable by `gotoxy(name)` and `turn(name)`.",
         &["savepos(pos1)", "savepos(pos2,laser)"],
         "4.5.1",
-    ),
-    define(
+    )),
+    at_issue(define(
         Command::CreatePath,
         "createpath",
         "CreatePath",
@@ -476,31 +495,34 @@ pub static CATALOGUE: [CommandSpec; Command::COUNT] = [
         "The path can then be driven with `followpath(name)`.",
         &["createpath(path1,0.0,0.0,5.0,1.0,6.0,5.0)"],
         "4.5.1",
-    ),
+    )),
     // -------------------------------------------------------------- Movement
-    spec(
-        Command::Goahead,
-        "goahead",
-        "Goahead",
-        Movement,
-        true,
-        "goahead ::= \"goahead\" \"(\" [value] \")\"\nvalue ::= number | variable  (metres)",
-        &[form(
-            &[param(
+    ends(
+        spec(
+            Command::Goahead,
+            "goahead",
+            "Goahead",
+            Movement,
+            true,
+            "goahead ::= \"goahead\" \"(\" [value] \")\"\nvalue ::= number | variable  (metres)",
+            &[form(
+                &[param(
+                    "distance",
+                    METRES,
+                    Occurs::Optional,
+                    "metres ahead; negative goes back; without it the robot goes on until broken",
+                )],
+                0,
+                VarKind::Movement,
                 "distance",
-                METRES,
-                Occurs::Optional,
-                "metres ahead; negative goes back; without it the robot goes on until broken",
             )],
-            0,
-            VarKind::Movement,
-            "distance",
-        )],
-        "Moves the robot straight ahead or back.",
-        "`goahead()` without a distance keeps going until the command is broken; its variable's \
+            "Moves the robot straight ahead or back.",
+            "`goahead()` without a distance keeps going until the command is broken; its variable's \
          `dist` tells how far it has gone.",
-        &["goahead(-1.45)", "goahead(dist1)", "dist = goahead()"],
-        "4.5.3",
+            &["goahead(-1.45)", "goahead(dist1)", "dist = goahead()"],
+            "4.5.3",
+        ),
+        Ends::NeverBare,
     ),
     spec(
         Command::Turn,
@@ -606,38 +628,41 @@ pub static CATALOGUE: [CommandSpec; Command::COUNT] = [
         &["followpath(path_1)", "followpath(path2,reverse,backwards)"],
         "4.5.3",
     ),
-    spec(
-        Command::FollowWall,
-        "followwall",
-        "FollowWall",
-        Movement,
-        true,
-        "followwall ::= \"followwall\" \"(\" mode [\",\" distance] \")\"\nmode ::= left | right | middle",
-        &[form(
-            &[
-                param(
-                    "side",
-                    keyword(&["left", "right", "middle"]),
-                    Occurs::One,
-                    "follow the wall on the left or right, or keep to the middle of two walls",
-                ),
-                param(
-                    "distance",
-                    value(Unit::Metres, Range::Positive),
-                    Occurs::Optional,
-                    "distance to the wall; the model's followwall_d when omitted",
-                ),
-            ],
-            1,
-            VarKind::Movement,
-            "wall",
-        )],
-        "Moves along a nearby wall, or in the middle of a corridor.",
-        "The wall's line is fitted from the environment map; the robot's position is projected \
+    ends(
+        spec(
+            Command::FollowWall,
+            "followwall",
+            "FollowWall",
+            Movement,
+            true,
+            "followwall ::= \"followwall\" \"(\" mode [\",\" distance] \")\"\nmode ::= left | right | middle",
+            &[form(
+                &[
+                    param(
+                        "side",
+                        keyword(&["left", "right", "middle"]),
+                        Occurs::One,
+                        "follow the wall on the left or right, or keep to the middle of two walls",
+                    ),
+                    param(
+                        "distance",
+                        value(Unit::Metres, Range::Positive),
+                        Occurs::Optional,
+                        "distance to the wall; the model's followwall_d when omitted",
+                    ),
+                ],
+                1,
+                VarKind::Movement,
+                "wall",
+            )],
+            "Moves along a nearby wall, or in the middle of a corridor.",
+            "The wall's line is fitted from the environment map; the robot's position is projected \
          onto it, a goal three metres ahead at the wanted distance is driven to as by gotoxy, \
          and this repeats every two metres until the command is broken.",
-        &["followwall(middle)", "followwall(left,2.5)"],
-        "4.5.3",
+            &["followwall(middle)", "followwall(left,2.5)"],
+            "4.5.3",
+        ),
+        Ends::Never,
     ),
     spec(
         Command::FollowTarget,
@@ -930,7 +955,7 @@ pub static CATALOGUE: [CommandSpec; Command::COUNT] = [
         &["door = findtarget(scanner,door)"],
         "4.5.4",
     ),
-    spec(
+    at_issue(spec(
         Command::Actuator,
         "actuator",
         "Actuator",
@@ -965,7 +990,7 @@ pub static CATALOGUE: [CommandSpec; Command::COUNT] = [
         "The value must lie within the range the model gives the actuator.",
         &["actuator(brake,on)", "actuator(leg1,90)"],
         "4.5.4",
-    ),
+    )),
     needs_device(
         spec(
             Command::Manipulate,
@@ -1064,7 +1089,7 @@ pub static CATALOGUE: [CommandSpec; Command::COUNT] = [
         &["break", "break(turn(d=))"],
         "4.5.5",
     )),
-    spec(
+    at_issue(spec(
         Command::Stop,
         "stop",
         "Stop",
@@ -1076,8 +1101,8 @@ pub static CATALOGUE: [CommandSpec; Command::COUNT] = [
         "Movement resumes with `cont`.",
         &["stop"],
         "4.5.5",
-    ),
-    spec(
+    )),
+    at_issue(spec(
         Command::Cont,
         "cont",
         "Cont",
@@ -1089,7 +1114,7 @@ pub static CATALOGUE: [CommandSpec; Command::COUNT] = [
         "",
         &["cont"],
         "4.5.5",
-    ),
+    )),
     holds_block(spec(
         Command::Wait,
         "wait",
@@ -1154,7 +1179,7 @@ pub static CATALOGUE: [CommandSpec; Command::COUNT] = [
         &["checkend"],
         "4.5.5",
     )),
-    spec(
+    at_issue(spec(
         Command::Clear,
         "clear",
         "Clear",
@@ -1176,5 +1201,5 @@ pub static CATALOGUE: [CommandSpec; Command::COUNT] = [
         "A cleared variable's status is 0 again, so `wait` and `if` on it wait anew.",
         &["clear(counter)"],
         "4.5.5",
-    ),
+    )),
 ];

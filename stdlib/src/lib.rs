@@ -16,8 +16,8 @@ pub mod units;
 pub use catalogue::CATALOGUE;
 pub use command::Command;
 pub use spec::{
-    Category, CommandSpec, Field, Form, Limit, ModelNames, NameSpace, Occurs, Param, ParamKind,
-    Range, Syntax, Unit, VarKind,
+    Category, CommandSpec, Ends, Field, Form, Limit, ModelNames, NameSpace, Occurs, Param,
+    ParamKind, Range, Syntax, Unit, VarKind,
 };
 
 /// Words that are statements of their own and can name neither a variable nor a skill.

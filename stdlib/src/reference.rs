@@ -28,6 +28,21 @@ pub fn reference_markdown() -> String {
             if spec.holds_block {
                 facts.push("holds the rest of its block until it ends".into());
             }
+            match spec.ends {
+                crate::spec::Ends::AtIssue => facts.push("ends when issued".into()),
+                crate::spec::Ends::AtIssueWithout { keyword } => {
+                    facts.push(format!("ends when issued, unless written with `{keyword}`"))
+                }
+                crate::spec::Ends::Never => facts.push(
+                    "never ends by itself: only a `break`, a `priority` block or a refusal ends it"
+                        .into(),
+                ),
+                crate::spec::Ends::NeverBare => facts.push(
+                    "without an argument never ends by itself: only a `break`, a `priority` block or a refusal ends it"
+                        .into(),
+                ),
+                crate::spec::Ends::Later => {}
+            }
             if let Some(device) = spec.needs_device {
                 facts.push(format!(
                     "needs a `{device}` in the robot model's [SENSORSANDACTUATORS] (E0407 otherwise)"

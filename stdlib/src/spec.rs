@@ -289,6 +289,48 @@ pub enum Syntax {
     Structural,
 }
 
+/// When a command ends, measured from the instant the VM issues it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case", tag = "type")]
+pub enum Ends {
+    /// Does its work when issued and has ended before the next statement is issued
+    /// (settings, `record`, `actuator`, `stop`): it never waits for a later tick.
+    AtIssue,
+    /// As `AtIssue`, unless written with this keyword (`speed(v,w)` waits for the
+    /// running movement).
+    AtIssueWithout { keyword: &'static str },
+    /// Can last into later ticks: movements, `wait`, operations of the robot
+    /// (`init`, `manipulate`, `movemode`), searches and readings that wait for data.
+    Later,
+    /// Never ends by itself: only a `break`, a `priority` block or a refusal ends it
+    /// (`followwall`), and its variable's status stays 0 until then.
+    Never,
+    /// As `Later`, but `Never` when written without an argument (`goahead()`).
+    NeverBare,
+}
+
+impl Ends {
+    /// Whether a statement of this command, with these keyword arguments, surely ends
+    /// at issue.
+    pub fn at_issue<'a>(self, mut keywords: impl Iterator<Item = &'a str>) -> bool {
+        match self {
+            Ends::AtIssue => true,
+            Ends::AtIssueWithout { keyword } => !keywords.any(|k| k.eq_ignore_ascii_case(keyword)),
+            Ends::Later | Ends::Never | Ends::NeverBare => false,
+        }
+    }
+
+    /// Whether a statement of this command, with this many arguments, never ends by
+    /// itself.
+    pub fn never(self, args: usize) -> bool {
+        match self {
+            Ends::Never => true,
+            Ends::NeverBare => args == 0,
+            _ => false,
+        }
+    }
+}
+
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct CommandSpec {
     pub command: Command,
@@ -305,6 +347,9 @@ pub struct CommandSpec {
     /// A device the robot model must list in `[SENSORSANDACTUATORS]` for the command
     /// to be possible on that robot (`manipulate` needs a `manipulator`).
     pub needs_device: Option<&'static str>,
+    /// Whether the command can last past the instant it is issued: a `while` whose
+    /// body holds only commands that cannot never gives the tick back (W0902).
+    pub ends: Ends,
     /// The BNF as the dissertation gives it (with this project's decisions applied).
     pub grammar: &'static str,
     pub forms: &'static [Form],

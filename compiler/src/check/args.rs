@@ -329,7 +329,10 @@ impl<'m, 'v> Cx<'m, 'v> {
                 }
                 None => self.wrong_kind(m, e, "a name"),
             },
-            ParamKind::OneOf { kinds } => match kinds.iter().find(|k| self.fits(spec, k, e)) {
+            ParamKind::OneOf { kinds } => match self
+                .object_for_unbound(kinds, name)
+                .or_else(|| kinds.iter().find(|k| self.fits(spec, k, e)))
+            {
                 Some(chosen) => self.accept(m, spec, param, chosen, e, device),
                 None => {
                     let expected: Vec<String> = kinds.iter().map(describe).collect();
@@ -337,6 +340,28 @@ impl<'m, 'v> Cx<'m, 'v> {
                 }
             },
         }
+    }
+
+    /// `approach(door)`: a name that no variable has but an object of the model has is
+    /// that object where the argument may be one (otherwise the first kind that fits, a
+    /// position variable, would call it unbound).
+    fn object_for_unbound<'k>(
+        &mut self,
+        kinds: &'k [ParamKind],
+        name: Option<Name<'_>>,
+    ) -> Option<&'k ParamKind> {
+        let n = name?;
+        if self.vars.bound(n.text).is_some() || self.model.object(n.text).is_none() {
+            return None;
+        }
+        kinds.iter().find(|k| {
+            matches!(
+                k,
+                ParamKind::Model {
+                    names: ModelNames::Object
+                }
+            )
+        })
     }
 
     fn not_a_keyword(

@@ -15,6 +15,8 @@ use rustc_hash::{FxHashMap, FxHashSet};
 
 use crate::ast::{Block, Expr, ExprKind, Stmt, StmtKind};
 use crate::check::FileEntry;
+use crate::check::skills::Skills;
+use crate::check::starve;
 use crate::diagnostic::{Code, Diagnostic, FileId};
 use crate::span::Span;
 
@@ -27,7 +29,8 @@ struct Writes {
     assigned: Vec<(FileId, Span)>,
 }
 
-pub fn check_frozen_loops(files: &[FileEntry<'_>], diags: &mut Vec<Diagnostic>) {
+/// W0901, and W0902 (`starve.rs`) for the same loops.
+pub fn check_frozen_loops(files: &[FileEntry<'_>], skills: &Skills, diags: &mut Vec<Diagnostic>) {
     let mut any_loop = false;
     for entry in files {
         entry.tree.for_each_stmt(&mut |s: &Stmt<'_>| {
@@ -38,6 +41,11 @@ pub fn check_frozen_loops(files: &[FileEntry<'_>], diags: &mut Vec<Diagnostic>) 
         return;
     }
     let writes = writes(files);
+    let is_variable = |name: &str| writes.contains_key(&key(name));
+    let program = starve::Program {
+        skills,
+        is_variable: &is_variable,
+    };
     // A library's skills are checked where they are called; their loops are the
     // library's business.
     for (i, entry) in files.iter().enumerate().filter(|(_, e)| !e.library) {
@@ -46,6 +54,7 @@ pub fn check_frozen_loops(files: &[FileEntry<'_>], diags: &mut Vec<Diagnostic>) 
             file,
             text: entry.text,
             writes: &writes,
+            program: &program,
             before: Vec::new(),
             issued: FxHashSet::default(),
             diags,
@@ -102,6 +111,7 @@ struct Walk<'a, 'd> {
     file: FileId,
     text: &'a str,
     writes: &'a FxHashMap<String, Writes>,
+    program: &'a starve::Program<'a>,
     /// Assignments issued, one after another, before the statement being looked at;
     /// `issued` holds the same for lookups, so a long block stays linear.
     before: Vec<Span>,
@@ -122,6 +132,15 @@ impl Walk<'_, '_> {
                     StmtKind::If(c) => self.blocks(&c.body),
                     StmtKind::While { body, .. } => {
                         self.frozen(stmt, &body.cond);
+                        starve::check(
+                            self.program,
+                            self.file,
+                            self.text,
+                            stmt,
+                            &body.cond,
+                            &body.body,
+                            self.diags,
+                        );
                         self.blocks(&body.body);
                     }
                     // Never runs.
@@ -192,9 +211,9 @@ impl Walk<'_, '_> {
     }
 }
 
-fn names_in<'s>(e: &Expr<'s>, out: &mut Vec<&'s str>) {
+pub(super) fn names_in<'s>(e: &Expr<'s>, out: &mut impl Extend<&'s str>) {
     match &e.kind {
-        ExprKind::Name(n) => out.push(n.text),
+        ExprKind::Name(n) => out.extend([n.text]),
         ExprKind::Neg(inner) => names_in(inner, out),
         ExprKind::Binary { lhs, rhs, .. } | ExprKind::Compare { lhs, rhs, .. } => {
             names_in(lhs, out);

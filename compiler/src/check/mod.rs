@@ -11,9 +11,12 @@ mod fold;
 mod keywords;
 mod loops;
 mod names;
+mod paths;
 mod scope;
 mod skills;
+mod starve;
 pub mod suggest;
+mod wakes;
 
 use ilmr_model::RobotModel;
 use ilmr_stdlib::{Command, Syntax, VarKind};
@@ -174,7 +177,24 @@ pub fn analyze<'s>(sources: &'s [Source], model: &RobotModel) -> Analysis<'s> {
     analyze_with(sources, model, Detail::Full)
 }
 
+/// What the program is given from outside its files.
+#[derive(Debug, Clone, Default)]
+pub struct Given {
+    /// Paths taught beforehand (a scenario's `paths`), which `followpath` may drive
+    /// without the program recording them.
+    pub paths: Vec<String>,
+}
+
 pub fn analyze_with<'s>(sources: &'s [Source], model: &RobotModel, detail: Detail) -> Analysis<'s> {
+    analyze_given(sources, model, detail, &Given::default())
+}
+
+pub fn analyze_given<'s>(
+    sources: &'s [Source],
+    model: &RobotModel,
+    detail: Detail,
+    given: &Given,
+) -> Analysis<'s> {
     let mut diagnostics = Vec::new();
     let mut files: Vec<FileEntry<'s>> = Vec::with_capacity(sources.len() + 1);
     let builtins = ilmr_stdlib::skills::BUILTIN_SKILL_FILES
@@ -291,7 +311,9 @@ pub fn analyze_with<'s>(sources: &'s [Source], model: &RobotModel, detail: Detai
     }
 
     breaks::check_patterns(&files, &skills, &mut diagnostics);
-    loops::check_frozen_loops(&files, &mut diagnostics);
+    loops::check_frozen_loops(&files, &skills, &mut diagnostics);
+    wakes::check_waits(&files, &mut diagnostics);
+    paths::check_paths(&files, &given.paths, &mut diagnostics);
     unused_variables(&files, &units, &mut diagnostics);
 
     diagnostics.sort_by_key(|d| (d.file, d.span.start, d.code));
