@@ -11,6 +11,20 @@ use std::panic::{AssertUnwindSafe, catch_unwind};
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
+/// Runs a target where the tools compile: on a thread with the compiler's stack
+/// (`ilmr_compiler::limits::COMPILER_STACK`; a test thread has 2 MiB, less than an
+/// unoptimised compiler needs at its nesting limits).
+pub fn on_compiler_stack<T: Send>(target: impl FnOnce() -> T + Send) -> T {
+    std::thread::scope(|s| {
+        std::thread::Builder::new()
+            .stack_size(ilmr_compiler::limits::COMPILER_STACK)
+            .spawn_scoped(s, target)
+            .expect("start the target's thread")
+            .join()
+            .unwrap_or_else(|panic| std::panic::resume_unwind(panic))
+    })
+}
+
 /// SplitMix64: small, fast, and the same sequence on every machine.
 #[derive(Debug, Clone)]
 pub struct Rng(u64);
@@ -164,12 +178,18 @@ fn fnv(text: &str) -> u64 {
     })
 }
 
-fn root() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+/// The repository. This file is compiled into the root package's tests and into the
+/// AFL++ targets' package, `fuzz/`, one level down.
+pub fn root() -> PathBuf {
+    let package = Path::new(env!("CARGO_MANIFEST_DIR"));
+    match package.parent() {
+        Some(up) if !package.join("tests/fuzz").is_dir() => up.to_path_buf(),
+        _ => package.to_path_buf(),
+    }
 }
 
 /// Inputs that once crashed a target, sorted by name so the order is fixed.
-fn regression_inputs(name: &str) -> Vec<(PathBuf, Vec<u8>)> {
+pub fn regression_inputs(name: &str) -> Vec<(PathBuf, Vec<u8>)> {
     let dir = root().join("tests/fuzz/regressions").join(name);
     let Ok(entries) = std::fs::read_dir(&dir) else {
         return Vec::new();

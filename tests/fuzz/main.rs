@@ -20,21 +20,7 @@ mod targets;
 #[path = "../support/taskgen.rs"]
 mod taskgen;
 
-use engine::Budget;
-
-/// Runs a target where the tools compile: on a thread with the compiler's stack
-/// (`ilmr_compiler::limits::COMPILER_STACK`; a test thread has 2 MiB, less than an
-/// unoptimised compiler needs at its nesting limits).
-fn on_compiler_stack<T: Send>(target: impl FnOnce() -> T + Send) -> T {
-    std::thread::scope(|s| {
-        std::thread::Builder::new()
-            .stack_size(ilmr_compiler::limits::COMPILER_STACK)
-            .spawn_scoped(s, target)
-            .expect("start the target's thread")
-            .join()
-            .unwrap_or_else(|panic| std::panic::resume_unwind(panic))
-    })
-}
+use engine::{Budget, on_compiler_stack};
 
 #[test]
 fn task_files_never_panic() {

@@ -7,7 +7,7 @@ use ilmr_compiler::check::Source;
 use ilmr_model::RobotModel;
 use ilmr_vm::Module;
 
-use crate::engine::files;
+use crate::engine::{files, root};
 use crate::pipeline;
 use crate::taskgen::{Generator, Shape};
 
@@ -86,10 +86,7 @@ pub fn live_module(robot: &str) -> Module {
                 LIVE_TASKS
                     .iter()
                     .find_map(|path| {
-                        let text = std::fs::read_to_string(
-                            std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join(path),
-                        )
-                        .ok()?;
+                        let text = std::fs::read_to_string(root().join(path)).ok()?;
                         let mut sources = vec![Source::new(*path, text)];
                         sources.extend(library().iter().cloned());
                         pipeline::compile(&sources, &m).filter(|m| !m.code.is_empty())

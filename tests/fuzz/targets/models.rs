@@ -23,38 +23,54 @@ const TASKS: &[&str] = &[
 
 const TICKS: u32 = 20;
 
+/// The target, shared by this loop and the AFL++ binary (`fuzz/src/bin/model.rs`).
+pub struct Models {
+    tasks: Vec<String>,
+    world: World,
+}
+
+impl Models {
+    pub fn load() -> Models {
+        let tasks = TASKS
+            .iter()
+            .map(|p| std::fs::read_to_string(engine::root().join(p)).unwrap_or_default())
+            .collect();
+        let world = match ilmr_sim::world::shipped("empty") {
+            Some(Ok(w)) => w,
+            _ => panic!("the empty world is shipped"),
+        };
+        // Parsed once, before the first input (under AFL++, before the fork server forks).
+        corpus::library();
+        Models { tasks, world }
+    }
+
+    pub fn feed(&self, input: &[u8]) {
+        let text = String::from_utf8_lossy(input);
+        let (model, warnings) = RobotModel::parse(&text, "fuzz");
+        for w in &warnings {
+            assert!(!w.message.is_empty(), "a warning says what was wrong");
+        }
+        writes_back(&model);
+        for task in &self.tasks {
+            let mut sources = vec![Source::new("task.ilmr", task.as_str())];
+            sources.extend(corpus::library().iter().cloned());
+            if let Some(module) = pipeline::compile(&sources, &model) {
+                simulate(module, &model, &self.world);
+            }
+        }
+    }
+}
+
 pub fn fuzz(budget: Budget) -> Stats {
     let corpus = corpus::ini_files();
     let dictionary = mutate::ini_dictionary();
-    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
-    let tasks: Vec<String> = TASKS
-        .iter()
-        .map(|p| std::fs::read_to_string(root.join(p)).unwrap_or_default())
-        .collect();
-    let world = match ilmr_sim::world::shipped("empty") {
-        Some(Ok(w)) => w,
-        _ => panic!("the empty world is shipped"),
-    };
+    let target = Models::load();
     engine::run(
         "model",
         &corpus,
         budget,
         |base, rng| mutate::text(base, rng, &corpus, &dictionary),
-        |input| {
-            let text = String::from_utf8_lossy(input);
-            let (model, warnings) = RobotModel::parse(&text, "fuzz");
-            for w in &warnings {
-                assert!(!w.message.is_empty(), "a warning says what was wrong");
-            }
-            writes_back(&model);
-            for task in &tasks {
-                let mut sources = vec![Source::new("task.ilmr", task.as_str())];
-                sources.extend(corpus::library().iter().cloned());
-                if let Some(module) = pipeline::compile(&sources, &model) {
-                    simulate(module, &model, &world);
-                }
-            }
-        },
+        |input| target.feed(input),
     )
 }
 

@@ -11,7 +11,7 @@ use crate::engine::{self, Budget, Rng, Stats};
 use crate::{mutate, pipeline};
 
 /// Every corpus task that lowers, on either robot, as module bytes.
-fn modules() -> Vec<Vec<u8>> {
+pub fn modules() -> Vec<Vec<u8>> {
     let mut out = Vec::new();
     for robot in ROBOTS {
         let model = corpus::model(robot);
@@ -51,24 +51,53 @@ pub fn fuzz(budget: Budget) -> Stats {
             }
             bytes
         },
-        |input| {
-            let module = match Module::from_bytes(input) {
-                Ok(m) => m,
-                Err(e) => {
-                    assert!(!e.to_string().is_empty());
-                    return;
-                }
-            };
-            let listing = disassemble(&module);
-            assert!(module.code.is_empty() || !listing.is_empty());
-            let Some(mut vm) = pipeline::vm(module) else {
-                panic!("Vm::new refused a module that from_bytes accepted");
-            };
-            for _ in 0..pipeline::TICKS {
-                vm.tick();
-            }
-        },
+        feed,
     )
+}
+
+/// The target, shared by this loop and the AFL++ binary (`fuzz/src/bin/module.rs`):
+/// the bytes as they are, then framed again (see [`reframe`]).
+pub fn feed(input: &[u8]) {
+    load_and_run(input);
+    if let Some(framed) = reframe(input).filter(|f| f != input) {
+        load_and_run(&framed);
+    }
+}
+
+fn load_and_run(input: &[u8]) {
+    let module = match Module::from_bytes(input) {
+        Ok(m) => m,
+        Err(e) => {
+            assert!(!e.to_string().is_empty());
+            return;
+        }
+    };
+    let listing = disassemble(&module);
+    assert!(module.code.is_empty() || !listing.is_empty());
+    let Some(mut vm) = pipeline::vm(module) else {
+        panic!("Vm::new refused a module that from_bytes accepted");
+    };
+    for _ in 0..pipeline::TICKS {
+        vm.tick();
+    }
+}
+
+/// `bytes` with the payload's length and the checksum set to what the bytes hold, when
+/// they start like a module. A mutation inside the tables (AFL++ knows nothing of the
+/// format) would otherwise fail the length or checksum test, and never reach the
+/// tables' decoder or the validator.
+pub fn reframe(bytes: &[u8]) -> Option<Vec<u8>> {
+    const VERSION_END: usize = ilmr_vm::bytecode::file::MAGIC.len() + 4;
+    if !bytes.starts_with(&ilmr_vm::bytecode::file::MAGIC) {
+        return None;
+    }
+    let name = usize::from(*bytes.get(VERSION_END)?);
+    let length_at = VERSION_END + 1 + name;
+    let payload = bytes.len().checked_sub(length_at + 8 + 4)?;
+    let mut framed = bytes.to_vec();
+    framed[length_at..length_at + 8].copy_from_slice(&(payload as u64).to_le_bytes());
+    ilmr_vm::bytecode::file::reseal(&mut framed);
+    Some(framed)
 }
 
 /// Hand-made bad modules: each is refused with the error that names the problem.

@@ -26,30 +26,36 @@ const SEEDS: &[&str] = &[
     "this is not json",
 ];
 
+pub fn seeds() -> Vec<Vec<u8>> {
+    SEEDS.iter().map(|s| s.as_bytes().to_vec()).collect()
+}
+
 pub fn fuzz(budget: Budget) -> Stats {
-    let corpus: Vec<Vec<u8>> = SEEDS.iter().map(|s| s.as_bytes().to_vec()).collect();
-    engine::run("request", &corpus, budget, mutation, |input| {
-        // The connection answers bytes that are not UTF-8 itself; the parser sees text.
-        let Ok(line) = std::str::from_utf8(input) else {
-            return;
-        };
-        let parsed = protocol::parse(line);
-        let body = match &parsed.request {
-            Request::Invalid(why) => {
-                assert!(!why.is_empty(), "an invalid request says why");
-                protocol::error(why)
-            }
-            _ => serde_json::Map::new(),
-        };
-        let answer = protocol::answer(body.clone(), parsed.id.as_ref());
-        assert!(!answer.contains('\n'), "an answer is one line: {answer}");
-        let back: Value = match serde_json::from_str(&answer) {
-            Ok(v) => v,
-            Err(e) => panic!("the answer is not JSON ({e}): {answer}"),
-        };
-        assert_eq!(back.get("id"), parsed.id.as_ref(), "the id is echoed");
-        assert_eq!(back.get("error"), body.get("error"));
-    })
+    engine::run("request", &seeds(), budget, mutation, feed)
+}
+
+/// The target, shared by this loop and the AFL++ binary (`fuzz/src/bin/request.rs`).
+pub fn feed(input: &[u8]) {
+    // The connection answers bytes that are not UTF-8 itself; the parser sees text.
+    let Ok(line) = std::str::from_utf8(input) else {
+        return;
+    };
+    let parsed = protocol::parse(line);
+    let body = match &parsed.request {
+        Request::Invalid(why) => {
+            assert!(!why.is_empty(), "an invalid request says why");
+            protocol::error(why)
+        }
+        _ => serde_json::Map::new(),
+    };
+    let answer = protocol::answer(body.clone(), parsed.id.as_ref());
+    assert!(!answer.contains('\n'), "an answer is one line: {answer}");
+    let back: Value = match serde_json::from_str(&answer) {
+        Ok(v) => v,
+        Err(e) => panic!("the answer is not JSON ({e}): {answer}"),
+    };
+    assert_eq!(back.get("id"), parsed.id.as_ref(), "the id is echoed");
+    assert_eq!(back.get("error"), body.get("error"));
 }
 
 fn mutation(base: &[u8], rng: &mut Rng) -> Vec<u8> {

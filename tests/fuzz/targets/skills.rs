@@ -2,6 +2,7 @@
 //! library, called from a task that calls every skill the file heads.
 
 use ilmr_compiler::check::Source;
+use ilmr_model::RobotModel;
 
 use super::corpus::{self, ROBOTS};
 use crate::engine::{self, Budget, Stats};
@@ -18,32 +19,47 @@ fn caller(skills: &str) -> String {
     calls.join("\n")
 }
 
+/// The target, shared by this loop and the AFL++ binary (`fuzz/src/bin/skills.rs`).
+pub struct Skills {
+    models: Vec<RobotModel>,
+}
+
+impl Skills {
+    pub fn load() -> Skills {
+        Skills {
+            models: ROBOTS.iter().map(|r| corpus::model(r)).collect(),
+        }
+    }
+
+    pub fn feed(&self, input: &[u8]) {
+        let text = String::from_utf8_lossy(input);
+        let task = caller(&text);
+        for model in &self.models {
+            let checked = [
+                Source::new("task.ilmr", task.as_str()),
+                Source::new("fuzz.ilms", text.as_ref()),
+            ];
+            if let Some(module) = pipeline::compile(&checked, model) {
+                pipeline::run(module, model, None);
+            }
+            let library = [
+                Source::new("task.ilmr", task.as_str()),
+                Source::library("fuzz.ilms", text.as_ref()),
+            ];
+            let _ = pipeline::compile(&library, model);
+        }
+    }
+}
+
 pub fn fuzz(budget: Budget) -> Stats {
     let corpus = corpus::skill_files();
     let dictionary = mutate::ilmr_dictionary();
-    let models: Vec<_> = ROBOTS.iter().map(|r| corpus::model(r)).collect();
+    let target = Skills::load();
     engine::run(
         "skills",
         &corpus,
         budget,
         |base, rng| mutate::text(base, rng, &corpus, &dictionary),
-        |input| {
-            let text = String::from_utf8_lossy(input);
-            let task = caller(&text);
-            for model in &models {
-                let checked = [
-                    Source::new("task.ilmr", task.as_str()),
-                    Source::new("fuzz.ilms", text.as_ref()),
-                ];
-                if let Some(module) = pipeline::compile(&checked, model) {
-                    pipeline::run(module, model, None);
-                }
-                let library = [
-                    Source::new("task.ilmr", task.as_str()),
-                    Source::library("fuzz.ilms", text.as_ref()),
-                ];
-                let _ = pipeline::compile(&library, model);
-            }
-        },
+        |input| target.feed(input),
     )
 }
