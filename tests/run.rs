@@ -128,6 +128,9 @@ fn run_cases_give_deterministic_traces() {
         let (two, _) = run(2);
         assert!(one == two, "{name}: two runs gave different traces");
         let trace = String::from_utf8(one).expect("UTF-8");
+        for read in ilmr_trace::records(&trace) {
+            read.unwrap_or_else(|e| panic!("{name}: {e}"));
+        }
         for line in trace.lines() {
             let v: serde_json::Value = serde_json::from_str(line).expect("one JSON event a line");
             assert!(v["t"].is_number() && v["event"].is_string(), "{line}");
@@ -535,10 +538,21 @@ fn a_line_joins_through_add_line_without_copying_the_program() {
 }
 
 /// The lines of a trace file, each parsed (a trace is JSON Lines through and through).
+/// The events of a trace after its version line, each read through the schema's types.
 fn trace_events(path: &Path) -> Vec<serde_json::Value> {
-    std::fs::read_to_string(path)
-        .unwrap_or_default()
-        .lines()
+    let text = std::fs::read_to_string(path).unwrap_or_default();
+    let mut lines = text.lines();
+    assert_eq!(
+        lines.next(),
+        Some(r#"{"t":0,"event":"trace","version":1}"#),
+        "{}",
+        path.display()
+    );
+    let read: Vec<_> = ilmr_trace::records(&text)
+        .collect::<Result<_, _>>()
+        .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    assert_eq!(read.len(), text.lines().count());
+    lines
         .map(|l| serde_json::from_str(l).unwrap_or_else(|e| panic!("{e}: {l}")))
         .collect()
 }
@@ -657,5 +671,39 @@ fn a_rejected_task_leaves_a_trace_that_says_so() {
         Some("failed".into())
     );
     assert_eq!(events.last().map(|e| e["exit"].clone()), Some(1.into()));
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// A variable that overflows is traced as `"inf"` (JSON has no infinity), and the
+/// trace's own reader gives the infinity back.
+#[test]
+fn an_infinite_value_is_traced_in_a_form_that_reads_back() {
+    let dir = scratch("infinite");
+    std::fs::create_dir_all(&dir).unwrap();
+    let task = dir.join("overflow.ilmr");
+    std::fs::write(&task, "x=1\nz=0\nwhile(z<400)\nx=x*1000\nz=z+1\nendwhile\n").unwrap();
+    let trace = dir.join("trace.jsonl");
+    let (code, out, err) = ilmrc(&[
+        "run",
+        "--robot",
+        "none",
+        "--trace",
+        trace.to_str().unwrap(),
+        task.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{out}{err}");
+    let text = std::fs::read_to_string(&trace).unwrap();
+    assert!(
+        text.contains(r#""var":"x","value":"inf","count":400"#),
+        "{text}"
+    );
+    let infinite = ilmr_trace::records(&text)
+        .map(|r| r.expect("reads"))
+        .filter_map(|r| match r.event {
+            ilmr_trace::Event::Var(v) => v.value,
+            _ => None,
+        })
+        .any(|v| v.0 == f64::INFINITY);
+    assert!(infinite, "{text}");
     let _ = std::fs::remove_dir_all(&dir);
 }

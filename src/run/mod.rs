@@ -18,6 +18,7 @@ mod summary;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
+use ilmr_vm::runtime::trace;
 use ilmr_vm::{Clock, RealClock, SimClock, TraceLevel, Vm};
 
 use crate::build::{Compiled, compile};
@@ -115,7 +116,7 @@ pub fn run(args: RunArgs) -> ExitCode {
     // than an empty file or the last run's trace; one that failed while it ran keeps
     // what it wrote.
     if let (Some(path), false) = (&args.trace, reached.running)
-        && let Err(e) = record::write_failure(path, reached.header.as_deref(), &failure, code)
+        && let Err(e) = record::write_failure(path, reached.header.as_ref(), &failure, code)
         && !failure.starts_with("cannot write trace")
     {
         eprintln!("warning: {e}");
@@ -127,7 +128,7 @@ pub fn run(args: RunArgs) -> ExitCode {
 #[derive(Default)]
 struct Reached {
     /// The trace's `run` line, once the robot and world are known.
-    header: Option<String>,
+    header: Option<ilmr_trace::Record<'static>>,
     /// The VM has started: the trace holds the run so far.
     running: bool,
 }
@@ -224,7 +225,7 @@ fn execute(args: &RunArgs, reached: &mut Reached) -> Result<Ran, String> {
         setup::ros2_scanner_offset(&robot, &mut config);
     }
     if let Some(line) = &reached.header {
-        sink.line(line)?;
+        sink.put(line)?;
     }
     let parts = Parts {
         setup: &setup,
@@ -276,7 +277,7 @@ fn drive<C: Clock>(
             next_line += 1;
             let note = session.line(&mut vm, &parts.setup.model, &line.text);
             extra.learn(vm.module());
-            parts.sink.line(&note)?;
+            parts.sink.put(&note)?;
         }
         if vm.ticks() >= max_ticks {
             break Outcome::MaxTime;
@@ -295,10 +296,10 @@ fn drive<C: Clock>(
         // every scan's hits cost a tenth of a run.
         if parts.sink.wants_poses() {
             for e in &events {
-                parts.sink.line(&ilmr_vm::render_event(vm.module(), e))?;
+                parts.sink.put(&trace::record(vm.module(), e))?;
             }
             for line in extra.lines(vm.module(), &events, pose, scan.as_ref()) {
-                parts.sink.line(&line)?;
+                parts.sink.put(&line)?;
             }
         }
         if let Some(m) = parts.mcap.as_mut() {
@@ -328,7 +329,7 @@ fn drive<C: Clock>(
     let last = vm.take_events();
     if parts.sink.wants_poses() {
         for e in &last {
-            parts.sink.line(&ilmr_vm::render_event(vm.module(), e))?;
+            parts.sink.put(&trace::record(vm.module(), e))?;
         }
     }
     if let Some(m) = parts.mcap.as_mut() {
