@@ -707,3 +707,79 @@ fn an_infinite_value_is_traced_in_a_form_that_reads_back() {
     assert!(infinite, "{text}");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// A run that cannot start (a task that fails its check, a task that cannot be read, a
+/// robot model that does not load) leaves, at each output asked for, a valid file that
+/// says why, in place of what the path held: a trace ending in `failed`, an MCAP file
+/// whose one log message gives the reason, a figure that says it.
+#[test]
+fn a_run_that_cannot_start_leaves_valid_files_that_say_why() {
+    let dir = scratch("no-half-files");
+    std::fs::create_dir_all(&dir).unwrap();
+    let bad_task = dir.join("bad.ilmr");
+    std::fs::write(&bad_task, "goahed(1)\n").unwrap();
+    // A model that cannot be read: a directory in the file's place.
+    let bad_model = dir.join("ROBO.INI");
+    std::fs::create_dir_all(&bad_model).unwrap();
+    let missing = dir.join("missing.ilmr");
+    let (trace, mcap_file, plot) = (dir.join("t.jsonl"), dir.join("m.mcap"), dir.join("p.svg"));
+    let outputs = [
+        "--trace",
+        trace.to_str().unwrap(),
+        "--mcap",
+        mcap_file.to_str().unwrap(),
+        "--plot",
+        plot.to_str().unwrap(),
+    ];
+    let cases: [(Vec<&str>, i32); 3] = [
+        (vec![bad_task.to_str().unwrap()], 1),
+        (vec![missing.to_str().unwrap()], 2),
+        (
+            vec![
+                "--robot",
+                bad_model.to_str().unwrap(),
+                "examples/short_task.ilmr",
+            ],
+            2,
+        ),
+    ];
+    for (args, exit) in cases {
+        for path in [&trace, &mcap_file, &plot] {
+            std::fs::write(path, "an earlier run's output\n").unwrap();
+        }
+        let mut all = vec!["run"];
+        all.extend(outputs);
+        all.extend(&args);
+        let (code, out, err) = ilmrc(&all);
+        assert_eq!(code, exit, "{args:?}: {out}{err}");
+        assert!(!err.contains("warning"), "{args:?}: {err}");
+
+        let events = trace_events(&trace);
+        let failed = events.last().expect("a failed event");
+        assert_eq!(failed["event"], "failed", "{args:?}");
+        assert_eq!(failed["exit"], exit, "{args:?}");
+        let reason = failed["reason"].as_str().unwrap().to_string();
+
+        let bytes = std::fs::read(&mcap_file).unwrap();
+        let messages: Vec<_> = mcap::MessageStream::new(&bytes)
+            .expect("an MCAP file")
+            .collect::<Result<_, _>>()
+            .expect("every message reads");
+        assert_eq!(messages.len(), 1, "{args:?}");
+        assert_eq!(messages[0].channel.topic, "/commands");
+        let log: serde_json::Value = serde_json::from_slice(&messages[0].data).unwrap();
+        assert_eq!(
+            log["message"],
+            format!("the run did not start (exit {exit}): {reason}")
+        );
+        assert_eq!(log["level"], 4, "an error");
+
+        let svg = std::fs::read_to_string(&plot).unwrap();
+        assert!(svg.starts_with("<svg") && svg.trim_end().ends_with("</svg>"));
+        assert!(
+            svg.contains(&format!("The run did not start (exit {exit}):")),
+            "{svg}"
+        );
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -112,19 +112,42 @@ pub fn run(args: RunArgs) -> ExitCode {
             (crate::EXIT_USAGE, message)
         }
     };
-    // A run that failed before it started still leaves a trace that says why, rather
-    // than an empty file or the last run's trace; one that failed while it ran keeps
-    // what it wrote.
-    if let (Some(path), false) = (&args.trace, reached.running)
-        && let Err(e) = record::write_failure(path, reached.header.as_ref(), &failure, code)
-        && !failure.starts_with("cannot write trace")
-    {
-        eprintln!("warning: {e}");
+    // A run that failed before it started still leaves a trace, an MCAP file and a plot
+    // that say why, rather than an empty file, half a recording or the last run's
+    // output; one that failed while it ran keeps what it wrote.
+    if !reached.running {
+        write_failures(&args, &reached, &failure, code);
     }
     ExitCode::from(code)
 }
 
-/// How far a run got, for the trace of one that fails.
+/// Writes each output asked for as the file of a run that did not start. An output
+/// that cannot be written gets a warning, unless its failing is why the run failed.
+fn write_failures(args: &RunArgs, reached: &Reached, failure: &str, code: u8) {
+    let written = [
+        args.trace.as_deref().map(|p| {
+            let r = record::write_failure(p, reached.header.as_ref(), failure, code);
+            (r, "cannot write trace")
+        }),
+        args.mcap.as_deref().map(|p| {
+            let r = mcap::write_failure(p, &args.task, failure, code);
+            (r, "cannot write MCAP")
+        }),
+        args.plot.as_deref().map(|p| {
+            let r = ilmr_plot::write_failure(failure, code, p);
+            (r, "cannot write plot")
+        }),
+    ];
+    for (result, cause) in written.into_iter().flatten() {
+        if let Err(e) = result
+            && !failure.starts_with(cause)
+        {
+            eprintln!("warning: {e}");
+        }
+    }
+}
+
+/// How far a run got, for the outputs of one that fails.
 #[derive(Default)]
 struct Reached {
     /// The trace's `run` line, once the robot and world are known.

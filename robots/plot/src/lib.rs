@@ -35,6 +35,12 @@ pub fn write_svg(record: &RunRecord, path: &Path) -> Result<(), String> {
     Figure::of_run(record)?.write_svg(path)
 }
 
+/// Writes, in place of a run's figure, one that says why the run did not start.
+pub fn write_failure(reason: &str, exit: u8, path: &Path) -> Result<(), String> {
+    let svg = render::failure(reason, exit)?;
+    std::fs::write(path, svg).map_err(|e| format!("cannot write plot `{}`: {e}", path.display()))
+}
+
 fn err(e: impl std::fmt::Debug) -> String {
     format!("cannot draw the plot: {e:?}")
 }
