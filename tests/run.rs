@@ -783,3 +783,76 @@ fn a_run_that_cannot_start_leaves_valid_files_that_say_why() {
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// The published JSON Schema (docs/trace-schema.json) holds for the traces `ilmrc run`
+/// writes, checked by a validator this project did not write (Python's `jsonschema`,
+/// which CI installs): a simulated run with marks, scans, paths and avoidance, and a
+/// run whose variable overflows to infinity.
+#[test]
+fn traces_validate_against_the_published_schema() {
+    let dir = scratch("schema");
+    std::fs::create_dir_all(&dir).unwrap();
+    let overflow = dir.join("overflow.ilmr");
+    std::fs::write(
+        &overflow,
+        "x=1\nz=0\nwhile(z<400)\nx=x*1000\nz=z+1\nendwhile\n",
+    )
+    .unwrap();
+    let runs: [(&str, Vec<&str>); 2] = [
+        ("way_out", vec!["--max-time", "60", "examples/way_out.ilmr"]),
+        (
+            "overflow",
+            vec!["--robot", "none", overflow.to_str().unwrap()],
+        ),
+    ];
+    let mut traces = Vec::new();
+    for (name, args) in runs {
+        let trace = dir.join(format!("{name}.jsonl"));
+        let mut all = vec!["run", "--trace", trace.to_str().unwrap()];
+        all.extend(args);
+        let (code, out, err) = ilmrc(&all);
+        assert!(!matches!(code, 1 | 2), "{name}: {out}{err}");
+        traces.push(trace);
+    }
+    let script = r#"
+import json, sys, jsonschema
+schema = json.load(open(sys.argv[1]))
+validator = jsonschema.Draft202012Validator(schema)
+lines = 0
+events = set()
+for path in sys.argv[2:]:
+    for number, line in enumerate(open(path), 1):
+        value = json.loads(line)
+        for error in validator.iter_errors(value):
+            sys.exit(f"{path}:{number}: {error.message}")
+        lines += 1
+        events.add(value["event"])
+print(json.dumps({"lines": lines, "events": sorted(events)}))
+"#;
+    let out = std::process::Command::new("python3")
+        .arg("-c")
+        .arg(script)
+        .arg(root().join("docs/trace-schema.json"))
+        .args(&traces)
+        .output()
+        .expect("python3 runs");
+    let report: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap_or_else(|e| {
+        panic!(
+            "the schema check failed ({e}); CI installs `jsonschema`:\n{}",
+            String::from_utf8_lossy(&out.stderr)
+        )
+    });
+    let events: Vec<&str> = report["events"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter_map(|e| e.as_str())
+        .collect();
+    for event in [
+        "trace", "run", "pose", "scan", "mark", "path", "avoid", "var", "end",
+    ] {
+        assert!(events.contains(&event), "no `{event}` checked: {report}");
+    }
+    assert!(report["lines"].as_u64().unwrap() > 500, "{report}");
+    let _ = std::fs::remove_dir_all(&dir);
+}
