@@ -162,16 +162,15 @@ mod old {
 
     pub fn pose(t: f64, p: [f64; 5]) -> String {
         let mut o = String::with_capacity(96);
-        let _ = write!(o, "{{\"t\":{},\"event\":\"{}\"", fmt_num(t), "pose");
+        let _ = write!(o, "{{\"t\":{},\"event\":\"pose\"", fmt_num(t));
         let _ = write!(
             o,
-            ",\"x\":{},\"y\":{},\"h\":{},\"v\":{},\"c\":{},\"source\":\"{}\"",
+            ",\"x\":{},\"y\":{},\"h\":{},\"v\":{},\"c\":{},\"source\":\"true\"",
             fmt_num(p[0]),
             fmt_num(p[1]),
             fmt_num(p[2]),
             fmt_num(p[3]),
             fmt_num(p[4]),
-            "true"
         );
         o.push('}');
         o

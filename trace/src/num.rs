@@ -292,7 +292,7 @@ mod tests {
         let mut fast = 0;
         for i in 0..400_000 {
             let r = (next() >> 11) as f64 / (1u64 << 53) as f64;
-            let scale = 10f64.powi((i % 16) as i32 - 5);
+            let scale = 10f64.powi(i % 16 - 5);
             let mut x = (r - 0.5) * scale;
             if i % 4 == 0 {
                 // On and next to a half of the fourth decimal.
