@@ -7,13 +7,14 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 # Software this project did not write, which the interop tests run against: Eclipse
-# Cyclone DDS's Python binding (it ships its own C library) and Foxglove's MCAP readers.
-python_packages="cyclonedds mcap mcap-ros2-support"
-if ! python3 -c 'import cyclonedds.idl, mcap.reader, mcap_ros2.decoder' >/dev/null 2>&1; then
+# Cyclone DDS's Python binding (it ships its own C library), Foxglove's MCAP readers, and
+# a JSON Schema validator for the traces (docs/trace-schema.json).
+python_packages="cyclonedds mcap mcap-ros2-support jsonschema"
+if ! python3 -c 'import cyclonedds.idl, mcap.reader, mcap_ros2.decoder, jsonschema' >/dev/null 2>&1; then
     python3 -m pip install --quiet --disable-pip-version-check $python_packages \
         || python3 -m pip install --quiet --disable-pip-version-check --break-system-packages $python_packages
 fi
-python3 -c 'import cyclonedds.idl, mcap.reader, mcap_ros2.decoder'
+python3 -c 'import cyclonedds.idl, mcap.reader, mcap_ros2.decoder, jsonschema'
 
 cargo test --workspace
 

@@ -128,6 +128,9 @@ fn run_cases_give_deterministic_traces() {
         let (two, _) = run(2);
         assert!(one == two, "{name}: two runs gave different traces");
         let trace = String::from_utf8(one).expect("UTF-8");
+        for read in ilmr_trace::records(&trace) {
+            read.unwrap_or_else(|e| panic!("{name}: {e}"));
+        }
         for line in trace.lines() {
             let v: serde_json::Value = serde_json::from_str(line).expect("one JSON event a line");
             assert!(v["t"].is_number() && v["event"].is_string(), "{line}");
@@ -535,10 +538,21 @@ fn a_line_joins_through_add_line_without_copying_the_program() {
 }
 
 /// The lines of a trace file, each parsed (a trace is JSON Lines through and through).
+/// The events of a trace after its version line, each read through the schema's types.
 fn trace_events(path: &Path) -> Vec<serde_json::Value> {
-    std::fs::read_to_string(path)
-        .unwrap_or_default()
-        .lines()
+    let text = std::fs::read_to_string(path).unwrap_or_default();
+    let mut lines = text.lines();
+    assert_eq!(
+        lines.next(),
+        Some(r#"{"t":0,"event":"trace","version":1}"#),
+        "{}",
+        path.display()
+    );
+    let read: Vec<_> = ilmr_trace::records(&text)
+        .collect::<Result<_, _>>()
+        .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    assert_eq!(read.len(), text.lines().count());
+    lines
         .map(|l| serde_json::from_str(l).unwrap_or_else(|e| panic!("{e}: {l}")))
         .collect()
 }
@@ -657,5 +671,188 @@ fn a_rejected_task_leaves_a_trace_that_says_so() {
         Some("failed".into())
     );
     assert_eq!(events.last().map(|e| e["exit"].clone()), Some(1.into()));
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// A variable that overflows is traced as `"inf"` (JSON has no infinity), and the
+/// trace's own reader gives the infinity back.
+#[test]
+fn an_infinite_value_is_traced_in_a_form_that_reads_back() {
+    let dir = scratch("infinite");
+    std::fs::create_dir_all(&dir).unwrap();
+    let task = dir.join("overflow.ilmr");
+    std::fs::write(&task, "x=1\nz=0\nwhile(z<400)\nx=x*1000\nz=z+1\nendwhile\n").unwrap();
+    let trace = dir.join("trace.jsonl");
+    let (code, out, err) = ilmrc(&[
+        "run",
+        "--robot",
+        "none",
+        "--trace",
+        trace.to_str().unwrap(),
+        task.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{out}{err}");
+    let text = std::fs::read_to_string(&trace).unwrap();
+    assert!(
+        text.contains(r#""var":"x","value":"inf","count":400"#),
+        "{text}"
+    );
+    let infinite = ilmr_trace::records(&text)
+        .map(|r| r.expect("reads"))
+        .filter_map(|r| match r.event {
+            ilmr_trace::Event::Var(v) => v.value,
+            _ => None,
+        })
+        .any(|v| v.0 == f64::INFINITY);
+    assert!(infinite, "{text}");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// A run that cannot start (a task that fails its check, a task that cannot be read, a
+/// robot model that does not load) leaves, at each output asked for, a valid file that
+/// says why, in place of what the path held: a trace ending in `failed`, an MCAP file
+/// whose one log message gives the reason, a figure that says it.
+#[test]
+fn a_run_that_cannot_start_leaves_valid_files_that_say_why() {
+    let dir = scratch("no-half-files");
+    std::fs::create_dir_all(&dir).unwrap();
+    let bad_task = dir.join("bad.ilmr");
+    std::fs::write(&bad_task, "goahed(1)\n").unwrap();
+    // A model that cannot be read: a directory in the file's place.
+    let bad_model = dir.join("ROBO.INI");
+    std::fs::create_dir_all(&bad_model).unwrap();
+    let missing = dir.join("missing.ilmr");
+    let (trace, mcap_file, plot) = (dir.join("t.jsonl"), dir.join("m.mcap"), dir.join("p.svg"));
+    let outputs = [
+        "--trace",
+        trace.to_str().unwrap(),
+        "--mcap",
+        mcap_file.to_str().unwrap(),
+        "--plot",
+        plot.to_str().unwrap(),
+    ];
+    let cases: [(Vec<&str>, i32); 3] = [
+        (vec![bad_task.to_str().unwrap()], 1),
+        (vec![missing.to_str().unwrap()], 2),
+        (
+            vec![
+                "--robot",
+                bad_model.to_str().unwrap(),
+                "examples/short_task.ilmr",
+            ],
+            2,
+        ),
+    ];
+    for (args, exit) in cases {
+        for path in [&trace, &mcap_file, &plot] {
+            std::fs::write(path, "an earlier run's output\n").unwrap();
+        }
+        let mut all = vec!["run"];
+        all.extend(outputs);
+        all.extend(&args);
+        let (code, out, err) = ilmrc(&all);
+        assert_eq!(code, exit, "{args:?}: {out}{err}");
+        assert!(!err.contains("warning"), "{args:?}: {err}");
+
+        let events = trace_events(&trace);
+        let failed = events.last().expect("a failed event");
+        assert_eq!(failed["event"], "failed", "{args:?}");
+        assert_eq!(failed["exit"], exit, "{args:?}");
+        let reason = failed["reason"].as_str().unwrap().to_string();
+
+        let bytes = std::fs::read(&mcap_file).unwrap();
+        let messages: Vec<_> = mcap::MessageStream::new(&bytes)
+            .expect("an MCAP file")
+            .collect::<Result<_, _>>()
+            .expect("every message reads");
+        assert_eq!(messages.len(), 1, "{args:?}");
+        assert_eq!(messages[0].channel.topic, "/commands");
+        let log: serde_json::Value = serde_json::from_slice(&messages[0].data).unwrap();
+        assert_eq!(
+            log["message"],
+            format!("the run did not start (exit {exit}): {reason}")
+        );
+        assert_eq!(log["level"], 4, "an error");
+
+        let svg = std::fs::read_to_string(&plot).unwrap();
+        assert!(svg.starts_with("<svg") && svg.trim_end().ends_with("</svg>"));
+        assert!(
+            svg.contains(&format!("The run did not start (exit {exit}):")),
+            "{svg}"
+        );
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// The published JSON Schema (docs/trace-schema.json) holds for the traces `ilmrc run`
+/// writes, checked by a validator this project did not write (Python's `jsonschema`,
+/// which CI installs): a simulated run with marks, scans, paths and avoidance, and a
+/// run whose variable overflows to infinity.
+#[test]
+fn traces_validate_against_the_published_schema() {
+    let dir = scratch("schema");
+    std::fs::create_dir_all(&dir).unwrap();
+    let overflow = dir.join("overflow.ilmr");
+    std::fs::write(
+        &overflow,
+        "x=1\nz=0\nwhile(z<400)\nx=x*1000\nz=z+1\nendwhile\n",
+    )
+    .unwrap();
+    let runs: [(&str, Vec<&str>); 2] = [
+        ("way_out", vec!["--max-time", "60", "examples/way_out.ilmr"]),
+        (
+            "overflow",
+            vec!["--robot", "none", overflow.to_str().unwrap()],
+        ),
+    ];
+    let mut traces = Vec::new();
+    for (name, args) in runs {
+        let trace = dir.join(format!("{name}.jsonl"));
+        let mut all = vec!["run", "--trace", trace.to_str().unwrap()];
+        all.extend(args);
+        let (code, out, err) = ilmrc(&all);
+        assert!(!matches!(code, 1 | 2), "{name}: {out}{err}");
+        traces.push(trace);
+    }
+    let script = r#"
+import json, sys, jsonschema
+schema = json.load(open(sys.argv[1]))
+validator = jsonschema.Draft202012Validator(schema)
+lines = 0
+events = set()
+for path in sys.argv[2:]:
+    for number, line in enumerate(open(path), 1):
+        value = json.loads(line)
+        for error in validator.iter_errors(value):
+            sys.exit(f"{path}:{number}: {error.message}")
+        lines += 1
+        events.add(value["event"])
+print(json.dumps({"lines": lines, "events": sorted(events)}))
+"#;
+    let out = std::process::Command::new("python3")
+        .arg("-c")
+        .arg(script)
+        .arg(root().join("docs/trace-schema.json"))
+        .args(&traces)
+        .output()
+        .expect("python3 runs");
+    let report: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap_or_else(|e| {
+        panic!(
+            "the schema check failed ({e}); CI installs `jsonschema`:\n{}",
+            String::from_utf8_lossy(&out.stderr)
+        )
+    });
+    let events: Vec<&str> = report["events"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter_map(|e| e.as_str())
+        .collect();
+    for event in [
+        "trace", "run", "pose", "scan", "mark", "path", "avoid", "var", "end",
+    ] {
+        assert!(events.contains(&event), "no `{event}` checked: {report}");
+    }
+    assert!(report["lines"].as_u64().unwrap() > 500, "{report}");
     let _ = std::fs::remove_dir_all(&dir);
 }

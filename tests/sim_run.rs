@@ -326,6 +326,17 @@ fn every_failure_a_user_can_cause_has_a_message_and_an_exit_code() {
     std::fs::write(&not_a_trace, "hello\n").unwrap();
     let bw = bad_world.display().to_string();
     let nt = not_a_trace.display().to_string();
+    // A trace of before schema versions, and one of a newer schema.
+    let unversioned = scratch("unversioned.jsonl");
+    std::fs::write(
+        &unversioned,
+        "{\"t\":0,\"event\":\"pose\",\"x\":0,\"y\":0,\"h\":0,\"v\":0,\"c\":0,\"source\":\"true\"}\n",
+    )
+    .unwrap();
+    let uv = unversioned.display().to_string();
+    let newer = scratch("newer.jsonl");
+    std::fs::write(&newer, "{\"t\":0,\"event\":\"trace\",\"version\":99}\n").unwrap();
+    let nw = newer.display().to_string();
     let task = "examples/short_task.ilmr";
     let cases: Vec<(Vec<&str>, i32, &str)> = vec![
         (vec!["run", "no/such.ilmr"], 2, "cannot read"),
@@ -410,6 +421,16 @@ fn every_failure_a_user_can_cause_has_a_message_and_an_exit_code() {
             2,
             "is not a trace",
         ),
+        (
+            vec!["replay", &uv, "--plot", "x.svg"],
+            2,
+            "line 1: T0102 the first line is not `{\"t\":0,\"event\":\"trace\",\"version\":N}`",
+        ),
+        (
+            vec!["replay", &nw, "--plot", "x.svg"],
+            2,
+            "line 1: T0103 the trace has schema version 99; this ilmrc reads version 1",
+        ),
     ];
     for (args, code, message) in cases {
         let (got, out, err) = ilmrc(&args);
@@ -423,5 +444,7 @@ fn every_failure_a_user_can_cause_has_a_message_and_an_exit_code() {
     let _ = (
         std::fs::remove_file(&bad_world),
         std::fs::remove_file(&not_a_trace),
+        std::fs::remove_file(&unversioned),
+        std::fs::remove_file(&newer),
     );
 }

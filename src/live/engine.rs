@@ -18,7 +18,6 @@ use ilmr_model::RobotModel;
 use ilmr_stdlib::VarKind;
 use ilmr_vm::bytecode::{BlockId, Fragment, ModuleError};
 use ilmr_vm::runtime::safety::Fault;
-use ilmr_vm::runtime::trace::fmt_num;
 use ilmr_vm::{Activity, LineError, ModuleBuilder, SimClock, VarRecord, Vm, VmError};
 
 use super::guard;
@@ -532,24 +531,20 @@ enum Refusal {
 /// The `line` event of `ilmrc run`'s trace, written as it writes it, plus the codes
 /// of a joined line's warnings.
 fn line_event(t: f64, text: &str, outcome: &Outcome) -> String {
-    let text = serde_json::to_string(text).unwrap_or_else(|_| "\"\"".into());
-    let accepted = matches!(outcome, Outcome::Accepted { .. });
-    let mut line = format!(
-        "{{\"t\":{},\"event\":\"line\",\"text\":{text},\"accepted\":{accepted}",
-        fmt_num(t)
-    );
-    let codes: Vec<&str> = match outcome {
+    let codes = match outcome {
         Outcome::Accepted { warnings: d } | Outcome::Rejected { diagnostics: d } => {
-            d.iter().map(|d| d.code.as_str()).collect()
+            d.iter().map(|d| d.code.as_str().into()).collect()
         }
         Outcome::Failed(_) => Vec::new(),
     };
-    if !codes.is_empty() {
-        line.push_str(",\"codes\":");
-        line.push_str(&serde_json::to_string(&codes).unwrap_or_else(|_| "[]".into()));
-    }
-    line.push('}');
-    line
+    ilmr_trace::to_line(&ilmr_trace::Record::new(
+        t,
+        ilmr_trace::Event::Line(ilmr_trace::Entered {
+            text: text.into(),
+            accepted: matches!(outcome, Outcome::Accepted { .. }),
+            codes,
+        }),
+    ))
 }
 
 #[cfg(test)]

@@ -18,6 +18,7 @@ mod summary;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
+use ilmr_vm::runtime::trace;
 use ilmr_vm::{Clock, RealClock, SimClock, TraceLevel, Vm};
 
 use crate::build::{Compiled, compile_given};
@@ -111,23 +112,46 @@ pub fn run(args: RunArgs) -> ExitCode {
             (crate::EXIT_USAGE, message)
         }
     };
-    // A run that failed before it started still leaves a trace that says why, rather
-    // than an empty file or the last run's trace; one that failed while it ran keeps
-    // what it wrote.
-    if let (Some(path), false) = (&args.trace, reached.running)
-        && let Err(e) = record::write_failure(path, reached.header.as_deref(), &failure, code)
-        && !failure.starts_with("cannot write trace")
-    {
-        eprintln!("warning: {e}");
+    // A run that failed before it started still leaves a trace, an MCAP file and a plot
+    // that say why, rather than an empty file, half a recording or the last run's
+    // output; one that failed while it ran keeps what it wrote.
+    if !reached.running {
+        write_failures(&args, &reached, &failure, code);
     }
     ExitCode::from(code)
 }
 
-/// How far a run got, for the trace of one that fails.
+/// Writes each output asked for as the file of a run that did not start. An output
+/// that cannot be written gets a warning, unless its failing is why the run failed.
+fn write_failures(args: &RunArgs, reached: &Reached, failure: &str, code: u8) {
+    let written = [
+        args.trace.as_deref().map(|p| {
+            let r = record::write_failure(p, reached.header.as_ref(), failure, code);
+            (r, "cannot write trace")
+        }),
+        args.mcap.as_deref().map(|p| {
+            let r = mcap::write_failure(p, &args.task, failure, code);
+            (r, "cannot write MCAP")
+        }),
+        args.plot.as_deref().map(|p| {
+            let r = ilmr_plot::write_failure(failure, code, p);
+            (r, "cannot write plot")
+        }),
+    ];
+    for (result, cause) in written.into_iter().flatten() {
+        if let Err(e) = result
+            && !failure.starts_with(cause)
+        {
+            eprintln!("warning: {e}");
+        }
+    }
+}
+
+/// How far a run got, for the outputs of one that fails.
 #[derive(Default)]
 struct Reached {
     /// The trace's `run` line, once the robot and world are known.
-    header: Option<String>,
+    header: Option<ilmr_trace::Record<'static>>,
     /// The VM has started: the trace holds the run so far.
     running: bool,
 }
@@ -233,7 +257,7 @@ fn execute(args: &RunArgs, reached: &mut Reached) -> Result<Ran, String> {
         setup::ros2_scanner_offset(&robot, &mut config);
     }
     if let Some(line) = &reached.header {
-        sink.line(line)?;
+        sink.put(line)?;
     }
     let parts = Parts {
         setup: &setup,
@@ -285,7 +309,7 @@ fn drive<C: Clock>(
             next_line += 1;
             let note = session.line(&mut vm, &parts.setup.model, &line.text);
             extra.learn(vm.module());
-            parts.sink.line(&note)?;
+            parts.sink.put(&note)?;
         }
         if vm.ticks() >= max_ticks {
             break Outcome::MaxTime;
@@ -304,10 +328,10 @@ fn drive<C: Clock>(
         // every scan's hits cost a tenth of a run.
         if parts.sink.wants_poses() {
             for e in &events {
-                parts.sink.line(&ilmr_vm::render_event(vm.module(), e))?;
+                parts.sink.put(&trace::record(vm.module(), e))?;
             }
             for line in extra.lines(vm.module(), &events, pose, scan.as_ref()) {
-                parts.sink.line(&line)?;
+                parts.sink.put(&line)?;
             }
         }
         if let Some(m) = parts.mcap.as_mut() {
@@ -337,7 +361,7 @@ fn drive<C: Clock>(
     let last = vm.take_events();
     if parts.sink.wants_poses() {
         for e in &last {
-            parts.sink.line(&ilmr_vm::render_event(vm.module(), e))?;
+            parts.sink.put(&trace::record(vm.module(), e))?;
         }
     }
     if let Some(m) = parts.mcap.as_mut() {

@@ -16,13 +16,14 @@
 //! last line is then a `truncated` event, and stderr says so once. The run goes on
 //! (a robot is not stopped because its log is full).
 
+use std::borrow::Cow;
 use std::fs::File;
 use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
 
 use ilmr_files::MAX_TRACE_BYTES;
 use ilmr_hal::Pose;
-use ilmr_vm::runtime::trace::fmt_num;
+use ilmr_trace::{At, Event as Line, Failed, Mark, Moment, Num, Record, Scan, Truncated};
 use ilmr_vm::{Event, EventKind, Module};
 
 use super::RunArgs;
@@ -35,6 +36,9 @@ use ilmr_plot::RunRecord;
 pub struct Sink {
     file: Option<TraceFile>,
     record: Option<RunRecord>,
+    /// The line being written, kept from line to line so that writing one allocates
+    /// nothing.
+    buf: Vec<u8>,
 }
 
 /// Room kept under the cap for the `truncated` line, so that the whole file stays
@@ -51,7 +55,8 @@ struct TraceFile {
 }
 
 impl TraceFile {
-    fn line(&mut self, line: &str) -> Result<(), String> {
+    /// Writes one line (`line`, without its newline), of time `t`.
+    fn line(&mut self, line: &[u8], t: f64) -> Result<(), String> {
         if self.full {
             return Ok(());
         }
@@ -61,7 +66,7 @@ impl TraceFile {
         };
         if self.written + len + TRUNCATED_ROOM > self.cap {
             self.full = true;
-            let note = truncated_line(line_time(line), self.cap);
+            let note = ilmr_trace::to_line(&truncated(t, self.cap));
             writeln!(self.out, "{note}").map_err(|e| fail(e, &self.path))?;
             self.written += note.len() as u64 + 1;
             eprintln!(
@@ -71,17 +76,27 @@ impl TraceFile {
             );
             return Ok(());
         }
-        writeln!(self.out, "{line}").map_err(|e| fail(e, &self.path))?;
+        self.out
+            .write_all(line)
+            .and_then(|()| self.out.write_all(b"\n"))
+            .map_err(|e| fail(e, &self.path))?;
         self.written += len;
         Ok(())
     }
 }
 
 /// The `truncated` event that ends a trace cut at its cap.
-fn truncated_line(t: &str, cap: u64) -> String {
-    format!(
-        "{{\"t\":{t},\"event\":\"truncated\",\"limit\":{cap},\"message\":\"the trace reached {}, its limit (MAX_TRACE_BYTES); the rest of the run is not in it\"}}",
-        size(cap)
+fn truncated(t: f64, cap: u64) -> Record<'static> {
+    Record::new(
+        t,
+        Line::Truncated(Truncated {
+            limit: cap,
+            message: format!(
+                "the trace reached {}, its limit (MAX_TRACE_BYTES); the rest of the run is not in it",
+                size(cap)
+            )
+            .into(),
+        }),
     )
 }
 
@@ -93,23 +108,12 @@ fn size(bytes: u64) -> String {
     }
 }
 
-/// The time of a trace line: every line starts `{"t":` and a number.
-fn line_time(line: &str) -> &str {
-    line.strip_prefix("{\"t\":")
-        .and_then(|rest| rest.split(',').next())
-        .filter(|t| {
-            !t.is_empty()
-                && t.bytes()
-                    .all(|b| b.is_ascii_digit() || b == b'.' || b == b'-' || b == b'e')
-        })
-        .unwrap_or("0")
-}
-
 fn create(path: &Path, what: &str) -> Result<File, String> {
     File::create(path).map_err(|e| format!("cannot write {what} `{}`: {e}", path.display()))
 }
 
 impl Sink {
+    /// Opens the outputs and writes the trace's version line.
     pub fn open(trace: Option<&Path>, plot: Option<&Path>) -> Result<Sink, String> {
         Sink::capped(trace, plot, MAX_TRACE_BYTES)
     }
@@ -128,22 +132,37 @@ impl Sink {
         if let Some(p) = plot {
             create(p, "plot")?;
         }
-        Ok(Sink {
+        let mut sink = Sink {
             file,
             record: plot.map(|_| RunRecord::default()),
-        })
+            buf: Vec::with_capacity(256),
+        };
+        sink.put(&Record::header())?;
+        Ok(sink)
     }
 
     pub fn wants_poses(&self) -> bool {
         self.file.is_some() || self.record.is_some()
     }
 
-    pub fn line(&mut self, line: &str) -> Result<(), String> {
-        if let Some(f) = self.file.as_mut() {
-            f.line(line)?;
+    /// Writes one line to the trace and the plot's record.
+    pub fn put(&mut self, record: &Record<'_>) -> Result<(), String> {
+        let Sink {
+            file,
+            record: plot,
+            buf,
+        } = self;
+        buf.clear();
+        ilmr_trace::write_line(&mut *buf, record)
+            .map_err(|e| format!("cannot write a trace line: {e}"))?;
+        if let Some(f) = file.as_mut() {
+            f.line(buf, record.t.0)?;
         }
-        if let Some(r) = self.record.as_mut() {
-            r.absorb(line)?;
+        if let Some(r) = plot.as_mut() {
+            // serde_json writes UTF-8.
+            let line = std::str::from_utf8(buf).unwrap_or_default();
+            r.absorb(line)
+                .map_err(|e| format!("the trace for the plot: {e}"))?;
         }
         Ok(())
     }
@@ -161,54 +180,56 @@ impl Sink {
 
 /// The `run` header of a simulated run; `None` for the other backends, whose traces
 /// stay as they were.
-pub fn header(setup: &Setup, args: &RunArgs) -> Option<String> {
+pub fn header(setup: &Setup, args: &RunArgs) -> Option<Record<'static>> {
     let Backend::Sim(_) = setup.backend else {
         return None;
     };
     let world = setup.world.as_ref()?;
-    let s = world.world.start;
-    let mut line = format!(
-        "{{\"t\":0,\"event\":\"run\",\"task\":{},\"robot\":{},\"world\":{},\"seed\":{},\"start\":{{\"x\":{},\"y\":{},\"h\":{}}}",
-        json(&args.task.display().to_string()),
-        json(&setup.model_spec),
-        json(&world.name),
-        args.seed,
-        fmt_num(s.x),
-        fmt_num(s.y),
-        fmt_num(s.h)
-    );
     let shipped = ilmr_sim::world::SHIPPED
         .iter()
         .any(|(n, _)| *n == world.name);
-    if !shipped {
-        line.push_str(&format!(",\"world_toml\":{}", json(&world.text)));
-    }
-    line.push('}');
-    Some(line)
+    Some(Record::new(
+        0.0,
+        Line::Run(ilmr_trace::Run {
+            task: args.task.display().to_string().into(),
+            robot: setup.model_spec.clone().into(),
+            world: world.name.clone().into(),
+            seed: args.seed,
+            start: At {
+                x: Num(world.world.start.x),
+                y: Num(world.world.start.y),
+                h: Num(world.world.start.h),
+            },
+            world_toml: (!shipped).then(|| world.text.clone().into()),
+        }),
+    ))
 }
 
-/// The whole trace of a run that failed before it started: its `run` line when the
-/// robot and world were known, then a `failed` event with the reason and exit code.
+/// The whole trace of a run that failed before it started: the version line, its
+/// `run` line when the robot and world were known, then a `failed` event with the
+/// reason and exit code.
 pub fn write_failure(
     path: &Path,
-    header: Option<&str>,
+    header: Option<&Record<'_>>,
     reason: &str,
     exit: u8,
 ) -> Result<(), String> {
+    let failed = Record::new(
+        0.0,
+        Line::Failed(Failed {
+            reason: reason.into(),
+            exit,
+        }),
+    );
     let mut text = String::new();
-    if let Some(h) = header {
-        text.push_str(h);
+    for line in [Some(&Record::header()), header, Some(&failed)]
+        .into_iter()
+        .flatten()
+    {
+        text.push_str(&ilmr_trace::to_line(line));
         text.push('\n');
     }
-    text.push_str(&format!(
-        "{{\"t\":0,\"event\":\"failed\",\"reason\":{},\"exit\":{exit}}}\n",
-        json(reason)
-    ));
     std::fs::write(path, text).map_err(|e| format!("cannot write trace `{}`: {e}", path.display()))
-}
-
-fn json(s: &str) -> String {
-    serde_json::to_string(s).unwrap_or_else(|_| "\"\"".into())
 }
 
 /// Produces `mark` and `scan` lines tick by tick.
@@ -242,13 +263,13 @@ impl Extra {
 
     /// The tick's lines, after the VM's events of the same tick. Nothing without a
     /// true pose (a robot with no world).
-    pub fn lines(
+    pub fn lines<'m>(
         &mut self,
-        module: &Module,
+        module: &'m Module,
         events: &[Event],
         pose: Option<Pose>,
         scan: Option<&WorldScan>,
-    ) -> Vec<String> {
+    ) -> Vec<Record<'m>> {
         let Some(p) = pose else {
             return Vec::new();
         };
@@ -259,25 +280,23 @@ impl Extra {
                 continue;
             }
             let (at, how) = match &e.kind {
-                EventKind::Start { .. } => ("start", None),
-                EventKind::End { how, .. } => ("end", Some(how.name())),
+                EventKind::Start { .. } => (Moment::Start, None),
+                EventKind::End { how, .. } => (Moment::End, Some(*how)),
                 _ => continue,
             };
             let Some(s) = module.stmt(stmt) else { continue };
-            let mut line = format!(
-                "{{\"t\":{},\"event\":\"mark\",\"line\":{},\"text\":{},\"at\":\"{at}\",\"x\":{},\"y\":{},\"h\":{}",
-                fmt_num(e.t),
-                s.line,
-                json(&s.text),
-                fmt_num(p.x),
-                fmt_num(p.y),
-                fmt_num(p.h)
-            );
-            if let Some(how) = how {
-                line.push_str(&format!(",\"how\":\"{how}\""));
-            }
-            line.push('}');
-            out.push(line);
+            out.push(Record::new(
+                e.t,
+                Line::Mark(Mark {
+                    line: s.line,
+                    text: Cow::Borrowed(&s.text),
+                    at,
+                    x: Num(p.x),
+                    y: Num(p.y),
+                    h: Num(p.h),
+                    how,
+                }),
+            ));
         }
         if let Some(scan) = scan.filter(|s| s.t >= self.next_scan - 1e-9) {
             self.next_scan = (scan.t / self.scan_every).floor() * self.scan_every + self.scan_every;
@@ -288,25 +307,17 @@ impl Extra {
 }
 
 /// Hits to the centimetre: what a plot can show, and a fifth of the digits.
-fn scan_line(scan: &WorldScan) -> String {
-    let mut hits = String::new();
-    for (i, (x, y)) in scan.hits().enumerate() {
-        if i > 0 {
-            hits.push(',');
-        }
-        hits.push_str(&format!(
-            "[{},{}]",
-            fmt_num((x * 100.0).round() / 100.0),
-            fmt_num((y * 100.0).round() / 100.0)
-        ));
-    }
-    let o = scan.origin;
-    format!(
-        "{{\"t\":{},\"event\":\"scan\",\"x\":{},\"y\":{},\"h\":{},\"hits\":[{hits}]}}",
-        fmt_num(scan.t),
-        fmt_num(o.x),
-        fmt_num(o.y),
-        fmt_num(o.h)
+fn scan_line(scan: &WorldScan) -> Record<'static> {
+    let cm = |v: f64| (v * 100.0).round() / 100.0;
+    let hits: Vec<(f64, f64)> = scan.hits().map(|(x, y)| (cm(x), cm(y))).collect();
+    Record::new(
+        scan.t,
+        Line::Scan(Scan {
+            x: Num(scan.origin.x),
+            y: Num(scan.origin.y),
+            h: Num(scan.origin.h),
+            hits: hits.into(),
+        }),
     )
 }
 
@@ -322,8 +333,15 @@ mod tests {
         let cap = 4096;
         let mut sink = Sink::capped(Some(&path), None, cap).expect("open");
         for i in 0..1000 {
-            let line = format!("{{\"t\":{}.5,\"event\":\"issue\",\"line\":{i}}}", i);
-            sink.line(&line).expect("a full trace is no error");
+            let issue = Line::Issue(ilmr_trace::Issue {
+                stmt: Some(ilmr_trace::Stmt {
+                    line: i,
+                    text: "x=1".into(),
+                }),
+                count: 1,
+            });
+            sink.put(&Record::new(f64::from(i) + 0.5, issue))
+                .expect("a full trace is no error");
         }
         sink.finish().expect("finish");
         let text = std::fs::read_to_string(&path).expect("read back");
@@ -336,22 +354,16 @@ mod tests {
         );
         let lines: Vec<&str> = text.lines().collect();
         let last = lines.last().expect("lines");
-        let kept = lines.len() - 1;
+        let kept = lines.len() - 2;
+        assert_eq!(lines[0], r#"{"t":0,"event":"trace","version":1}"#);
         assert_eq!(
             *last,
             format!(
                 "{{\"t\":{kept}.5,\"event\":\"truncated\",\"limit\":4096,\"message\":\"the trace reached 4096 bytes, its limit (MAX_TRACE_BYTES); the rest of the run is not in it\"}}"
             )
         );
-        assert!(lines[..kept].iter().all(|l| l.contains("\"issue\"")));
+        assert!(lines[1..=kept].iter().all(|l| l.contains("\"issue\"")));
         let v: serde_json::Value = serde_json::from_str(last).expect("JSON");
         assert_eq!(v["event"], "truncated");
-    }
-
-    #[test]
-    fn the_time_of_a_line_is_its_first_key() {
-        assert_eq!(line_time(r#"{"t":12.34,"event":"pose"}"#), "12.34");
-        assert_eq!(line_time(r#"{"t":0,"event":"run"}"#), "0");
-        assert_eq!(line_time("not a trace line"), "0");
     }
 }

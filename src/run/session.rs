@@ -5,6 +5,7 @@ use ilmr_compiler::lower::{LineOptions, lower_line_into};
 use ilmr_compiler::render::{self, RenderFile, Style};
 use ilmr_hal::Pose;
 use ilmr_model::RobotModel;
+use ilmr_trace::{Entered, Event as Line, Record};
 use ilmr_vm::LineError;
 use ilmr_vm::{Clock, Event, EventKind, How, Vm};
 
@@ -112,24 +113,23 @@ impl Session {
         vm: &mut Vm<AnyRobot, C>,
         model: &RobotModel,
         text: &str,
-    ) -> String {
+    ) -> Record<'static> {
         let t = ilmr_vm::runtime::trace::fmt_num(vm.time());
-        let quoted = serde_json::to_string(text).unwrap_or_else(|_| "\"\"".into());
         let options = self.options;
-        match vm.add_line(|b| lower_line_into(text, b, model, options)) {
+        let (accepted, codes) = match vm.add_line(|b| lower_line_into(text, b, model, options)) {
             Ok(()) => {
                 self.tally.lines_accepted += 1;
-                format!("{{\"t\":{t},\"event\":\"line\",\"text\":{quoted},\"accepted\":true}}")
+                (true, Vec::new())
             }
             Err(LineError::Invalid(e)) => {
                 self.tally.lines_rejected += 1;
                 eprintln!("line at t={t} not joined: {e}");
-                format!("{{\"t\":{t},\"event\":\"line\",\"text\":{quoted},\"accepted\":false}}")
+                (false, Vec::new())
             }
             Err(LineError::Replaced) => {
                 self.tally.lines_rejected += 1;
                 eprintln!("line at t={t} not joined: the lowering did not return the program");
-                format!("{{\"t\":{t},\"event\":\"line\",\"text\":{quoted},\"accepted\":false}}")
+                (false, Vec::new())
             }
             Err(LineError::Lower(diagnostics)) => {
                 self.tally.lines_rejected += 1;
@@ -141,12 +141,17 @@ impl Session {
                     "line at t={t} rejected:\n{}",
                     render::human(&diagnostics, &file, Style::PLAIN)
                 );
-                let codes: Vec<&str> = diagnostics.iter().map(|d| d.code.as_str()).collect();
-                format!(
-                    "{{\"t\":{t},\"event\":\"line\",\"text\":{quoted},\"accepted\":false,\"codes\":{}}}",
-                    serde_json::to_string(&codes).unwrap_or_default()
-                )
+                let codes = diagnostics.iter().map(|d| d.code.as_str().into()).collect();
+                (false, codes)
             }
-        }
+        };
+        Record::new(
+            vm.time(),
+            Line::Line(Entered {
+                text: text.to_string().into(),
+                accepted,
+                codes,
+            }),
+        )
     }
 }

@@ -69,7 +69,7 @@ impl Marks {
             }
             let (at, how) = match &e.kind {
                 ilmr_vm::EventKind::Start { .. } => (At::Start, None),
-                ilmr_vm::EventKind::End { how, .. } => (At::End, Some(how.name().to_string())),
+                ilmr_vm::EventKind::End { how, .. } => (At::End, Some(*how)),
                 _ => continue,
             };
             let Some(s) = vm.module().stmt(stmt) else {

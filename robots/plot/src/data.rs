@@ -1,9 +1,10 @@
-//! What a run's plot is drawn from, read back from trace lines: the `run` header, `pose`
-//! samples, `scan` hits, `mark`s and reference paths (the VM's `path` events). Other events are skipped,
-//! so any trace of `ilmrc run` reads; one of a robot without a world draws without one.
+//! What a run's plot is drawn from, read back from trace lines with the trace's own
+//! types (`ilmr_trace`): the `run` header, `pose` samples, `scan` hits, `mark`s and
+//! reference paths (the VM's `path` events). Other events are read and passed over, so
+//! any trace of `ilmrc run` reads; one of a robot without a world draws without one.
 
 use ilmr_sim::World;
-use serde_json::Value;
+use ilmr_trace::{Event, How, Moment, Reader, TraceError};
 
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct RunRecord {
@@ -12,6 +13,8 @@ pub struct RunRecord {
     pub hits: Vec<(f64, f64)>,
     pub marks: Vec<Mark>,
     pub refs: Vec<RefPath>,
+    /// Checks the schema version and counts lines.
+    reader: Reader,
 }
 
 #[derive(Debug, Clone, PartialEq)]
@@ -51,8 +54,8 @@ pub struct Mark {
     pub y: f64,
     /// Heading, radians.
     pub h: f64,
-    /// How an ended command ended (`completed`, `broken`, `refused`).
-    pub how: Option<String>,
+    /// How an ended command ended.
+    pub how: Option<How>,
 }
 
 #[derive(Debug, Clone, PartialEq)]
@@ -61,90 +64,60 @@ pub struct RefPath {
     pub points: Vec<(f64, f64)>,
 }
 
-fn num(v: &Value, key: &str) -> Result<f64, String> {
-    v[key]
-        .as_f64()
-        .ok_or_else(|| format!("`{key}` is not a number"))
-}
-
-fn text(v: &Value, key: &str) -> Result<String, String> {
-    v[key]
-        .as_str()
-        .map(str::to_string)
-        .ok_or_else(|| format!("`{key}` is not a string"))
-}
-
-fn points(v: &Value, key: &str) -> Result<Vec<(f64, f64)>, String> {
-    let list = v[key]
-        .as_array()
-        .ok_or_else(|| format!("`{key}` is not a list"))?;
-    list.iter()
-        .map(|p| match (p[0].as_f64(), p[1].as_f64()) {
-            (Some(x), Some(y)) => Ok((x, y)),
-            _ => Err(format!("`{key}` holds something other than [x, y]")),
-        })
-        .collect()
-}
-
 impl RunRecord {
-    /// Takes one trace line.
-    pub fn absorb(&mut self, line: &str) -> Result<(), String> {
-        let v: Value = serde_json::from_str(line).map_err(|e| format!("not JSON: {e}"))?;
-        let event = v["event"]
-            .as_str()
-            .ok_or("not a trace event: it has no `event`")?;
-        match event {
-            "run" => {
+    /// Takes the next trace line (the first must be the trace's version line).
+    pub fn absorb(&mut self, line: &str) -> Result<(), TraceError> {
+        let Some(record) = self.reader.read(line)? else {
+            return Ok(());
+        };
+        let t = record.t.0;
+        match record.event {
+            Event::Run(run) => {
                 self.header = Some(Header {
-                    task: text(&v, "task")?,
-                    robot: text(&v, "robot")?,
-                    world: text(&v, "world")?,
-                    world_toml: v["world_toml"].as_str().map(str::to_string),
-                    seed: v["seed"].as_u64().ok_or("`seed` is not a number")?,
+                    task: run.task.into_owned(),
+                    robot: run.robot.into_owned(),
+                    world: run.world.into_owned(),
+                    world_toml: run.world_toml.map(|w| w.into_owned()),
+                    seed: run.seed,
                 })
             }
-            "pose" => self.poses.push(Sample {
-                t: num(&v, "t")?,
-                x: num(&v, "x")?,
-                y: num(&v, "y")?,
-                h: num(&v, "h")?,
-                v: num(&v, "v")?,
-                c: num(&v, "c")?,
+            Event::Pose(p) => self.poses.push(Sample {
+                t,
+                x: p.x.0,
+                y: p.y.0,
+                h: p.h.0,
+                v: p.v.0,
+                c: p.c.0,
             }),
-            "scan" => self.hits.extend(points(&v, "hits")?),
-            "mark" => self.marks.push(Mark {
-                t: num(&v, "t")?,
-                line: num(&v, "line")? as u32,
-                text: text(&v, "text")?,
-                at: match v["at"].as_str() {
-                    Some("start") => At::Start,
-                    Some("end") => At::End,
-                    _ => return Err("`at` is neither start nor end".into()),
+            Event::Scan(scan) => self.hits.extend(scan.hits.0.iter().copied()),
+            Event::Mark(m) => self.marks.push(Mark {
+                t,
+                line: m.line,
+                text: m.text.into_owned(),
+                at: match m.at {
+                    Moment::Start => At::Start,
+                    Moment::End => At::End,
                 },
-                x: num(&v, "x")?,
-                y: num(&v, "y")?,
-                h: num(&v, "h")?,
-                how: v["how"].as_str().map(str::to_string),
+                x: m.x.0,
+                y: m.y.0,
+                h: m.h.0,
+                how: m.how,
             }),
-            "path" => self.refs.push(RefPath {
-                line: num(&v, "line")? as u32,
-                points: points(&v, "points")?,
+            // A path outside any statement is drawn under line 0.
+            Event::Path(p) => self.refs.push(RefPath {
+                line: p.stmt.map_or(0, |s| s.line),
+                points: p.points.0.into_owned(),
             }),
             _ => {}
         }
         Ok(())
     }
 
-    /// A whole trace; errors name the line.
-    pub fn from_jsonl(text: &str) -> Result<RunRecord, String> {
+    /// A whole trace; an error names the line and its code.
+    pub fn from_jsonl(text: &str) -> Result<RunRecord, TraceError> {
         let mut record = RunRecord::default();
-        for (i, line) in text.lines().enumerate() {
-            if line.trim().is_empty() {
-                continue;
-            }
-            record
-                .absorb(line)
-                .map_err(|e| format!("line {}: {e}", i + 1))?;
+        for line in text.lines() {
+            record.absorb(line)?;
         }
         Ok(record)
     }

@@ -35,6 +35,12 @@ pub fn write_svg(record: &RunRecord, path: &Path) -> Result<(), String> {
     Figure::of_run(record)?.write_svg(path)
 }
 
+/// Writes, in place of a run's figure, one that says why the run did not start.
+pub fn write_failure(reason: &str, exit: u8, path: &Path) -> Result<(), String> {
+    let svg = render::failure(reason, exit)?;
+    std::fs::write(path, svg).map_err(|e| format!("cannot write plot `{}`: {e}", path.display()))
+}
+
 fn err(e: impl std::fmt::Debug) -> String {
     format!("cannot draw the plot: {e:?}")
 }
@@ -43,7 +49,8 @@ fn err(e: impl std::fmt::Debug) -> String {
 mod tests {
     use super::*;
 
-    const POSES: &str = r#"{"t":0,"event":"pose","x":0,"y":0,"h":0,"v":0,"c":0,"source":"true"}
+    const POSES: &str = r#"{"t":0,"event":"trace","version":1}
+{"t":0,"event":"pose","x":0,"y":0,"h":0,"v":0,"c":0,"source":"true"}
 {"t":1,"event":"pose","x":1,"y":0.1,"h":0,"v":0.4,"c":0,"source":"true"}
 "#;
 
@@ -65,7 +72,8 @@ mod tests {
 
     /// MoRo in the office: two movements whose marks fall on one point (line 6 ends
     /// where line 11 starts, and line 11 ends there too), standing still at the end.
-    const OFFICE_RUN: &str = r#"{"t":0,"event":"run","task":"t.ilmr","robot":"moro","world":"office","seed":0,"start":{"x":8,"y":5,"h":0}}
+    const OFFICE_RUN: &str = r#"{"t":0,"event":"trace","version":1}
+{"t":0,"event":"run","task":"t.ilmr","robot":"moro","world":"office","seed":0,"start":{"x":8,"y":5,"h":0}}
 {"t":0,"event":"mark","line":6,"text":"goahead(1)","at":"start","x":8,"y":5,"h":0}
 {"t":0,"event":"pose","x":8,"y":5,"h":0,"v":0,"c":0.3,"source":"true"}
 {"t":1,"event":"pose","x":8.4,"y":5,"h":0,"v":0.4,"c":0.2,"source":"true"}
@@ -156,8 +164,10 @@ mod tests {
 
     #[test]
     fn a_path_event_without_points_is_an_error_naming_the_key() {
-        let bad = r#"{"t":0,"event":"path","line":3,"points":[[0]]}"#;
+        let bad = r#"{"t":0,"event":"trace","version":1}
+{"t":0,"event":"path","line":3,"text":"goahead(3)","points":[[0]]}"#;
         let err = RunRecord::from_jsonl(bad).expect_err("not a path");
-        assert!(err.contains("points"), "{err}");
+        assert_eq!((err.code, err.line), (ilmr_trace::Code::NotALine, 2));
+        assert!(err.to_string().starts_with("line 2: T0101"), "{err}");
     }
 }

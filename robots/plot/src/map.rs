@@ -366,7 +366,7 @@ fn visible_marks(figure: &Figure) -> Vec<&crate::data::Mark> {
     figure
         .marks
         .iter()
-        .filter(|m| m.at == At::Start || m.how.as_deref() != Some("refused"))
+        .filter(|m| m.at == At::Start || m.how != Some(ilmr_trace::How::Refused))
         .collect()
 }
 

@@ -420,6 +420,46 @@ impl McapOut {
     }
 }
 
+/// Foxglove's `Log` level for a failure.
+const LOG_ERROR: u8 = 4;
+
+/// The whole MCAP file of a run that did not start: the `/commands` channel alone, with
+/// one error log message that says why, in place of whatever the path held.
+pub fn write_failure(path: &Path, task: &Path, reason: &str, exit: u8) -> Result<(), String> {
+    let fail = |e: &dyn std::fmt::Display| format!("cannot write MCAP `{}`: {e}", path.display());
+    let file = File::create(path).map_err(|e| fail(&e))?;
+    let options = mcap::WriteOptions::new().compression(None).profile("");
+    let mut writer =
+        mcap::Writer::with_options(BufWriter::new(file), options).map_err(|e| fail(&e))?;
+    let (topic, name, schema) = CHANNELS[Topic::Commands as usize];
+    let schema_id = writer
+        .add_schema(name, "jsonschema", schema.trim_end().as_bytes())
+        .map_err(|e| fail(&e))?;
+    let channel_id = writer
+        .add_channel(schema_id, topic, "json", &BTreeMap::new())
+        .map_err(|e| fail(&e))?;
+    let log = json!({
+        "timestamp": stamp(0.0),
+        "level": LOG_ERROR,
+        "message": format!("the run did not start (exit {exit}): {reason}"),
+        "name": "ilmr",
+        "file": task.display().to_string(),
+        "line": 0,
+    });
+    let data = serde_json::to_vec(&log).map_err(|e| fail(&e))?;
+    let header = MessageHeader {
+        channel_id,
+        sequence: 1,
+        log_time: 0,
+        publish_time: 0,
+    };
+    writer
+        .write_to_known_channel(&header, &data)
+        .map_err(|e| fail(&e))?;
+    writer.finish().map_err(|e| fail(&e))?;
+    Ok(())
+}
+
 /// The world's solids as a scene: walls, obstacles and boxes as cubes, round things as
 /// cylinders, 1 m high.
 fn scene(w: &World) -> Value {

@@ -1,5 +1,6 @@
-//! Typed trace events and their JSON Lines rendering:
+//! The VM's trace events and their lines:
 //! `{"t":0.01,"event":"start","line":3,"text":"goahead(1.2)"}` then event-specific keys.
+//! A line is an [`ilmr_trace::Record`] ([`record`]), the schema every reader reads.
 //!
 //! A tick keeps one `issue` and one `start` event per statement and one `var` event
 //! per variable and statement ([`Coalesce`]): a repeat joins the first, which then
@@ -8,10 +9,13 @@
 //! megabytes a second. The events of a tick are then bounded by the program's size,
 //! not by the tick's budget.
 
-use std::fmt::Write;
+use std::borrow::Cow;
 
 use ilmr_hal::segment_distance;
 use ilmr_motion::obstacle::AvoidState;
+use ilmr_stdlib::Field;
+use ilmr_trace as schema;
+use ilmr_trace::{Num, Record, Stmt};
 
 use crate::bytecode::{Module, StmtId, VarId};
 
@@ -173,25 +177,9 @@ impl EventKind {
     }
 }
 
-/// Formats a number with at most four decimals and no trailing zeros (`-0` as `0`).
-pub fn fmt_num(x: f64) -> String {
-    if !x.is_finite() {
-        return if x.is_nan() {
-            "null".into()
-        } else if x > 0.0 {
-            "1e999".into()
-        } else {
-            "-1e999".into()
-        };
-    }
-    let s = format!("{:.4}", x);
-    let s = if s.contains('.') {
-        s.trim_end_matches('0').trim_end_matches('.').to_string()
-    } else {
-        s
-    };
-    if s == "-0" { "0".into() } else { s }
-}
+/// Numbers as the trace writes them (four decimals at most), for messages that quote
+/// them.
+pub use ilmr_trace::fmt_num;
 
 /// How far a traced reference path may stray from the planned one, metres: a plot
 /// cannot show less, and a straight leg keeps only its two ends.
@@ -228,84 +216,75 @@ pub fn outline(points: &[(f64, f64)], tolerance: f64) -> Vec<(f64, f64)> {
         .collect()
 }
 
-fn json_str(out: &mut String, s: &str) {
-    out.push('"');
-    for c in s.chars() {
-        match c {
-            '"' => out.push_str("\\\""),
-            '\\' => out.push_str("\\\\"),
-            '\n' => out.push_str("\\n"),
-            '\r' => out.push_str("\\r"),
-            '\t' => out.push_str("\\t"),
-            c if (c as u32) < 0x20 => {
-                let _ = write!(out, "\\u{:04x}", c as u32);
-            }
-            c => out.push(c),
-        }
+fn avoid_state(state: AvoidState) -> schema::AvoidState {
+    match state {
+        AvoidState::Normal => schema::AvoidState::Normal,
+        AvoidState::Avoiding => schema::AvoidState::Avoiding,
+        AvoidState::Returning => schema::AvoidState::Returning,
+        AvoidState::Blocked => schema::AvoidState::Blocked,
     }
-    out.push('"');
 }
 
-/// One event as one line of JSON (no newline).
-pub fn render_event(m: &Module, e: &Event) -> String {
-    let mut o = String::with_capacity(96);
-    let _ = write!(
-        o,
-        "{{\"t\":{},\"event\":\"{}\"",
-        fmt_num(e.t),
-        e.kind.name()
-    );
-    if let Some(s) = e.stmt.and_then(|s| m.stmt(s)) {
-        let _ = write!(o, ",\"line\":{},\"text\":", s.line);
-        json_str(&mut o, &s.text);
-    }
-    match &e.kind {
-        EventKind::Issue => {}
-        EventKind::Start { iteration } => {
-            if let Some(i) = iteration {
-                let _ = write!(o, ",\"iteration\":{i}");
-            }
-        }
+/// The trace line of `e`, its texts borrowed from the module and the event.
+pub fn record<'a>(m: &'a Module, e: &'a Event) -> Record<'a> {
+    let stmt = e.stmt.and_then(|s| m.stmt(s)).map(|s| Stmt {
+        line: s.line,
+        text: Cow::Borrowed(&s.text),
+    });
+    let event = match &e.kind {
+        EventKind::Issue => schema::Event::Issue(schema::Issue {
+            stmt,
+            count: e.count,
+        }),
+        EventKind::Start { iteration } => schema::Event::Start(schema::Start {
+            stmt,
+            iteration: *iteration,
+            count: e.count,
+        }),
         EventKind::End {
             how,
             linked,
             code,
             reason,
-        } => {
-            let _ = write!(o, ",\"how\":\"{}\"", how.name());
-            if *linked {
-                o.push_str(",\"linked\":true");
-            }
-            if let Some(c) = code {
-                let _ = write!(o, ",\"code\":\"{}\"", c.code());
-            }
-            if let Some(r) = reason {
-                o.push_str(",\"reason\":");
-                json_str(&mut o, r);
-            }
-            if let Some(c) = code {
-                o.push_str(",\"help\":");
-                json_str(&mut o, c.help());
-            }
-        }
+        } => schema::Event::End(schema::End {
+            stmt,
+            how: *how,
+            linked: *linked,
+            code: code.map(|c| Cow::Borrowed(c.code())),
+            reason: reason.as_deref().map(Cow::Borrowed),
+            help: code.map(|c| Cow::Borrowed(c.help())),
+        }),
         EventKind::Var {
             var,
             changed,
             record,
         } => {
-            o.push_str(",\"var\":");
-            json_str(&mut o, m.global(*var).map_or("?", |g| g.name.as_str()));
+            let mut v = schema::Var {
+                stmt,
+                var: Cow::Borrowed(m.global(*var).map_or("?", |g| g.name.as_str())),
+                status: None,
+                x: None,
+                y: None,
+                h: None,
+                value: None,
+                dist: None,
+                how: record.how.filter(|_| changed.has(Field::Status)),
+                count: e.count,
+            };
             for f in FIELDS {
                 if changed.has(f) {
-                    let _ = write!(o, ",\"{}\":{}", f.name(), fmt_num(record.get(f)));
+                    let slot = match f {
+                        Field::Status => &mut v.status,
+                        Field::X => &mut v.x,
+                        Field::Y => &mut v.y,
+                        Field::H => &mut v.h,
+                        Field::Value => &mut v.value,
+                        Field::Dist => &mut v.dist,
+                    };
+                    *slot = Some(Num(record.get(f)));
                 }
             }
-            if let Some(how) = record
-                .how
-                .filter(|_| changed.has(ilmr_stdlib::Field::Status))
-            {
-                let _ = write!(o, ",\"how\":\"{}\"", how.name());
-            }
+            schema::Event::Var(v)
         }
         EventKind::Pose {
             x,
@@ -314,106 +293,81 @@ pub fn render_event(m: &Module, e: &Event) -> String {
             speed,
             curvature,
             truth,
-        } => {
-            let _ = write!(
-                o,
-                ",\"x\":{},\"y\":{},\"h\":{},\"v\":{},\"c\":{},\"source\":\"{}\"",
-                fmt_num(*x),
-                fmt_num(*y),
-                fmt_num(*h),
-                fmt_num(*speed),
-                fmt_num(*curvature),
-                if *truth { "true" } else { "estimated" }
-            );
-        }
-        EventKind::Path { points } => {
-            o.push_str(",\"points\":[");
-            for (i, (x, y)) in points.iter().enumerate() {
-                if i > 0 {
-                    o.push(',');
-                }
-                let _ = write!(o, "[{},{}]", fmt_num(*x), fmt_num(*y));
-            }
-            o.push(']');
-        }
-        EventKind::Avoid { state } => {
-            let name = match state {
-                AvoidState::Normal => "normal",
-                AvoidState::Avoiding => "avoiding",
-                AvoidState::Returning => "returning",
-                AvoidState::Blocked => "blocked",
-            };
-            let _ = write!(o, ",\"state\":\"{name}\"");
-        }
-        EventKind::Fault { fault, message } => {
-            let _ = write!(
-                o,
-                ",\"fault\":\"{}\",\"code\":\"{}\",\"reaction\":\"{}\",\"message\":",
-                fault.name(),
-                Code::Fault(*fault).code(),
-                fault.reaction().name()
-            );
-            json_str(&mut o, message);
-            o.push_str(",\"help\":");
-            json_str(&mut o, Code::Fault(*fault).help());
-        }
-        EventKind::Recovered { fault } => {
-            let _ = write!(
-                o,
-                ",\"fault\":\"{}\",\"code\":\"{}\"",
-                fault.name(),
-                Code::Fault(*fault).code()
-            );
-        }
-        EventKind::Overrun { pending } => {
-            let _ = write!(o, ",\"pending\":{pending}");
-        }
-        EventKind::Error { message } => {
-            o.push_str(",\"message\":");
-            json_str(&mut o, message);
-        }
-    }
-    if e.count > 1 {
-        let _ = write!(o, ",\"count\":{}", e.count);
-    }
-    o.push('}');
-    o
+        } => schema::Event::Pose(schema::Pose {
+            x: Num(*x),
+            y: Num(*y),
+            h: Num(*h),
+            v: Num(*speed),
+            c: Num(*curvature),
+            source: if *truth {
+                schema::Source::Truth
+            } else {
+                schema::Source::Estimated
+            },
+        }),
+        EventKind::Path { points } => schema::Event::Path(schema::Path {
+            stmt,
+            points: points.as_slice().into(),
+        }),
+        EventKind::Avoid { state } => schema::Event::Avoid(schema::Avoid {
+            stmt,
+            state: avoid_state(*state),
+        }),
+        EventKind::Fault { fault, message } => schema::Event::Fault(schema::Fault {
+            stmt,
+            fault: Cow::Borrowed(fault.name()),
+            code: Cow::Borrowed(Code::Fault(*fault).code()),
+            reaction: Cow::Borrowed(fault.reaction().name()),
+            message: Cow::Borrowed(message),
+            help: Cow::Borrowed(Code::Fault(*fault).help()),
+        }),
+        EventKind::Recovered { fault } => schema::Event::Recovered(schema::Recovered {
+            stmt,
+            fault: Cow::Borrowed(fault.name()),
+            code: Cow::Borrowed(Code::Fault(*fault).code()),
+        }),
+        EventKind::Overrun { pending } => schema::Event::Overrun(schema::Overrun {
+            stmt,
+            pending: *pending,
+        }),
+        EventKind::Error { message } => schema::Event::Error(schema::Error {
+            stmt,
+            message: Cow::Borrowed(message),
+        }),
+    };
+    Record::new(e.t, event)
 }
 
-/// Writes events as JSON Lines.
+/// One event as one line of JSON (no newline).
+pub fn render_event(m: &Module, e: &Event) -> String {
+    ilmr_trace::to_line(&record(m, e))
+}
+
+/// Writes events as JSON Lines (without the trace's version line: these are the
+/// events of a trace, not a trace file).
 pub fn write_jsonl(
     m: &Module,
     events: &[Event],
     out: &mut impl std::io::Write,
 ) -> std::io::Result<()> {
     for e in events {
-        writeln!(out, "{}", render_event(m, e))?;
+        ilmr_trace::write_line(&mut *out, &record(m, e))?;
+        out.write_all(b"\n")?;
     }
     Ok(())
 }
 
 /// Events as JSON Lines in one string (for snapshots).
 pub fn to_jsonl(m: &Module, events: &[Event]) -> String {
-    let mut s = String::new();
-    for e in events {
-        s.push_str(&render_event(m, e));
-        s.push('\n');
-    }
-    s
+    let mut out = Vec::new();
+    // Into memory the write cannot fail.
+    let _ = write_jsonl(m, events, &mut out);
+    String::from_utf8(out).unwrap_or_default()
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn numbers_are_short_and_stable() {
-        assert_eq!(fmt_num(0.01), "0.01");
-        assert_eq!(fmt_num(3.0 * 0.01), "0.03");
-        assert_eq!(fmt_num(-0.00001), "0");
-        assert_eq!(fmt_num(1.23456), "1.2346");
-        assert_eq!(fmt_num(2.0), "2");
-    }
 
     #[test]
     fn an_outline_keeps_the_ends_and_the_bends() {

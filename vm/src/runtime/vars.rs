@@ -17,24 +17,9 @@ pub(crate) const NONE: u32 = u32::MAX;
 /// below 2^31 entries.
 const WATCH: u32 = MAX_LISTS;
 
-/// How a command ended.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
-#[serde(rename_all = "lowercase")]
-pub enum How {
-    Completed,
-    Broken,
-    Refused,
-}
-
-impl How {
-    pub fn name(self) -> &'static str {
-        match self {
-            How::Completed => "completed",
-            How::Broken => "broken",
-            How::Refused => "refused",
-        }
-    }
-}
+/// How a command ended: the trace's own type, so the VM and the trace's readers
+/// share one vocabulary.
+pub use ilmr_trace::How;
 
 /// A variable: the fields of Table 8 and how its command ended (`None` while it runs
 /// or for plain arithmetic).
