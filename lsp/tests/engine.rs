@@ -171,6 +171,14 @@ fn conditions_offer_variables_and_model_constants() {
     assert!(got.contains(&"LowBattery".to_string()), "{got:?}");
 }
 
+fn variable_labels(list: &tower_lsp_server::ls_types::CompletionList) -> Vec<&str> {
+    list.items
+        .iter()
+        .filter(|i| i.kind == Some(tower_lsp_server::ls_types::CompletionItemKind::VARIABLE))
+        .map(|i| i.label.as_str())
+        .collect()
+}
+
 /// A task that binds more variables than one list holds: the list is marked
 /// incomplete, holds the nearest ones above the cursor first, and narrows to what is
 /// typed, names that begin with it before names that contain it.
@@ -182,12 +190,7 @@ fn a_long_list_of_variables_is_capped_ranked_and_incomplete() {
     let (engine, u, p) = setup(&[(TASK, &text)]);
     let list = engine.completion_list(&u, p);
     assert!(list.is_incomplete);
-    let vars: Vec<&str> = list
-        .items
-        .iter()
-        .filter(|i| i.kind == Some(tower_lsp_server::ls_types::CompletionItemKind::VARIABLE))
-        .map(|i| i.label.as_str())
-        .collect();
+    let vars = variable_labels(&list);
     assert_eq!(vars.len(), ilmr_lsp::completion::MAX_VARIABLE_ITEMS);
     assert_eq!(
         &vars[..3],
@@ -200,12 +203,7 @@ fn a_long_list_of_variables_is_capped_ranked_and_incomplete() {
     let text = text.replace("goahead($0", "goahead(v7$0");
     let (engine, u, p) = setup(&[(TASK, &text)]);
     let list = engine.completion_list(&u, p);
-    let vars: Vec<&str> = list
-        .items
-        .iter()
-        .filter(|i| i.kind == Some(tower_lsp_server::ls_types::CompletionItemKind::VARIABLE))
-        .map(|i| i.label.as_str())
-        .collect();
+    let vars = variable_labels(&list);
     // v7 and v70..v79 begin with it, the nearest (v79) first; x_v7 only contains it.
     assert!(!list.is_incomplete, "{}", vars.len());
     assert_eq!(vars.len(), 12, "{vars:?}");
