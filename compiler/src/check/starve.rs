@@ -15,7 +15,7 @@ use ilmr_stdlib::Command;
 use ilmr_vm::Config;
 use smallvec::SmallVec;
 
-use crate::ast::{Arg, Block, Expr, ExprKind, Stmt, StmtKind};
+use crate::ast::{Arg, Args, Block, Expr, ExprKind, Stmt, StmtKind};
 use crate::check::loops::names_in;
 use crate::check::skills::Skills;
 use crate::diagnostic::{Code, Diagnostic, FileId};
@@ -111,18 +111,10 @@ fn ends_at_issue(program: &Program<'_>, stmt: &Stmt<'_>) -> bool {
             _ => true,
         },
         StmtKind::Call { call, .. } => Command::from_name(call.name.text).is_some_and(|command| {
-            let keywords = call
-                .args
-                .iter()
-                .flat_map(|a| a.items.iter())
-                .filter_map(|a| match a {
-                    Arg::Positional(Expr {
-                        kind: ExprKind::Name(n),
-                        ..
-                    }) => Some(n.text),
-                    _ => None,
-                });
-            command.spec().ends.at_issue(keywords)
+            command
+                .spec()
+                .ends
+                .at_issue(positional_names(call.args.as_ref()))
         }),
         // Only checked, never run.
         StmtKind::Check { .. } => true,
@@ -154,17 +146,7 @@ fn written<'s>(stmt: &'s Stmt<'s>) -> impl Iterator<Item = &'s str> {
         StmtKind::Call { bind, call } => (bind.map(|b| b.text), call.args.as_ref()),
         _ => (None, None),
     };
-    let named = args
-        .into_iter()
-        .flat_map(|a| a.items.iter())
-        .filter_map(|a| match a {
-            Arg::Positional(Expr {
-                kind: ExprKind::Name(n),
-                ..
-            }) => Some(n.text),
-            _ => None,
-        });
-    first.into_iter().chain(named)
+    first.into_iter().chain(positional_names(args))
 }
 
 /// The postfix operations the lowering makes of an expression, as it folds constant
@@ -185,6 +167,19 @@ fn expr_ops(program: &Program<'_>, e: &Expr<'_>) -> u32 {
         }
     }
     ops(program, e).unwrap_or(1)
+}
+
+/// The bare names among a call's positional arguments (keywords, or variables).
+fn positional_names<'a>(args: Option<&'a Args<'a>>) -> impl Iterator<Item = &'a str> {
+    args.into_iter()
+        .flat_map(|a| a.items.iter())
+        .filter_map(|a| match a {
+            Arg::Positional(Expr {
+                kind: ExprKind::Name(n),
+                ..
+            }) => Some(n.text),
+            _ => None,
+        })
 }
 
 /// `200000` as `200,000`.
