@@ -9,12 +9,12 @@ cd "$(dirname "$0")/.."
 # Software this project did not write, which the interop tests run against: Eclipse
 # Cyclone DDS's Python binding (it ships its own C library), Foxglove's MCAP readers, and
 # a JSON Schema validator for the traces (docs/trace-schema.json).
-python_packages="cyclonedds mcap mcap-ros2-support jsonschema"
-if ! python3 -c 'import cyclonedds.idl, mcap.reader, mcap_ros2.decoder, jsonschema' >/dev/null 2>&1; then
+python_packages="cyclonedds mcap mcap-protobuf-support mcap-ros2-support jsonschema"
+if ! python3 -c 'import cyclonedds.idl, mcap.reader, mcap_protobuf.decoder, mcap_ros2.decoder, jsonschema' >/dev/null 2>&1; then
     python3 -m pip install --quiet --disable-pip-version-check $python_packages \
         || python3 -m pip install --quiet --disable-pip-version-check --break-system-packages $python_packages
 fi
-python3 -c 'import cyclonedds.idl, mcap.reader, mcap_ros2.decoder, jsonschema'
+python3 -c 'import cyclonedds.idl, mcap.reader, mcap_protobuf.decoder, mcap_ros2.decoder, jsonschema'
 
 # The fuzz crate is a workspace of its own whose lock file CI uses as it is; it goes
 # stale when a crate it builds gains a dependency. Said here, before an hour of CI.
@@ -22,6 +22,9 @@ if ! (cd fuzz && cargo metadata --locked --format-version 1 >/dev/null 2>&1); th
     echo "fuzz/Cargo.lock is stale: run \`(cd fuzz && cargo metadata --format-version 1 >/dev/null)\` and commit it" >&2
     exit 1
 fi
+
+# Foxglove's own WebSocket client, which watches a live run (tests/foxglove_live.rs).
+(cd tests/foxglove && npm ci --no-audit --no-fund --silent)
 
 cargo test --workspace
 

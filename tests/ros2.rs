@@ -246,14 +246,14 @@ fn a_task_drives_a_cyclone_dds_robot_to_its_goal() {
 /// decoded, the last odometry where the robot ended.
 fn recorded_as_a_bag(mcap: &std::path::Path, (x, y): (f64, f64)) {
     let out = Command::new("python3")
-        .arg(support::root().join("robots/ros2/python/read_mcap.py"))
+        .arg(support::root().join("tools/read_mcap.py"))
         .arg(mcap)
         .output()
         .unwrap();
     let _ = std::fs::remove_file(mcap);
     let topics: Value = serde_json::from_slice(&out.stdout).unwrap_or_else(|e| {
         panic!(
-            "read_mcap.py failed ({e}); CI installs `mcap` and `mcap-ros2-support`:\n{}",
+            "read_mcap.py failed ({e}); CI installs `mcap`, `mcap-protobuf-support` and `mcap-ros2-support`:\n{}",
             String::from_utf8_lossy(&out.stderr)
         )
     });

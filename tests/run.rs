@@ -760,14 +760,11 @@ fn a_run_that_cannot_start_leaves_valid_files_that_say_why() {
         assert_eq!(failed["exit"], exit, "{args:?}");
         let reason = failed["reason"].as_str().unwrap().to_string();
 
-        let bytes = std::fs::read(&mcap_file).unwrap();
-        let messages: Vec<_> = mcap::MessageStream::new(&bytes)
-            .expect("an MCAP file")
-            .collect::<Result<_, _>>()
-            .expect("every message reads");
-        assert_eq!(messages.len(), 1, "{args:?}");
-        assert_eq!(messages[0].channel.topic, "/commands");
-        let log: serde_json::Value = serde_json::from_slice(&messages[0].data).unwrap();
+        let topics = support::foxglove_reads(&mcap_file);
+        let commands = &topics["/commands"];
+        assert_eq!(topics.as_object().unwrap().len(), 1, "{args:?}: {topics}");
+        assert_eq!(commands["count"], 1, "{args:?}");
+        let log = &commands["logs"][0];
         assert_eq!(
             log["message"],
             format!("the run did not start (exit {exit}): {reason}")

@@ -9,6 +9,7 @@ mod support;
 
 use std::path::PathBuf;
 
+use serde_json::json;
 use support::{ilmrc, summary_exit};
 
 fn scratch(name: &str) -> PathBuf {
@@ -19,6 +20,8 @@ fn scratch(name: &str) -> PathBuf {
 struct Outputs {
     trace: Vec<u8>,
     mcap: Vec<u8>,
+    /// The MCAP file as `tools/read_mcap.py` read it.
+    foxglove: serde_json::Value,
     svg: Vec<u8>,
     summary: String,
 }
@@ -46,9 +49,12 @@ fn run_with_outputs(name: &str, args: &[&str]) -> Outputs {
         let _ = std::fs::remove_file(p);
         bytes
     };
+    // Every recording is read by Foxglove's own reader, every message decoded.
+    let foxglove = support::foxglove_reads(&m);
     Outputs {
         trace: read(&t),
         mcap: read(&m),
+        foxglove,
         svg: read(&p),
         summary: out,
     }
@@ -245,12 +251,10 @@ fn the_mcap_log_says_what_each_refusal_and_fault_was_at_its_level() {
     std::fs::write(&task, "gotoxy(8.1,5.5)\nfollowwall(left)\n").unwrap();
     let run = run_with_outputs("mcap-held", &["--hold-limit", "2", task.to_str().unwrap()]);
     let _ = std::fs::remove_file(&task);
-    let logs: Vec<serde_json::Value> = mcap::MessageStream::new(&run.mcap)
-        .expect("an MCAP file")
-        .map(|m| m.expect("a message"))
-        .filter(|m| m.channel.topic == "/commands")
-        .map(|m| serde_json::from_slice(&m.data).expect("JSON"))
-        .collect();
+    let logs = run.foxglove["/commands"]["logs"]
+        .as_array()
+        .expect("log messages")
+        .clone();
     let said = |start: &str| {
         logs.iter()
             .find(|v| v["message"].as_str().is_some_and(|m| m.starts_with(start)))
@@ -272,46 +276,79 @@ fn the_mcap_log_says_what_each_refusal_and_fault_was_at_its_level() {
 #[test]
 fn the_mcap_file_reads_back_with_foxglove_schemas() {
     let run = run_with_outputs("mcap", &["--max-time", "8", "examples/short_task.ilmr"]);
-    let mut topics: std::collections::BTreeMap<String, (String, usize)> = Default::default();
     let mut last_time = 0;
     for m in mcap::MessageStream::new(&run.mcap).expect("an MCAP file") {
         let m = m.expect("a message");
         assert!(m.log_time >= last_time, "messages in time order");
         last_time = m.log_time;
-        let schema = m
-            .channel
-            .schema
-            .as_ref()
-            .expect("every channel has a schema");
-        let entry = topics
-            .entry(m.channel.topic.clone())
-            .or_insert((schema.name.clone(), 0));
-        entry.1 += 1;
-        let v: serde_json::Value = serde_json::from_slice(&m.data).expect("JSON messages");
-        match m.channel.topic.as_str() {
-            "/pose" => assert!(v["pose"]["position"]["x"].is_number(), "{v}"),
-            "/scan" => assert_eq!(v["ranges"].as_array().map(Vec::len), Some(361)),
-            "/commands" => assert!(v["line"].as_u64().is_some_and(|l| l > 0) || v["line"] == 0),
-            _ => {}
-        }
     }
+    let topics = &run.foxglove;
     let expect = [
         ("/commands", "foxglove.Log"),
-        ("/motion", "ilmr.Motion"),
+        ("/motion", "motion.Motion"),
         ("/pose", "foxglove.PoseInFrame"),
+        ("/tf", "foxglove.FrameTransforms"),
         ("/scan", "foxglove.LaserScan"),
         ("/world", "foxglove.SceneUpdate"),
+        ("/paths", "foxglove.SceneUpdate"),
+        ("/trajectory", "foxglove.SceneUpdate"),
+        ("/variables", "variable.Variable"),
     ];
     for (topic, schema) in expect {
-        let (name, count) = topics
-            .get(topic)
-            .unwrap_or_else(|| panic!("{topic} missing"));
-        assert_eq!(name, schema);
-        assert!(*count > 0);
+        let t = &topics[topic];
+        assert_eq!(t["schema"], schema, "{topic}: {t}");
+        assert_eq!(
+            (&t["schema_encoding"], &t["message_encoding"]),
+            (&json!("protobuf"), &json!("protobuf")),
+            "{topic}"
+        );
     }
-    assert_eq!(topics["/world"].1, 1, "the world once");
-    assert_eq!(topics["/pose"].1, 81, "8 s at 10 Hz, and the last tick's");
-    assert!(topics["/scan"].1 >= 32, "every scan at 4 Hz");
+    assert_eq!(topics["/world"]["count"], 1, "the world once");
+    assert_eq!(
+        topics["/pose"]["count"], 81,
+        "8 s at 10 Hz, and the last tick's"
+    );
+    assert_eq!(topics["/tf"]["frames"], json!(["world", "base_link"]));
+    assert_eq!(topics["/scan"]["beams"], 361);
+    assert!(
+        topics["/scan"]["count"].as_u64().unwrap() >= 32,
+        "every scan at 4 Hz"
+    );
+    // The poses Foxglove's reader decodes are the trace's, sample for sample.
+    let traced: Vec<(f64, f64, f64)> = String::from_utf8_lossy(&run.trace)
+        .lines()
+        .map(|l| serde_json::from_str::<serde_json::Value>(l).expect("JSON"))
+        .filter(|v| v["event"] == "pose")
+        .map(|v| {
+            (
+                v["t"].as_f64().unwrap(),
+                v["x"].as_f64().unwrap(),
+                v["y"].as_f64().unwrap(),
+            )
+        })
+        .collect();
+    let recorded: Vec<(f64, f64, f64)> = topics["/pose"]["poses"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|p| {
+            (
+                p[0].as_f64().unwrap(),
+                p[1].as_f64().unwrap(),
+                p[2].as_f64().unwrap(),
+            )
+        })
+        .collect();
+    assert_eq!(traced.len(), recorded.len());
+    for (a, b) in traced.iter().zip(&recorded) {
+        // The trace gives four decimals.
+        assert!(
+            (a.0 - b.0).abs() < 1e-6 && (a.1 - b.1).abs() < 6e-5 && (a.2 - b.2).abs() < 6e-5,
+            "trace {a:?}, MCAP {b:?}"
+        );
+    }
+    let steps = topics["/trajectory"]["entities"].as_array().unwrap();
+    assert!(!steps.is_empty() && steps[0] == "trajectory-1", "{steps:?}");
 }
 
 #[test]

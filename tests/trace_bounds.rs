@@ -31,7 +31,19 @@ fn a_tight_loop_traces_one_event_per_statement_a_tick_and_every_overrun() {
     assert_eq!(code, 5, "{out}{err}");
     let text = std::fs::read_to_string(&trace).expect("trace");
     let mcap_len = std::fs::metadata(&mcap).expect("mcap").len();
+    let foxglove = support::foxglove_reads(&mcap);
     let _ = std::fs::remove_dir_all(&dir);
+    let overruns = foxglove["/commands"]["logs"]
+        .as_array()
+        .expect("log messages")
+        .iter()
+        .filter(|l| {
+            l["message"]
+                .as_str()
+                .is_some_and(|m| m.starts_with("overrun"))
+        })
+        .count();
+    assert_eq!(overruns, 300, "every overrun is in the recording too");
     // 300 ticks of 25,000 statements each were 7.5 million events, about 1.5 GB.
     assert!(text.len() < 200_000, "{} bytes of trace", text.len());
     assert!(mcap_len < 2_000_000, "{mcap_len} bytes of MCAP");

@@ -18,6 +18,7 @@ mod summary;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
+use foxglove::schemas::log::Level;
 use ilmr_vm::runtime::trace;
 use ilmr_vm::{Clock, RealClock, SimClock, TraceLevel, Vm};
 
@@ -84,6 +85,12 @@ pub struct RunArgs {
     /// Write the run as an MCAP file (pose, scans, reference paths, command events).
     #[arg(long)]
     pub mcap: Option<PathBuf>,
+    /// Serve the run live to Foxglove (WebSocket, `foxglove.websocket.v1`) on
+    /// `--foxglove` (127.0.0.1:8765) or `--foxglove=HOST:PORT` (loopback only; port 0
+    /// takes a free one). With `--realtime` a viewer watches at the robot's pace.
+    #[arg(long, num_args = 0..=1, require_equals = true, value_name = "ADDR",
+          default_missing_value = crate::view::live::DEFAULT_ADDR)]
+    pub foxglove: Option<String>,
     /// Draw the run as an SVG: world, trajectory, scanner hits, command positions,
     /// speed and curvature over time.
     #[arg(long)]
@@ -209,6 +216,14 @@ fn execute(args: &RunArgs, reached: &mut Reached) -> Result<Ran, String> {
         )?),
         None => None,
     };
+    let live = match &args.foxglove {
+        Some(addr) => Some(crate::view::live::open(
+            addr,
+            &args.task,
+            setup.world.as_ref().map(|w| &w.world),
+        )?),
+        None => None,
+    };
     let robotless = setup.backend == Backend::None;
     let given = ilmr_compiler::check::Given {
         paths: scenario.paths.keys().cloned().collect(),
@@ -239,7 +254,7 @@ fn execute(args: &RunArgs, reached: &mut Reached) -> Result<Ran, String> {
         _ => None,
     };
     // Pose samples say nothing when there is no robot.
-    let trace_level = if sink.wants_poses() || mcap.is_some() {
+    let trace_level = if sink.wants_poses() || mcap.is_some() || live.is_some() {
         if robotless {
             TraceLevel::Commands
         } else {
@@ -264,6 +279,7 @@ fn execute(args: &RunArgs, reached: &mut Reached) -> Result<Ran, String> {
         scenario: &scenario,
         sink,
         mcap,
+        live,
     };
     // A real robot lives on the wall clock.
     if args.realtime || setup.backend == Backend::Ros2 {
@@ -283,6 +299,7 @@ struct Parts<'a> {
     scenario: &'a Scenario,
     sink: Sink,
     mcap: Option<mcap::McapOut>,
+    live: Option<crate::view::live::Live>,
 }
 
 fn drive<C: Clock>(
@@ -338,6 +355,9 @@ fn drive<C: Clock>(
             m.tick(vm.module(), &events, scan.as_ref())?;
             m.ros2(vm.hal_mut().take_ros2_messages())?;
         }
+        if let Some(l) = parts.live.as_mut() {
+            l.tick(vm.module(), &events, scan.as_ref());
+        }
         progress.show(&vm, &session, &report);
         if report
             .longest_hold(vm.time())
@@ -367,6 +387,9 @@ fn drive<C: Clock>(
     if let Some(m) = parts.mcap.as_mut() {
         m.tick(vm.module(), &last, None)?;
     }
+    if let Some(l) = parts.live.as_mut() {
+        l.tick(vm.module(), &last, None);
+    }
     let plot = parts.sink.finish()?;
     if let Some(m) = parts.mcap {
         m.finish()?;
@@ -379,6 +402,10 @@ fn drive<C: Clock>(
         session: &session,
         report: &report,
     };
+    if let Some(mut l) = parts.live.take() {
+        l.note(vm.time(), Level::Info, ended.how(&vm, args));
+        crate::view::live::close(l);
+    }
     print!("{}", summary::render(&ended, &vm, args, parts.setup));
     Ok(Ran::Ended(ended.exit_code()))
 }

@@ -43,7 +43,8 @@ impl Ended<'_> {
         }
     }
 
-    fn how<C: Clock>(&self, vm: &Vm<AnyRobot, C>, args: &RunArgs) -> String {
+    /// The summary's `how` line: how the run ended.
+    pub fn how<C: Clock>(&self, vm: &Vm<AnyRobot, C>, args: &RunArgs) -> String {
         let a = vm.activity();
         let hold = self.report.longest_hold(vm.time()).map(|(h, held)| {
             format!(

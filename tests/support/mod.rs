@@ -149,3 +149,28 @@ pub fn check<'s>(sources: &'s [Source], robot: &str) -> (Analysis<'s>, RobotMode
     let analysis = analyze(sources, &m);
     (analysis, m)
 }
+
+/// An MCAP file as Foxglove's own Python libraries read it (`tools/read_mcap.py`,
+/// with `mcap`, `mcap-protobuf-support` and `mcap-ros2-support`, which CI installs):
+/// per topic its schema, encodings, counts and the essentials of its messages. Fails
+/// unless every message decodes with its channel's schema.
+pub fn foxglove_reads(mcap: &Path) -> serde_json::Value {
+    let out = std::process::Command::new("python3")
+        .arg(root().join("tools/read_mcap.py"))
+        .arg(mcap)
+        .output()
+        .expect("python3 runs");
+    let topics: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap_or_else(|e| {
+        panic!(
+            "tools/read_mcap.py read nothing ({e}); CI installs `mcap`, \
+             `mcap-protobuf-support` and `mcap-ros2-support`:\n{}",
+            String::from_utf8_lossy(&out.stderr)
+        )
+    });
+    assert!(
+        out.status.success(),
+        "a message of {} did not decode: {topics}",
+        mcap.display()
+    );
+    topics
+}

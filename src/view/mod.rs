@@ -1,0 +1,583 @@
+//! What a viewer is shown of a run: Foxglove's typed messages (protobuf, with the
+//! schemas of Foxglove's SDK) built from the VM's events, the scan and the world. The
+//! recording (`run::mcap`) and the live view ([`live`]) publish the same messages on
+//! the same topics, so a panel laid out for one shows the other.
+//!
+//! | topic | schema | what |
+//! | --- | --- | --- |
+//! | `/world` | `foxglove.SceneUpdate` | walls, obstacles and boxes as cubes and cylinders |
+//! | `/pose` | `foxglove.PoseInFrame` | the true pose, at the trace's pose samples |
+//! | `/tf` | `foxglove.FrameTransforms` | `world` to `base_link` at the same samples |
+//! | `/motion` | `motion.Motion` | speed and curvature at the same samples |
+//! | `/scan` | `foxglove.LaserScan` | every scan, placed at the scanner's true pose |
+//! | `/commands` | `foxglove.Log` | command events, refusals, faults, overruns and errors, with their source line |
+//! | `/paths` | `foxglove.SceneUpdate` | each reference path a movement planned, one entity per path, kept |
+//! | `/trajectory` | `foxglove.SceneUpdate` | where the robot drove, one line strip per second of driving, kept |
+//! | `/variables` | `variable.Variable` | each variable's fields when a statement sets them |
+//!
+//! Everything is in frame `world`, stamped with the run's logical time. Scan ranges
+//! are given to the millimetre ([`RANGES_PER_METRE`]).
+
+pub mod live;
+
+use foxglove::Encode;
+use foxglove::schemas::{
+    Color, CubePrimitive, CylinderPrimitive, FrameTransform, FrameTransforms, KeyValuePair,
+    LaserScan, LinePrimitive, Log, Point3, Pose, PoseInFrame, Quaternion, SceneEntity, SceneUpdate,
+    Timestamp, Vector3, line_primitive, log,
+};
+use ilmr_sim::World;
+use ilmr_sim::geometry::Shape;
+use ilmr_vm::runtime::safety::{Code, Reaction};
+use ilmr_vm::{Event, EventKind, How, Module};
+
+use crate::run::backend::WorldScan;
+
+pub const FRAME: &str = "world";
+pub const ROBOT_FRAME: &str = "base_link";
+
+/// The robot's speed and curvature, for Foxglove's plot panel.
+#[derive(Debug, Clone, PartialEq, foxglove::Encode)]
+pub struct Motion {
+    pub timestamp: Timestamp,
+    /// m/s
+    pub speed: f64,
+    /// 1/m
+    pub curvature: f64,
+}
+
+/// A variable's fields (Table 8) after a statement set them.
+#[derive(Debug, Clone, PartialEq, foxglove::Encode)]
+pub struct Variable {
+    pub timestamp: Timestamp,
+    pub name: String,
+    pub status: f64,
+    pub x: f64,
+    pub y: f64,
+    pub h: f64,
+    pub value: f64,
+    pub dist: f64,
+    /// How its command ended (`completed`, `broken`, ...), empty while it runs.
+    pub how: String,
+    /// The line of the statement that set it.
+    pub line: u32,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Topic {
+    World,
+    Pose,
+    Tf,
+    Motion,
+    Scan,
+    Commands,
+    Paths,
+    Trajectory,
+    Variables,
+}
+
+impl Topic {
+    pub const ALL: [Topic; 9] = [
+        Topic::World,
+        Topic::Pose,
+        Topic::Tf,
+        Topic::Motion,
+        Topic::Scan,
+        Topic::Commands,
+        Topic::Paths,
+        Topic::Trajectory,
+        Topic::Variables,
+    ];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            Topic::World => "/world",
+            Topic::Pose => "/pose",
+            Topic::Tf => "/tf",
+            Topic::Motion => "/motion",
+            Topic::Scan => "/scan",
+            Topic::Commands => "/commands",
+            Topic::Paths => "/paths",
+            Topic::Trajectory => "/trajectory",
+            Topic::Variables => "/variables",
+        }
+    }
+
+    /// The schema of the topic's messages, as Foxglove's SDK describes the type.
+    pub fn schema(self) -> foxglove::Schema {
+        let schema = match self {
+            Topic::World | Topic::Paths | Topic::Trajectory => SceneUpdate::get_schema(),
+            Topic::Pose => PoseInFrame::get_schema(),
+            Topic::Tf => FrameTransforms::get_schema(),
+            Topic::Motion => Motion::get_schema(),
+            Topic::Scan => LaserScan::get_schema(),
+            Topic::Commands => Log::get_schema(),
+            Topic::Variables => Variable::get_schema(),
+        };
+        schema.expect("Foxglove's types and the derived ones carry their schema")
+    }
+}
+
+/// One message of a topic.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Message {
+    Scene(SceneUpdate),
+    Pose(PoseInFrame),
+    Transforms(FrameTransforms),
+    Motion(Motion),
+    Scan(LaserScan),
+    Log(Log),
+    Variable(Variable),
+}
+
+impl Message {
+    /// The message's protobuf bytes, appended to `buf`.
+    pub fn encode(&self, buf: &mut Vec<u8>) {
+        // Encoding into a growing Vec cannot run out of room, the one way it fails.
+        let done = match self {
+            Message::Scene(m) => m.encode(buf).map_err(|e| e.to_string()),
+            Message::Pose(m) => m.encode(buf).map_err(|e| e.to_string()),
+            Message::Transforms(m) => m.encode(buf).map_err(|e| e.to_string()),
+            Message::Motion(m) => m.encode(buf).map_err(|e| e.to_string()),
+            Message::Scan(m) => m.encode(buf).map_err(|e| e.to_string()),
+            Message::Log(m) => m.encode(buf).map_err(|e| e.to_string()),
+            Message::Variable(m) => m.encode(buf).map_err(|e| e.to_string()),
+        };
+        if let Err(e) = done {
+            unreachable!("encoding into a Vec failed: {e}");
+        }
+    }
+}
+
+/// A message on its way out, stamped with the run's logical time (seconds).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Outgoing {
+    pub topic: Topic,
+    pub t: f64,
+    pub message: Message,
+}
+
+/// Scan ranges are shown to the millimetre: the finest resolution of the Sick LMS 291
+/// both robots carry (dissertation section 5.1), well under the scanner's noise.
+/// Noise in every bit of a double does not compress: way_out's 600 s of scans take
+/// 6.6 MB under zstd at full precision, 1.8 MB to the millimetre.
+pub const RANGES_PER_METRE: f64 = 1000.0;
+
+/// `r` to the nearest [`RANGES_PER_METRE`] step (the double nearest that decimal).
+fn to_resolution(r: f64) -> f64 {
+    if r.is_finite() {
+        (r * RANGES_PER_METRE).round() / RANGES_PER_METRE
+    } else {
+        r
+    }
+}
+
+/// How far apart (seconds of driving) the trajectory is cut into entities: a viewer
+/// gets the newest piece within that time, and no message grows with the run.
+const TRAJECTORY_PIECE: f64 = 1.0;
+
+/// Turns a run's events into messages. It remembers what a viewer that comes late
+/// must be sent again (the world, the paths and the trajectory so far are scene
+/// entities, shown once published).
+pub struct Messages {
+    /// The task's file, for log lines of no statement.
+    task: String,
+    /// Reference paths so far: the next one's entity id.
+    paths: u32,
+    /// The trajectory piece being drawn: its number, start time and points.
+    piece: u32,
+    piece_start: f64,
+    piece_points: Vec<Point3>,
+}
+
+impl Messages {
+    pub fn new(task: &str) -> Messages {
+        Messages {
+            task: task.to_string(),
+            paths: 0,
+            piece: 0,
+            piece_start: 0.0,
+            piece_points: Vec::new(),
+        }
+    }
+
+    /// The world's solids, once at the start.
+    pub fn world(&self, world: &World) -> Outgoing {
+        Outgoing {
+            topic: Topic::World,
+            t: 0.0,
+            message: Message::Scene(scene(world)),
+        }
+    }
+
+    /// A log line of no statement (the run's own news).
+    pub fn note(&self, t: f64, level: log::Level, message: String) -> Outgoing {
+        Outgoing {
+            topic: Topic::Commands,
+            t,
+            message: Message::Log(Log {
+                timestamp: Some(stamp(t)),
+                level: level as i32,
+                message,
+                name: "ilmr".into(),
+                file: self.task.clone(),
+                line: 0,
+            }),
+        }
+    }
+
+    /// The tick's events and scan, in that order, appended to `out`.
+    pub fn tick(
+        &mut self,
+        module: &Module,
+        events: &[Event],
+        scan: Option<&WorldScan>,
+        out: &mut Vec<Outgoing>,
+    ) {
+        for e in events {
+            let t = e.t;
+            let mut put = |topic, message| out.push(Outgoing { topic, t, message });
+            match &e.kind {
+                EventKind::Pose {
+                    x,
+                    y,
+                    h,
+                    speed,
+                    curvature,
+                    ..
+                } => {
+                    put(
+                        Topic::Pose,
+                        Message::Pose(PoseInFrame {
+                            timestamp: Some(stamp(t)),
+                            frame_id: FRAME.into(),
+                            pose: Some(pose(*x, *y, 0.0, *h)),
+                        }),
+                    );
+                    put(Topic::Tf, Message::Transforms(transform(t, *x, *y, *h)));
+                    put(
+                        Topic::Motion,
+                        Message::Motion(Motion {
+                            timestamp: stamp(t),
+                            speed: *speed,
+                            curvature: *curvature,
+                        }),
+                    );
+                    if let Some(piece) = self.trajectory(t, *x, *y) {
+                        put(Topic::Trajectory, Message::Scene(piece));
+                    }
+                }
+                EventKind::Var { var, record, .. } => {
+                    let stmt = e.stmt.and_then(|s| module.stmt(s));
+                    put(
+                        Topic::Variables,
+                        Message::Variable(Variable {
+                            timestamp: stamp(t),
+                            name: module
+                                .global(*var)
+                                .map_or_else(|| "?".into(), |g| g.name.clone()),
+                            status: record.status,
+                            x: record.x,
+                            y: record.y,
+                            h: record.h,
+                            value: record.value,
+                            dist: record.dist,
+                            how: record.how.map_or("", How::name).into(),
+                            line: stmt.map_or(0, |s| s.line),
+                        }),
+                    );
+                }
+                EventKind::Path { points } => {
+                    self.paths += 1;
+                    let label = e
+                        .stmt
+                        .and_then(|s| module.stmt(s))
+                        .map(|s| format!("line {}: {}", s.line, s.text));
+                    let points = points.iter().map(|&(x, y)| point(x, y)).collect();
+                    let id = format!("path-{}", self.paths);
+                    put(
+                        Topic::Paths,
+                        Message::Scene(strip(t, id, label, points, PATH_COLOR, 0.03)),
+                    );
+                }
+                _ => put(Topic::Commands, Message::Log(self.log(module, e))),
+            }
+        }
+        if let Some(s) = scan {
+            let end = s.angle_min + s.angle_step * (s.ranges.len().saturating_sub(1)) as f64;
+            out.push(Outgoing {
+                topic: Topic::Scan,
+                t: s.t,
+                message: Message::Scan(LaserScan {
+                    timestamp: Some(stamp(s.t)),
+                    frame_id: FRAME.into(),
+                    pose: Some(pose(s.origin.x, s.origin.y, 0.0, s.origin.h)),
+                    start_angle: s.angle_min,
+                    end_angle: end,
+                    ranges: s.ranges.iter().map(|&r| to_resolution(r)).collect(),
+                    intensities: Vec::new(),
+                }),
+            });
+        }
+    }
+
+    /// Adds a pose to the trajectory; the piece it ends, when it ends one. A piece
+    /// starts at the last point of the one before, so the strips join. Standing
+    /// still adds nothing.
+    fn trajectory(&mut self, t: f64, x: f64, y: f64) -> Option<SceneUpdate> {
+        let p = point(x, y);
+        if let Some(last) = self.piece_points.last()
+            && (last.x - p.x).hypot(last.y - p.y) < 1e-6
+        {
+            return None;
+        }
+        if self.piece_points.is_empty() {
+            self.piece_start = t;
+        }
+        self.piece_points.push(p);
+        if t - self.piece_start < TRAJECTORY_PIECE || self.piece_points.len() < 2 {
+            return None;
+        }
+        self.piece += 1;
+        let points = std::mem::replace(&mut self.piece_points, vec![p]);
+        self.piece_start = t;
+        let id = format!("trajectory-{}", self.piece);
+        Some(strip(t, id, None, points, TRAJECTORY_COLOR, 0.02))
+    }
+
+    fn log(&self, module: &Module, e: &Event) -> Log {
+        let stmt = e.stmt.and_then(|s| module.stmt(s));
+        let (level, what) = match &e.kind {
+            EventKind::End {
+                how: How::Refused,
+                reason,
+                code,
+                ..
+            } => (
+                log::Level::Warning,
+                format!(
+                    "refused{}{}{}",
+                    code.map(|c| format!(" ({})", c.code())).unwrap_or_default(),
+                    reason
+                        .as_ref()
+                        .map(|r| format!(": {r}"))
+                        .unwrap_or_default(),
+                    code.map(|c| format!("; way out: {}", c.help()))
+                        .unwrap_or_default()
+                ),
+            ),
+            EventKind::End { how, linked, .. } => (
+                log::Level::Info,
+                format!(
+                    "end {}{}",
+                    how.name(),
+                    if *linked { " (linked)" } else { "" }
+                ),
+            ),
+            EventKind::Error { message } => (log::Level::Error, format!("error: {message}")),
+            EventKind::Overrun { pending } => {
+                (log::Level::Warning, format!("overrun, {pending} pending"))
+            }
+            EventKind::Fault { fault, message } => {
+                let reaction = fault.reaction();
+                let code = Code::Fault(*fault);
+                let level = match reaction {
+                    Reaction::Raise | Reaction::SlowDown => log::Level::Warning,
+                    _ => log::Level::Error,
+                };
+                (
+                    level,
+                    format!(
+                        "{} ({} {}): {message}; way out: {}",
+                        crate::notice::reaction_verb(reaction.name()),
+                        code.code(),
+                        fault.name(),
+                        code.help()
+                    ),
+                )
+            }
+            EventKind::Recovered { fault } => (
+                log::Level::Info,
+                format!("cleared ({} {})", Code::Fault(*fault).code(), fault.name()),
+            ),
+            other => (log::Level::Info, other.name().to_string()),
+        };
+        let message = match stmt {
+            Some(s) => format!("{what}: {}", s.text),
+            None => what,
+        };
+        let file = stmt
+            .and_then(|s| module.files.get(s.file.0 as usize))
+            .cloned()
+            .unwrap_or_else(|| self.task.clone());
+        Log {
+            timestamp: Some(stamp(e.t)),
+            level: level as i32,
+            message,
+            name: "ilmr".into(),
+            file,
+            line: stmt.map_or(0, |s| s.line),
+        }
+    }
+}
+
+const GREY: Color = Color {
+    r: 0.55,
+    g: 0.55,
+    b: 0.55,
+    a: 1.0,
+};
+const PATH_COLOR: Color = Color {
+    r: 0.15,
+    g: 0.15,
+    b: 0.15,
+    a: 1.0,
+};
+const TRAJECTORY_COLOR: Color = Color {
+    r: 0.1,
+    g: 0.45,
+    b: 0.85,
+    a: 1.0,
+};
+
+/// Nanoseconds of the run's logical time.
+pub fn nanos(t: f64) -> u64 {
+    (t.max(0.0) * 1e9).round() as u64
+}
+
+fn stamp(t: f64) -> Timestamp {
+    let ns = nanos(t);
+    // A run of more than 136 years of logical time is cut to the last second that fits.
+    let sec = u32::try_from(ns / 1_000_000_000).unwrap_or(u32::MAX);
+    Timestamp::new(sec, (ns % 1_000_000_000) as u32)
+}
+
+fn point(x: f64, y: f64) -> Point3 {
+    Point3 { x, y, z: 0.0 }
+}
+
+fn pose(x: f64, y: f64, z: f64, h: f64) -> Pose {
+    Pose {
+        position: Some(Vector3 { x, y, z }),
+        orientation: Some(heading(h)),
+    }
+}
+
+fn heading(h: f64) -> Quaternion {
+    Quaternion {
+        x: 0.0,
+        y: 0.0,
+        z: (h / 2.0).sin(),
+        w: (h / 2.0).cos(),
+    }
+}
+
+fn transform(t: f64, x: f64, y: f64, h: f64) -> FrameTransforms {
+    FrameTransforms {
+        transforms: vec![FrameTransform {
+            timestamp: Some(stamp(t)),
+            parent_frame_id: FRAME.into(),
+            child_frame_id: ROBOT_FRAME.into(),
+            translation: Some(Vector3 { x, y, z: 0.0 }),
+            rotation: Some(heading(h)),
+        }],
+    }
+}
+
+fn entity(t: f64, id: String) -> SceneEntity {
+    SceneEntity {
+        timestamp: Some(stamp(t)),
+        frame_id: FRAME.into(),
+        id,
+        ..SceneEntity::default()
+    }
+}
+
+/// A line strip on the floor, as an entity of its own that is kept (no lifetime).
+fn strip(
+    t: f64,
+    id: String,
+    label: Option<String>,
+    points: Vec<Point3>,
+    color: Color,
+    thickness: f64,
+) -> SceneUpdate {
+    let metadata = label
+        .map(|value| KeyValuePair {
+            key: "command".into(),
+            value,
+        })
+        .into_iter()
+        .collect();
+    SceneUpdate {
+        deletions: Vec::new(),
+        entities: vec![SceneEntity {
+            metadata,
+            lines: vec![LinePrimitive {
+                r#type: line_primitive::Type::LineStrip as i32,
+                pose: Some(pose(0.0, 0.0, 0.0, 0.0)),
+                thickness,
+                scale_invariant: false,
+                points,
+                color: Some(color),
+                colors: Vec::new(),
+                indices: Vec::new(),
+            }],
+            ..entity(t, id)
+        }],
+    }
+}
+
+/// The world's solids as a scene: walls, obstacles and boxes as cubes, round things as
+/// cylinders, 1 m high.
+fn scene(w: &World) -> SceneUpdate {
+    let cube = |center: ilmr_sim::Vec2, h: f64, length: f64, width: f64| CubePrimitive {
+        pose: Some(pose(center.x, center.y, 0.5, h)),
+        size: Some(Vector3 {
+            x: length,
+            y: width,
+            z: 1.0,
+        }),
+        color: Some(GREY),
+    };
+    let mut cubes = Vec::new();
+    let mut cylinders = Vec::new();
+    for wall in &w.walls {
+        for &(a, b) in &wall.pieces {
+            let mid = ilmr_sim::Vec2::new((a.x + b.x) / 2.0, (a.y + b.y) / 2.0);
+            let h = (b.y - a.y).atan2(b.x - a.x);
+            cubes.push(cube(mid, h, a.distance(b), wall.thickness));
+        }
+    }
+    let mut obb = |o: &ilmr_sim::geometry::Obb| {
+        let h = o.axis.y.atan2(o.axis.x);
+        cubes.push(cube(o.center, h, 2.0 * o.half.x, 2.0 * o.half.y));
+    };
+    for o in &w.obstacles {
+        match o {
+            Shape::Box(b) => obb(b),
+            Shape::Circle(c) => cylinders.push(CylinderPrimitive {
+                pose: Some(pose(c.center.x, c.center.y, 0.5, 0.0)),
+                size: Some(Vector3 {
+                    x: 2.0 * c.radius,
+                    y: 2.0 * c.radius,
+                    z: 1.0,
+                }),
+                bottom_scale: 1.0,
+                top_scale: 1.0,
+                color: Some(GREY),
+            }),
+        }
+    }
+    for b in &w.pickup_boxes {
+        obb(&b.shape);
+    }
+    SceneUpdate {
+        deletions: Vec::new(),
+        entities: vec![SceneEntity {
+            cubes,
+            cylinders,
+            ..entity(0.0, w.name.clone())
+        }],
+    }
+}
