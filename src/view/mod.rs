@@ -581,3 +581,71 @@ fn scene(w: &World) -> SceneUpdate {
         }],
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn root() -> std::path::PathBuf {
+        std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+    }
+
+    /// Every `"/topic"` a JSON text names, with what follows a `.` (a message path) cut.
+    fn topics_named(text: &str) -> Vec<String> {
+        text.split('"')
+            .skip(1)
+            .step_by(2)
+            .filter(|s| s.starts_with('/') && s.len() > 1)
+            .map(|s| s.split('.').next().unwrap_or(s).to_string())
+            .collect()
+    }
+
+    #[test]
+    fn the_layout_names_only_topics_the_view_publishes() {
+        let layout = std::fs::read_to_string(root().join("tools/foxglove/ilmr-layout.json"))
+            .expect("the shipped layout");
+        let named = topics_named(&layout);
+        assert!(named.len() >= 7, "{named:?}");
+        let known: Vec<&str> = Topic::ALL.iter().map(|t| t.name()).collect();
+        for topic in &named {
+            assert!(known.contains(&topic.as_str()), "{topic} is not published");
+        }
+    }
+
+    #[test]
+    fn the_docs_list_every_topic_with_its_schema() {
+        let docs = std::fs::read_to_string(root().join("docs/foxglove.md")).expect("docs");
+        for topic in Topic::ALL {
+            let row = format!("| `{}` | `{}` |", topic.name(), topic.schema().name);
+            assert!(docs.contains(&row), "docs/foxglove.md lacks `{row}`");
+        }
+    }
+
+    #[test]
+    fn ranges_are_given_to_the_millimetre_and_infinity_stays() {
+        assert_eq!(to_resolution(2.600414456482875), 2.6);
+        assert_eq!(to_resolution(1.23456), 1.235);
+        assert_eq!(to_resolution(f64::INFINITY), f64::INFINITY);
+    }
+
+    #[test]
+    fn the_trajectory_is_cut_into_joined_pieces_and_standing_adds_nothing() {
+        let mut m = Messages::new("t.ilmr");
+        let mut pieces = Vec::new();
+        for i in 0..=250 {
+            let t = f64::from(i) * 0.01;
+            // Drives along x, stands still from 1.5 s to 2 s.
+            let x = if (150..200).contains(&i) { 1.5 } else { t.min(1.5) + (t - 2.0).max(0.0) };
+            if let Some(p) = m.trajectory(t, x, 0.0) {
+                pieces.push(p);
+            }
+        }
+        assert_eq!(pieces.len(), 2, "a piece a second of driving");
+        let points = |p: &SceneUpdate| p.entities[0].lines[0].points.clone();
+        let (a, b) = (points(&pieces[0]), points(&pieces[1]));
+        assert_eq!(pieces[1].entities[0].id, "trajectory-2");
+        assert_eq!(a.last(), b.first(), "the second starts where the first ended");
+        let xs: Vec<f64> = b.iter().map(|p| p.x).collect();
+        assert!(xs.windows(2).all(|w| w[1] > w[0]), "no point while standing: {xs:?}");
+    }
+}
