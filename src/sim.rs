@@ -15,6 +15,7 @@ use ilmr_ros2::msg::Time;
 use ilmr_sim::SimRobot;
 
 use crate::ros2::Ros2Args;
+use crate::run::backend::WorldScan;
 use crate::run::setup::{self, Backend, Choice};
 
 /// One simulation step, s: the simulator's own.
@@ -58,6 +59,8 @@ pub struct SimArgs {
     pub stdin_lifeline: bool,
     #[command(flatten)]
     pub ros: Ros2Args,
+    #[command(flatten)]
+    pub view: crate::view::live::FoxgloveArgs,
 }
 
 pub fn run(args: SimArgs) -> ExitCode {
@@ -132,7 +135,11 @@ fn execute(args: &SimArgs) -> Result<(), String> {
     if args.stdin_lifeline {
         watch_lifeline();
     }
-    let lags = serve(&mut robot, &mut base, args, &setup.model)?;
+    let mut view = args.view.open(&world.name, Some(&world.world))?;
+    let lags = serve(&mut robot, &mut base, args, &setup.model, view.as_mut())?;
+    if let Some(v) = view {
+        crate::view::live::close(v);
+    }
     let s = base.stats();
     println!(
         "ilmrc sim: {:.2} s; cmd_vel {} taken, {} dropped; published odom {}, scan {}, battery {}, clock {}; fell behind {lags} times",
@@ -153,6 +160,7 @@ fn serve(
     base: &mut Base,
     args: &SimArgs,
     model: &ilmr_model::RobotModel,
+    mut view: Option<&mut crate::view::live::Live>,
 ) -> Result<u64, String> {
     let scan_period = 1.0 / model.scanner_rate();
     let odometry_period = 1.0 / model.odometry_rate();
@@ -211,6 +219,10 @@ fn serve(
             let truth = robot.true_pose();
             base.ground_truth(truth, sim.true_speed(), sim.true_curvature(), stamp)
                 .map_err(link)?;
+            if let Some(v) = view.as_deref_mut() {
+                let motion = (sim.true_speed(), sim.true_curvature());
+                v.robot(t, (truth.x, truth.y, truth.h), motion);
+            }
         }
         if let Some(s) = seen.scan.as_ref().filter(|s| scan_seq != Some(s.seq)) {
             scan_seq = Some(s.seq);
@@ -223,6 +235,9 @@ fn serve(
             };
             base.scan(&scan, s.max_range, scan_period, stamp)
                 .map_err(link)?;
+            if let (Some(v), Some((_, scan))) = (view.as_deref_mut(), WorldScan::last_of(robot)) {
+                v.scan(&scan);
+            }
         }
         if t - battery_t >= 1.0 - 1e-9 {
             battery_t = t;

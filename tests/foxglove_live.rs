@@ -18,9 +18,15 @@ fn scratch(name: &str) -> PathBuf {
 /// A realtime run with the live view on a free loopback port: the child and the
 /// view's address, read from its stderr (the rest of stderr is kept by a thread).
 fn live_run(args: &[&str]) -> (Child, String, std::thread::JoinHandle<String>) {
+    let mut all = vec!["run", "--realtime", "--foxglove=127.0.0.1:0"];
+    all.extend_from_slice(args);
+    viewed(&all)
+}
+
+/// `ilmrc ARGS` (which include `--foxglove=127.0.0.1:0`): the child and the view's
+/// address, from the first line of its stderr.
+fn viewed(args: &[&str]) -> (Child, String, std::thread::JoinHandle<String>) {
     let mut child = Command::new(env!("CARGO_BIN_EXE_ilmrc"))
-        .arg("run")
-        .args(["--realtime", "--foxglove=127.0.0.1:0"])
         .args(args)
         .current_dir(support::root())
         .env("NO_COLOR", "1")
@@ -211,6 +217,91 @@ fn a_viewer_that_stops_reading_does_not_slow_the_run() {
     // viewer that holds its connection open.
     let took = seen["took"].as_f64().unwrap();
     assert!(took < 10.0, "the run took {took} s with a stalled viewer");
+}
+
+/// Foxglove's client, for `seconds`, on `topics`.
+fn watch(url: &str, seconds: u32, topics: &[&str]) -> Value {
+    let out = Command::new("node")
+        .arg(support::root().join("tests/foxglove/watch.mjs"))
+        .arg(url)
+        .arg(seconds.to_string())
+        .args(topics)
+        .output()
+        .expect("node runs");
+    serde_json::from_slice(&out.stdout).unwrap_or_else(|e| {
+        panic!(
+            "watch.mjs printed no JSON ({e}):\n{}",
+            String::from_utf8_lossy(&out.stderr)
+        )
+    })
+}
+
+/// `serve` (and so `shell`, which runs the same engine) publishes its robot: the task
+/// it was started with drives, and a viewer sees it move over the world.
+#[test]
+fn serve_shows_its_robot_live() {
+    let (mut child, url, _stderr) = viewed(&[
+        "serve",
+        "--no-tls",
+        "--listen",
+        "127.0.0.1:0",
+        "--foxglove=127.0.0.1:0",
+        "--task",
+        "examples/short_task.ilmr",
+    ]);
+    let seen = watch(&url, 3, &["/pose", "/world", "/scan"]);
+    let _ = child.kill();
+    let _ = child.wait();
+    assert_eq!(seen["messages"]["/world"][0]["entities"][0], "office");
+    let poses = seen["messages"]["/pose"].as_array().expect("poses");
+    assert!(poses.len() >= 10, "{} poses in 3 s at 10 Hz", poses.len());
+    let x = |p: &Value| p["x"].as_f64().unwrap();
+    assert!(
+        x(poses.last().unwrap()) > x(&poses[0]) + 0.2,
+        "the robot drives: {poses:?}"
+    );
+    assert!(!seen["messages"]["/scan"].as_array().unwrap().is_empty());
+}
+
+#[test]
+fn the_shell_takes_the_live_view_too() {
+    let (code, out, err) = support::ilmrc(&["shell", "--foxglove=127.0.0.1:0"]);
+    assert_eq!(code, 0, "{out}{err}");
+    assert!(
+        err.starts_with("foxglove: live view on ws://127.0.0.1:"),
+        "{err}"
+    );
+}
+
+/// `sim --ros2` (the simulated robot as a ROS 2 robot, no VM) publishes its true pose
+/// and scans. DDS runs in a network namespace of its own, as every DDS test here does,
+/// and the viewer with it.
+#[test]
+fn sim_shows_its_robot_live() {
+    let ilmrc = env!("CARGO_BIN_EXE_ilmrc");
+    let watcher = support::root().join("tests/foxglove/watch.mjs");
+    let script = format!(
+        "ip link set lo up multicast on && ip route add 224.0.0.0/4 dev lo && \
+         ({ilmrc} sim --ros2 --duration 3 --foxglove=127.0.0.1:8765 >/dev/null 2>&1 &) && \
+         for i in $(seq 100); do (echo > /dev/tcp/127.0.0.1/8765) 2>/dev/null && break; sleep 0.05; done && \
+         exec node {} ws://127.0.0.1:8765 10 /pose /scan /world",
+        watcher.display()
+    );
+    let out = Command::new("unshare")
+        .args(["-n", "bash", "-c", &script])
+        .current_dir(support::root())
+        .output()
+        .expect("unshare runs");
+    let seen: Value = serde_json::from_slice(&out.stdout).unwrap_or_else(|e| {
+        panic!(
+            "no JSON from the watcher ({e}); it needs root (unshare -n):\n{}",
+            String::from_utf8_lossy(&out.stderr)
+        )
+    });
+    assert_eq!(seen["messages"]["/world"][0]["entities"][0], "office");
+    let poses = seen["messages"]["/pose"].as_array().expect("poses");
+    assert!(poses.len() >= 10, "{} poses", poses.len());
+    assert!(!seen["messages"]["/scan"].as_array().unwrap().is_empty());
 }
 
 #[test]

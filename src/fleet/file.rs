@@ -129,6 +129,7 @@ fn parse(text: &str, base: &Path) -> Result<Vec<Member>, String> {
                     ros_wait: None,
                     ros_loopback: e.loopback,
                 },
+                view: Default::default(),
             },
             name: e.name,
             launch,

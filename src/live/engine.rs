@@ -159,6 +159,8 @@ pub struct Engine {
     braking: Option<Braking>,
     last_tick: Option<Instant>,
     longest_tick_gap: Duration,
+    /// The live view in Foxglove (`--foxglove`).
+    view: Option<crate::view::live::Live>,
 }
 
 struct Braking {
@@ -185,7 +187,14 @@ impl Engine {
             braking: None,
             last_tick: None,
             longest_tick_gap: Duration::ZERO,
+            view: None,
         }
+    }
+
+    /// Publishes every tick to a live view in Foxglove.
+    pub(super) fn with_view(mut self, view: Option<crate::view::live::Live>) -> Engine {
+        self.view = view;
+        self
     }
 
     /// Sends lines to the line compiler (`lines.rs`) instead of compiling them here,
@@ -240,6 +249,10 @@ impl Engine {
         }
         self.vm.tick();
         let events = self.vm.take_events();
+        if let Some(view) = &mut self.view {
+            let scan = self.vm.hal_mut().new_scan();
+            view.tick(self.vm.module(), &events, scan.as_ref());
+        }
         if !self.subscribers.is_empty() {
             for e in &events {
                 let line = ilmr_vm::render_event(self.vm.module(), e);
@@ -563,6 +576,7 @@ mod tests {
             skills: None,
             task: None,
             ros2: crate::ros2::Ros2Args::default(),
+            view: Default::default(),
         };
         let opened = super::super::robot::open(&args).unwrap_or_else(|e| panic!("{e}"));
         let Ok(Compiled::Module(module)) = super::super::no_task(&opened.spec, None) else {

@@ -52,6 +52,8 @@ pub struct RobotArgs {
     pub task: Option<PathBuf>,
     #[command(flatten)]
     pub ros2: crate::ros2::Ros2Args,
+    #[command(flatten)]
+    pub view: crate::view::live::FoxgloveArgs,
 }
 
 /// The longest line `serve` takes as one request and `shell` as one typed line, bytes;
@@ -112,7 +114,14 @@ pub fn start_named(args: &RobotArgs, name: Option<&str>) -> Result<Option<Live>,
         .stack_size(ilmr_compiler::limits::COMPILER_STACK)
         .spawn(move || compiler.run(to_compile))
         .map_err(|e| format!("cannot start the line compiler's thread: {e}"))?;
-    let engine = Engine::new(vm, opened.model.clone()).with_compiler(work, news, Arc::clone(&stop));
+    let task = args
+        .task
+        .as_ref()
+        .map_or_else(|| "<live>".to_string(), |t| t.display().to_string());
+    let view = args.view.open(&task, opened.scene.as_ref())?;
+    let engine = Engine::new(vm, opened.model.clone())
+        .with_compiler(work, news, Arc::clone(&stop))
+        .with_view(view);
     let engine = match name {
         Some(n) => engine.tagged(n),
         None => engine,

@@ -21,6 +21,8 @@ pub struct Opened {
     pub config: Config,
     /// Where the robot is: the world's name or file, or its ROS 2 namespace.
     pub world: String,
+    /// The simulated robot's world, for a viewer.
+    pub scene: Option<ilmr_sim::World>,
 }
 
 pub fn open(args: &RobotArgs) -> Result<Opened, String> {
@@ -65,11 +67,13 @@ pub fn open(args: &RobotArgs) -> Result<Opened, String> {
     if setup.backend == Backend::Ros2 {
         setup::ros2_scanner_offset(&robot, &mut config);
     }
+    let scene = setup.world.map(|w| w.world);
     Ok(Opened {
         spec: setup.model_spec,
         model: setup.model,
         robot,
         config,
         world,
+        scene,
     })
 }

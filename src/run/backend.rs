@@ -66,6 +66,23 @@ pub struct WorldScan {
 }
 
 impl WorldScan {
+    /// A simulated robot's last scan and its number. It was taken in the step the
+    /// robot was just stepped to, so its beams were cast from that step's true pose.
+    pub fn last_of(robot: &SimRobot) -> Option<(u64, WorldScan)> {
+        let scan = robot.sim().snapshot().scan?;
+        let p = robot.sim().true_pose();
+        let o = p.transform(scan.mount);
+        let world = WorldScan {
+            t: scan.time,
+            origin: Pose::new(o.x, o.y, p.h),
+            angle_min: scan.angle_min,
+            angle_step: scan.angle_increment,
+            max_range: scan.max_range,
+            ranges: scan.ranges.clone(),
+        };
+        Some((scan.seq, world))
+    }
+
     /// The points the beams hit, in the world frame.
     pub fn hits(&self) -> impl Iterator<Item = (f64, f64)> + '_ {
         self.ranges
@@ -115,23 +132,12 @@ impl Robot for Simulated {
     }
 
     fn new_scan(&mut self) -> Option<WorldScan> {
-        let scan = self.robot.sim().snapshot().scan?;
-        if self.seen_scan == Some(scan.seq) {
+        let seq = self.robot.sim().snapshot().scan?.seq;
+        if self.seen_scan == Some(seq) {
             return None;
         }
-        self.seen_scan = Some(scan.seq);
-        // The beams were cast from the true pose of the step the scan was taken in,
-        // which is this tick's: the robot steps in lockstep with the VM.
-        let p = self.robot.sim().true_pose();
-        let o = p.transform(scan.mount);
-        Some(WorldScan {
-            t: scan.time,
-            origin: Pose::new(o.x, o.y, p.h),
-            angle_min: scan.angle_min,
-            angle_step: scan.angle_increment,
-            max_range: scan.max_range,
-            ranges: scan.ranges.clone(),
-        })
+        self.seen_scan = Some(seq);
+        WorldScan::last_of(&self.robot).map(|(_, scan)| scan)
     }
 
     fn contacts(&self) -> u64 {

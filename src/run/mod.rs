@@ -85,12 +85,8 @@ pub struct RunArgs {
     /// Write the run as an MCAP file (pose, scans, reference paths, command events).
     #[arg(long)]
     pub mcap: Option<PathBuf>,
-    /// Serve the run live to Foxglove (WebSocket, `foxglove.websocket.v1`) on
-    /// `--foxglove` (127.0.0.1:8765) or `--foxglove=HOST:PORT` (loopback only; port 0
-    /// takes a free one). With `--realtime` a viewer watches at the robot's pace.
-    #[arg(long, num_args = 0..=1, require_equals = true, value_name = "ADDR",
-          default_missing_value = crate::view::live::DEFAULT_ADDR)]
-    pub foxglove: Option<String>,
+    #[command(flatten)]
+    pub view: crate::view::live::FoxgloveArgs,
     /// Draw the run as an SVG: world, trajectory, scanner hits, command positions,
     /// speed and curvature over time.
     #[arg(long)]
@@ -216,14 +212,10 @@ fn execute(args: &RunArgs, reached: &mut Reached) -> Result<Ran, String> {
         )?),
         None => None,
     };
-    let live = match &args.foxglove {
-        Some(addr) => Some(crate::view::live::open(
-            addr,
-            &args.task,
-            setup.world.as_ref().map(|w| &w.world),
-        )?),
-        None => None,
-    };
+    let live = args.view.open(
+        &args.task.display().to_string(),
+        setup.world.as_ref().map(|w| &w.world),
+    )?;
     let robotless = setup.backend == Backend::None;
     let given = ilmr_compiler::check::Given {
         paths: scenario.paths.keys().cloned().collect(),

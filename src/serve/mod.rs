@@ -381,6 +381,7 @@ mod tests {
                 skills: None,
                 task: None,
                 ros2: crate::ros2::Ros2Args::default(),
+                view: Default::default(),
             },
             fleet: None,
             listen: Some("127.0.0.1:0".into()),

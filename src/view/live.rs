@@ -58,6 +58,27 @@ pub struct Live {
     untold: u64,
 }
 
+/// `--foxglove[=ADDR]`, shared by `run`, `shell`, `serve` and `sim`.
+#[derive(clap::Args, Debug, Default, Clone)]
+pub struct FoxgloveArgs {
+    /// Serve the robot live to Foxglove (WebSocket, Foxglove's SDK) on
+    /// `--foxglove` (127.0.0.1:8765) or `--foxglove=HOST:PORT` (loopback only; port 0
+    /// takes a free one, named on stderr). See docs/foxglove.md.
+    #[arg(long, num_args = 0..=1, require_equals = true, value_name = "ADDR",
+          default_missing_value = DEFAULT_ADDR)]
+    pub foxglove: Option<String>,
+}
+
+impl FoxgloveArgs {
+    /// The live view, when asked for: started, its address said on stderr.
+    pub fn open(&self, task: &str, world: Option<&World>) -> Result<Option<Live>, String> {
+        match &self.foxglove {
+            Some(addr) => open(addr, task, world).map(Some),
+            None => Ok(None),
+        }
+    }
+}
+
 /// Parses `HOST:PORT`, or a bare port on loopback.
 pub fn parse_addr(text: &str) -> Result<SocketAddr, String> {
     let text = text.trim();
@@ -162,6 +183,21 @@ impl Live {
         if self.untold > 0 && self.post(Post::Dropped(self.dropped)) {
             self.untold = 0;
         }
+    }
+
+    /// A robot without a VM (`sim`): its true pose and motion.
+    pub fn robot(&mut self, t: f64, pose: (f64, f64, f64), motion: (f64, f64)) {
+        let mut outgoing = std::mem::take(&mut self.outgoing);
+        self.messages.robot(t, pose, motion, &mut outgoing);
+        for o in outgoing.drain(..) {
+            self.send(o);
+        }
+        self.outgoing = outgoing;
+    }
+
+    /// A robot without a VM (`sim`): a new scan.
+    pub fn scan(&mut self, scan: &WorldScan) {
+        self.send(Messages::scan(scan));
     }
 
     /// A log line of the run's own (how it ended, a line typed in the shell).
@@ -329,9 +365,7 @@ impl Publisher {
     }
 }
 
-/// `--foxglove[=ADDR]` of `run`, `shell` and `sim`: the live view started, its address
-/// said on stderr.
-pub fn open(addr: &str, task: &std::path::Path, world: Option<&World>) -> Result<Live, String> {
+fn open(addr: &str, task: &str, world: Option<&World>) -> Result<Live, String> {
     let addr = parse_addr(addr)?;
     if !addr.ip().is_loopback() {
         return Err(format!(
@@ -339,7 +373,13 @@ pub fn open(addr: &str, task: &std::path::Path, world: Option<&World>) -> Result
              only; from another machine, tunnel to it (ssh -L 8765:127.0.0.1:8765 ROBOT)"
         ));
     }
-    let live = Live::start(addr, &task.display().to_string(), world)?;
+    // The SDK starts its own async runtime, which it cannot do from within one (serve
+    // runs in one): it is started from a thread of its own.
+    let world = world.cloned();
+    let task = task.to_string();
+    let live = std::thread::spawn(move || Live::start(addr, &task, world.as_ref()))
+        .join()
+        .map_err(|_| "--foxglove: the live view failed to start".to_string())??;
     eprintln!(
         "foxglove: live view on ws://{} (Foxglove: Open connection, Foxglove WebSocket)",
         live.addr()

@@ -245,28 +245,7 @@ impl Messages {
                     speed,
                     curvature,
                     ..
-                } => {
-                    put(
-                        Topic::Pose,
-                        Message::Pose(PoseInFrame {
-                            timestamp: Some(stamp(t)),
-                            frame_id: FRAME.into(),
-                            pose: Some(pose(*x, *y, 0.0, *h)),
-                        }),
-                    );
-                    put(Topic::Tf, Message::Transforms(transform(t, *x, *y, *h)));
-                    put(
-                        Topic::Motion,
-                        Message::Motion(Motion {
-                            timestamp: stamp(t),
-                            speed: *speed,
-                            curvature: *curvature,
-                        }),
-                    );
-                    if let Some(piece) = self.trajectory(t, *x, *y) {
-                        put(Topic::Trajectory, Message::Scene(piece));
-                    }
-                }
+                } => self.robot(t, (*x, *y, *h), (*speed, *curvature), out),
                 EventKind::Var { var, record, .. } => {
                     let stmt = e.stmt.and_then(|s| module.stmt(s));
                     put(
@@ -304,20 +283,56 @@ impl Messages {
             }
         }
         if let Some(s) = scan {
-            let end = s.angle_min + s.angle_step * (s.ranges.len().saturating_sub(1)) as f64;
-            out.push(Outgoing {
-                topic: Topic::Scan,
-                t: s.t,
-                message: Message::Scan(LaserScan {
-                    timestamp: Some(stamp(s.t)),
-                    frame_id: FRAME.into(),
-                    pose: Some(pose(s.origin.x, s.origin.y, 0.0, s.origin.h)),
-                    start_angle: s.angle_min,
-                    end_angle: end,
-                    ranges: s.ranges.iter().map(|&r| to_resolution(r)).collect(),
-                    intensities: Vec::new(),
-                }),
-            });
+            out.push(Messages::scan(s));
+        }
+    }
+
+    /// The robot at a pose sample: its pose, transform, motion and trajectory.
+    pub fn robot(
+        &mut self,
+        t: f64,
+        (x, y, h): (f64, f64, f64),
+        (speed, curvature): (f64, f64),
+        out: &mut Vec<Outgoing>,
+    ) {
+        let mut put = |topic, message| out.push(Outgoing { topic, t, message });
+        put(
+            Topic::Pose,
+            Message::Pose(PoseInFrame {
+                timestamp: Some(stamp(t)),
+                frame_id: FRAME.into(),
+                pose: Some(pose(x, y, 0.0, h)),
+            }),
+        );
+        put(Topic::Tf, Message::Transforms(transform(t, x, y, h)));
+        put(
+            Topic::Motion,
+            Message::Motion(Motion {
+                timestamp: stamp(t),
+                speed,
+                curvature,
+            }),
+        );
+        if let Some(piece) = self.trajectory(t, x, y) {
+            put(Topic::Trajectory, Message::Scene(piece));
+        }
+    }
+
+    /// A scan, placed at the scanner's pose.
+    pub fn scan(s: &WorldScan) -> Outgoing {
+        let end = s.angle_min + s.angle_step * (s.ranges.len().saturating_sub(1)) as f64;
+        Outgoing {
+            topic: Topic::Scan,
+            t: s.t,
+            message: Message::Scan(LaserScan {
+                timestamp: Some(stamp(s.t)),
+                frame_id: FRAME.into(),
+                pose: Some(pose(s.origin.x, s.origin.y, 0.0, s.origin.h)),
+                start_angle: s.angle_min,
+                end_angle: end,
+                ranges: s.ranges.iter().map(|&r| to_resolution(r)).collect(),
+                intensities: Vec::new(),
+            }),
         }
     }
 
@@ -635,7 +650,11 @@ mod tests {
         for i in 0..=250 {
             let t = f64::from(i) * 0.01;
             // Drives along x, stands still from 1.5 s to 2 s.
-            let x = if (150..200).contains(&i) { 1.5 } else { t.min(1.5) + (t - 2.0).max(0.0) };
+            let x = if (150..200).contains(&i) {
+                1.5
+            } else {
+                t.min(1.5) + (t - 2.0).max(0.0)
+            };
             if let Some(p) = m.trajectory(t, x, 0.0) {
                 pieces.push(p);
             }
@@ -644,8 +663,15 @@ mod tests {
         let points = |p: &SceneUpdate| p.entities[0].lines[0].points.clone();
         let (a, b) = (points(&pieces[0]), points(&pieces[1]));
         assert_eq!(pieces[1].entities[0].id, "trajectory-2");
-        assert_eq!(a.last(), b.first(), "the second starts where the first ended");
+        assert_eq!(
+            a.last(),
+            b.first(),
+            "the second starts where the first ended"
+        );
         let xs: Vec<f64> = b.iter().map(|p| p.x).collect();
-        assert!(xs.windows(2).all(|w| w[1] > w[0]), "no point while standing: {xs:?}");
+        assert!(
+            xs.windows(2).all(|w| w[1] > w[0]),
+            "no point while standing: {xs:?}"
+        );
     }
 }
