@@ -2,8 +2,8 @@
 //! statement, why, and the way out where there is one. `run` prints these on stderr
 //! as they happen and `shell` above its prompt, so both say the same thing.
 
+use ilmr_trace::{AvoidState, Event, How, Record, Stmt};
 use ilmr_vm::runtime::trace::fmt_num;
-use serde_json::Value;
 
 /// How much of the notices an operator asked for.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -27,26 +27,21 @@ pub struct Gate {
 }
 
 impl Gate {
-    /// The notice for `v` at `detail`, if it passes; only trouble is gated.
-    pub fn pass(&mut self, v: &Value, detail: Detail) -> Option<String> {
-        let text = for_event(v, detail)?;
-        let trouble = detail == Detail::Trouble || for_event(v, Detail::Trouble).is_some();
+    /// The notice for `r` at `detail`, if it passes; only trouble is gated.
+    pub fn pass(&mut self, r: &Record<'_>, detail: Detail) -> Option<String> {
+        let text = for_event(r, detail)?;
+        let trouble = detail == Detail::Trouble || for_event(r, Detail::Trouble).is_some();
         if !trouble {
             return Some(text);
         }
-        self.admit(v, text)
+        self.admit(r, text)
     }
 
-    /// `text`, trouble's notice for `v`, if it passes, with how many of its kind were
+    /// `text`, trouble's notice for `r`, if it passes, with how many of its kind were
     /// held back before it.
-    pub fn admit(&mut self, v: &Value, text: String) -> Option<String> {
-        let t = v["t"].as_f64().unwrap_or(0.0);
-        let kind = format!(
-            "{} {} {}",
-            v["event"].as_str().unwrap_or(""),
-            v["code"].as_str().unwrap_or(""),
-            v["line"].as_u64().unwrap_or(0)
-        );
+    pub fn admit(&mut self, r: &Record<'_>, text: String) -> Option<String> {
+        let t = r.t.0;
+        let kind = kind_of(&r.event);
         match self.said.iter_mut().find(|(k, ..)| *k == kind) {
             None => {
                 self.said.push((kind, t, 0));
@@ -70,71 +65,93 @@ impl Gate {
     }
 }
 
+/// What makes two notices the same kind: the event, its code and its line.
+fn kind_of(e: &Event<'_>) -> String {
+    let line = |s: &Option<Stmt<'_>>| s.as_ref().map_or(0, |s| s.line);
+    let (name, code, line) = match e {
+        Event::End(e) => ("end", e.code.as_deref().unwrap_or(""), line(&e.stmt)),
+        Event::Fault(f) => ("fault", f.code.as_ref(), line(&f.stmt)),
+        Event::Recovered(r) => ("recovered", r.code.as_ref(), line(&r.stmt)),
+        Event::Overrun(o) => ("overrun", "", line(&o.stmt)),
+        Event::Error(e) => ("error", "", line(&e.stmt)),
+        Event::Start(s) => ("start", "", line(&s.stmt)),
+        Event::Avoid(a) => ("avoid", "", line(&a.stmt)),
+        _ => ("other", "", 0),
+    };
+    format!("{name} {code} {line}")
+}
+
 /// The notice for a trace event line; `None` for events the detail leaves out.
 #[cfg(test)]
 fn for_line(event: &str, detail: Detail) -> Option<String> {
-    let v: Value = serde_json::from_str(event).ok()?;
-    for_event(&v, detail)
+    let r: Record<'_> = serde_json::from_str(event).ok()?;
+    for_event(&r, detail)
 }
 
-pub fn for_event(v: &Value, detail: Detail) -> Option<String> {
+pub fn for_event(r: &Record<'_>, detail: Detail) -> Option<String> {
     let watch = detail == Detail::Watch;
-    let t = v["t"].as_f64().map(fmt_num).unwrap_or_default();
-    let text = v["text"].as_str();
-    let line = v["line"].as_u64();
-    let at = match (line, text) {
-        (Some(_), Some(text)) => format!(" `{text}`"),
-        _ => String::new(),
-    };
-    let str_of = |key: &str| v[key].as_str().unwrap_or("");
-    let way_out = || {
-        v["help"]
-            .as_str()
-            .map(|h| format!("; way out: {h}"))
+    let t = fmt_num(r.t.0);
+    let at = |s: &Option<Stmt<'_>>| {
+        s.as_ref()
+            .map(|s| format!(" `{}`", s.text))
             .unwrap_or_default()
     };
-    match v["event"].as_str()? {
-        "end" if v["how"] == "refused" => {
-            let mut tags: Vec<String> = line.map(|l| format!("line {l}")).into_iter().collect();
-            tags.extend(v["code"].as_str().map(str::to_string));
+    let way_out = |help: Option<&str>| help.map(|h| format!("; way out: {h}")).unwrap_or_default();
+    match &r.event {
+        Event::End(e) if e.how == How::Refused => {
+            let mut tags: Vec<String> = e
+                .stmt
+                .as_ref()
+                .map(|s| format!("line {}", s.line))
+                .into_iter()
+                .collect();
+            tags.extend(e.code.as_deref().map(str::to_string));
             let tags = if tags.is_empty() {
                 String::new()
             } else {
                 format!(" ({})", tags.join(", "))
             };
-            let reason = v["reason"]
-                .as_str()
+            let reason = e
+                .reason
+                .as_deref()
                 .map(|r| format!(": {r}"))
                 .unwrap_or_default();
-            Some(format!("[t={t}] refused{at}{tags}{reason}{}", way_out()))
+            Some(format!(
+                "[t={t}] refused{}{tags}{reason}{}",
+                at(&e.stmt),
+                way_out(e.help.as_deref())
+            ))
         }
-        "fault" => Some(format!(
+        Event::Fault(f) => Some(format!(
             "[t={t}] {} ({} {}): {}{}",
-            reaction_verb(str_of("reaction")),
-            str_of("code"),
-            str_of("fault"),
-            str_of("message"),
-            way_out()
+            reaction_verb(&f.reaction),
+            f.code,
+            f.fault,
+            f.message,
+            way_out(Some(&f.help))
         )),
-        "recovered" => Some(format!(
-            "[t={t}] cleared ({} {})",
-            str_of("code"),
-            str_of("fault")
-        )),
-        "overrun" => Some(format!(
+        Event::Recovered(c) => Some(format!("[t={t}] cleared ({} {})", c.code, c.fault)),
+        Event::Overrun(o) => Some(format!(
             "[t={t}] overrun: a block ran out of the tick's time budget with {} statement(s) left; it goes on next tick",
-            v["pending"].as_u64().unwrap_or(0)
+            o.pending
         )),
-        "error" => Some(format!("[t={t}] error{at}: {}", str_of("message"))),
-        "end" if watch => Some(format!(
-            "[t={t}] ended{at}: {}{}",
-            str_of("how"),
-            if v["linked"] == true { " (linked)" } else { "" }
+        Event::Error(e) => Some(format!("[t={t}] error{}: {}", at(&e.stmt), e.message)),
+        Event::End(e) if watch => Some(format!(
+            "[t={t}] ended{}: {}{}",
+            at(&e.stmt),
+            e.how.name(),
+            if e.linked { " (linked)" } else { "" }
         )),
-        "start" if watch => Some(format!("[t={t}] started{at}")),
-        "avoid" if watch => Some(format!(
-            "[t={t}] obstacle avoidance{at}: {}",
-            str_of("state")
+        Event::Start(s) if watch => Some(format!("[t={t}] started{}", at(&s.stmt))),
+        Event::Avoid(a) if watch => Some(format!(
+            "[t={t}] obstacle avoidance{}: {}",
+            at(&a.stmt),
+            match a.state {
+                AvoidState::Normal => "normal",
+                AvoidState::Avoiding => "avoiding",
+                AvoidState::Returning => "returning",
+                AvoidState::Blocked => "blocked",
+            }
         )),
         _ => None,
     }
@@ -203,32 +220,37 @@ mod tests {
     #[test]
     fn a_kind_repeated_within_a_second_is_held_back_and_counted() {
         let overrun = |t: f64| serde_json::json!({"t": t, "event": "overrun", "pending": 3});
-        let refused = |t: f64| serde_json::json!({"t": t, "event": "end", "line": 1, "text": "gotoxy(9,9)", "how": "refused", "code": "R0105", "reason": "in a wall"});
-        let mut gate = Gate::default();
+        let refused_on = |t: f64, line: u32| serde_json::json!({"t": t, "event": "end", "line": line, "text": "gotoxy(9,9)", "how": "refused", "code": "R0105", "reason": "in a wall"});
+        let refused = |t: f64| refused_on(t, 1);
+        let mut gated = Gate::default();
+        let mut gate = |v: &serde_json::Value, detail| {
+            let line = v.to_string();
+            let r: Record<'_> = serde_json::from_str(&line).expect("a trace record");
+            gated.pass(&r, detail)
+        };
         let said: Vec<Option<String>> = [0.0, 0.01, 0.5, 0.99]
             .iter()
-            .map(|&t| gate.pass(&overrun(t), Detail::Trouble))
+            .map(|&t| gate(&overrun(t), Detail::Trouble))
             .collect();
         assert!(said[0].is_some() && said[1..].iter().all(Option::is_none));
         assert!(
-            gate.pass(&refused(0.5), Detail::Trouble).is_some(),
+            gate(&refused(0.5), Detail::Trouble).is_some(),
             "another kind is said"
         );
-        let mut other = refused(0.5);
-        other["line"] = 2.into();
+        let other = refused_on(0.5, 2);
         assert!(
-            gate.pass(&other, Detail::Trouble).is_some(),
+            gate(&other, Detail::Trouble).is_some(),
             "so is another statement's"
         );
-        assert!(gate.pass(&refused(0.6), Detail::Trouble).is_none());
-        let again = gate.pass(&overrun(1.2), Detail::Trouble).unwrap();
+        assert!(gate(&refused(0.6), Detail::Trouble).is_none());
+        let again = gate(&overrun(1.2), Detail::Trouble).unwrap();
         assert!(again.ends_with("(and 3 more like it since t=0)"), "{again}");
-        let quiet = gate.pass(&overrun(2.5), Detail::Trouble).unwrap();
+        let quiet = gate(&overrun(2.5), Detail::Trouble).unwrap();
         assert!(!quiet.contains("more like it"), "{quiet}");
         let ended = serde_json::json!({"t": 3, "event": "end", "line": 1, "text": "goahead(1)", "how": "completed"});
         for _ in 0..3 {
             assert!(
-                gate.pass(&ended, Detail::Watch).is_some(),
+                gate(&ended, Detail::Watch).is_some(),
                 "watching is not gated"
             );
         }

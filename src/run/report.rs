@@ -4,9 +4,8 @@
 //! the progress line and `--hold-limit`; the first few notices, for the summary.
 
 use ilmr_vm::runtime::safety::{Fault, Reaction};
-use ilmr_vm::runtime::trace::fmt_num;
-use ilmr_vm::{Event, EventKind, How, Module, render_event};
-use serde_json::Value;
+use ilmr_vm::runtime::trace::{fmt_num, record};
+use ilmr_vm::{Event, EventKind, How, Module};
 
 use crate::notice::{self, Detail, Gate};
 
@@ -62,16 +61,14 @@ impl Report {
                 }
                 _ => continue,
             }
-            let Ok(v) = serde_json::from_str::<Value>(&render_event(module, e)) else {
-                continue;
-            };
-            let Some(text) = notice::for_event(&v, Detail::Trouble) else {
+            let r = record(module, e);
+            let Some(text) = notice::for_event(&r, Detail::Trouble) else {
                 continue;
             };
             if self.first.len() < FIRST_KEPT {
                 self.first.push(format!("{text}{after}"));
             }
-            if let Some(text) = self.gate.admit(&v, text) {
+            if let Some(text) = self.gate.admit(&r, text) {
                 say(&format!("{text}{after}"));
             }
         }

@@ -277,7 +277,7 @@ fn notices(
         .spawn(move || {
             let mut gate = crate::notice::Gate::default();
             for event in events {
-                let Ok(event) = serde_json::from_str(&event) else {
+                let Ok(event) = serde_json::from_str::<ilmr_trace::Record<'_>>(&event) else {
                     continue;
                 };
                 let detail = if watch.load(Ordering::SeqCst) {
