@@ -11,6 +11,8 @@ pub mod file;
 mod junit;
 mod problem;
 mod render;
+#[cfg(test)]
+mod tests;
 
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -178,10 +180,12 @@ struct Result_ {
     failure: Option<(String, String)>,
 }
 
-/// One run: which test, which seed.
+/// One run: which test (by file, by its place in the file, and in the order the
+/// tests are printed), which seed.
 struct Job {
     file: usize,
     test: usize,
+    order: usize,
     seed: u64,
 }
 
@@ -192,14 +196,15 @@ fn run_all(files: &[TestFile], jobs: usize, style: Style) -> Vec<Result_> {
     let mut order = Vec::new();
     for (fi, f) in files.iter().enumerate() {
         for (ti, t) in f.tests.iter().enumerate() {
-            order.push((fi, ti));
             for &seed in &t.seeds {
                 queue.push(Job {
                     file: fi,
                     test: ti,
+                    order: order.len(),
                     seed,
                 });
             }
+            order.push((fi, ti));
         }
     }
     let scratch = std::env::temp_dir().join(format!("ilmrc-test-{}", std::process::id()));
@@ -238,16 +243,9 @@ fn run_all(files: &[TestFile], jobs: usize, style: Style) -> Vec<Result_> {
             });
         }
         drop(tx);
-        let index = |job: &Job| {
-            order
-                .iter()
-                .position(|&(f, t)| (f, t) == (job.file, job.test))
-        };
         let mut printed = 0;
         for (i, outcome, took) in rx {
-            if let Some(k) = index(&queue[i]) {
-                done[k].push((outcome, took));
-            }
+            done[queue[i].order].push((outcome, took));
             while let Some(&(fi, ti)) = order.get(printed) {
                 let test = &files[fi].tests[ti];
                 if done[printed].len() < test.seeds.len() {
@@ -383,33 +381,4 @@ fn failure(file: &TestFile, test: &file::Test, o: &Outcome, style: Style) -> Str
         }
     }
     out
-}
-
-#[cfg(test)]
-mod tests {
-    use super::codes::Code;
-    use super::file::{KEYS, MAX_SEEDS};
-
-    fn docs() -> String {
-        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/testing.md");
-        std::fs::read_to_string(path).expect("docs/testing.md")
-    }
-
-    #[test]
-    fn docs_list_every_code_and_key() {
-        let docs = docs();
-        for code in Code::ALL {
-            let row = format!("| {} | {} |", code.as_str(), code.title());
-            assert!(docs.contains(&row), "docs/testing.md lacks `{row}`");
-        }
-        let rows = docs.lines().filter(|l| l.starts_with("| A0")).count();
-        assert_eq!(rows, Code::ALL.len(), "docs/testing.md lists other codes");
-        for (key, what) in KEYS {
-            let row = format!("| `{key}` | {what} |");
-            assert!(docs.contains(&row), "docs/testing.md lacks `{row}`");
-        }
-        let seeds = MAX_SEEDS.to_string();
-        let (thousands, rest) = seeds.split_at(seeds.len() - 3);
-        assert!(docs.contains(&format!("at most {thousands},{rest} (`MAX_SEEDS`)")));
-    }
 }

@@ -340,8 +340,8 @@ impl Parser<'_, '_> {
             .ctx
             .variables
             .iter()
-            .any(|v| v.eq_ignore_ascii_case(&name));
-        if !known {
+            .find(|v| v.eq_ignore_ascii_case(&name));
+        let Some(name) = known.cloned() else {
             let names: Vec<&str> = self.ctx.variables.iter().map(String::as_str).collect();
             return Err(Problem::new(
                 Code::UnknownVariable,
@@ -349,7 +349,7 @@ impl Parser<'_, '_> {
                 format!("the task assigns no variable `{name}`"),
             )
             .suggest(&name, names));
-        }
+        };
         let field = if self.eat(".") {
             let Some(f) = self.word() else {
                 return Err(self.expected("a field of the variable"));
