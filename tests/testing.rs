@@ -127,6 +127,6 @@ assert "\x1b" not in f.text
     );
     assert_eq!(
         said,
-        "8 3 8 2\ncut short by max_time|the scanner drops out|too slow, too fast, out of order\n"
+        "10 3 10 2\ncut short by max_time|the scanner drops out|too slow, too fast, out of order\n"
     );
 }

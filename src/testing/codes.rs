@@ -38,7 +38,7 @@ codes! {
     UnknownVariable = "A0204", "no such variable";
     UnknownObject = "A0205", "no such object in the world";
     NotTraced = "A0206", "not recorded in the trace";
-    NeedsRobot = "A0207", "needs a simulated robot";
+    NeedsRobot = "A0207", "not known of this test's robot";
     Failed = "A0301", "assertion failed";
     TaskRejected = "A0302", "the task does not check";
     RunFailed = "A0303", "the run did not start";

@@ -334,8 +334,12 @@ impl<'a> Reader<'a, '_> {
         if let Some((s, _)) = &start {
             argv.extend(["--start".to_string(), s.clone()]);
         }
+        let mut skills = None;
         for key in ["skills", "scenario"] {
             if let Some((p, span)) = self.file(key) {
+                if key == "skills" {
+                    skills = Some(p.clone());
+                }
                 if key == "scenario"
                     && let Err(e) = Scenario::load(&p)
                 {
@@ -390,7 +394,9 @@ impl<'a> Reader<'a, '_> {
             None
         };
         let assertions = match (&task, &setup) {
-            (Some((task, _)), Some(setup)) => self.assertions(task, setup, &lines),
+            (Some((task, _)), Some(setup)) => {
+                self.assertions(task, skills.as_deref(), setup, &lines)
+            }
             _ => Vec::new(),
         };
         if let Some((task, _)) = task {
@@ -550,6 +556,7 @@ impl<'a> Reader<'a, '_> {
     fn assertions(
         &mut self,
         task: &Path,
+        skills: Option<&Path>,
         setup: &crate::run::setup::Setup,
         lines: &[Line],
     ) -> Vec<Assertion> {
@@ -580,16 +587,20 @@ impl<'a> Reader<'a, '_> {
             }
         };
         let statements = statements(&source);
+        // A skill's variables are the task's too: its statements run in the task.
+        let skills: Vec<String> = skills
+            .and_then(|dir| crate::inputs::read_skill_dir(dir).ok())
+            .into_iter()
+            .flatten()
+            .flat_map(|s| self::statements(&s.text))
+            .map(|(_, t)| t)
+            .collect();
         let mut variables: Vec<String> = statements
             .iter()
-            .chain(
-                lines
-                    .iter()
-                    .map(|l| (0, l.text.clone()))
-                    .collect::<Vec<_>>()
-                    .iter(),
-            )
-            .filter_map(|(_, t)| assigned(t))
+            .map(|(_, t)| t)
+            .chain(&skills)
+            .chain(lines.iter().map(|l| &l.text))
+            .filter_map(|t| assigned(t))
             .collect();
         variables.sort_by_key(|v| v.to_ascii_lowercase());
         variables.dedup_by(|a, b| a.eq_ignore_ascii_case(b));
@@ -598,7 +609,8 @@ impl<'a> Reader<'a, '_> {
             statements: &statements,
             variables: &variables,
             objects: objects.as_deref(),
-            robot: setup.world.is_some(),
+            poses: setup.backend != crate::run::setup::Backend::None,
+            scans: setup.world.is_some(),
         };
         let mut out = Vec::new();
         for item in items {

@@ -28,7 +28,8 @@ fn with<T>(robot: bool, f: impl FnOnce(&Context<'_>) -> T) -> T {
         statements: &statements,
         variables: &variables,
         objects: robot.then_some(objects.as_slice()),
-        robot,
+        poses: robot,
+        scans: robot,
     };
     f(&ctx)
 }
@@ -101,6 +102,26 @@ fn robot_states_need_a_simulated_robot() {
         with(false, |ctx| parse("always: speed <= 1", Some(0), 0..1, ctx)).expect_err("no robot");
     assert_eq!(p.code, Code::NeedsRobot);
     assert!(with(false, |ctx| parse("never: refused", Some(0), 0..1, ctx)).is_ok());
+}
+
+#[test]
+fn a_scripted_robot_has_poses_but_no_scans_and_no_world() {
+    let statements: Vec<(u32, String)> = vec![(1, "goahead(1)".into())];
+    let ctx = Context {
+        statements: &statements,
+        variables: &[],
+        objects: None,
+        poses: true,
+        scans: false,
+    };
+    let code = |text: &str| parse(text, Some(0), 0..1, &ctx).err().map(|p| p.code);
+    assert_eq!(code("always: speed <= 1"), None);
+    assert_eq!(code("at end: robot within 1 of (0, 0)"), None);
+    assert_eq!(code("always: clearance > 1"), Some(Code::NeedsRobot));
+    assert_eq!(
+        code("eventually: robot within 1 of lab_door"),
+        Some(Code::NeedsRobot)
+    );
 }
 
 #[test]

@@ -19,8 +19,10 @@ pub struct Context<'a> {
     pub variables: &'a [String],
     /// The world's named places, when the robot is simulated.
     pub objects: Option<&'a [Place]>,
-    /// Whether the run has a simulated robot (poses, speed, scans).
-    pub robot: bool,
+    /// Whether the trace has poses (a simulated or scripted robot).
+    pub poses: bool,
+    /// Whether it has scans (a simulated robot in a world).
+    pub scans: bool,
 }
 
 /// The words an assertion starts with.
@@ -389,17 +391,30 @@ impl Parser<'_, '_> {
         })
     }
 
+    /// The next words are about the robot's poses: the run must have a robot.
     fn robot_needed(&self) -> Result<(), Problem> {
-        if self.ctx.robot {
+        if self.ctx.poses {
             return Ok(());
         }
         Err(Problem::new(
             Code::NeedsRobot,
             self.span(),
             format!(
-                "{} is known only of a simulated robot (its trace has poses and scans); this test's robot is not simulated",
+                "{} is known of a robot's poses; with `robot = \"none\"` the trace has none",
                 self.found()
             ),
+        ))
+    }
+
+    /// The next words are about scans: the run must have a simulated robot.
+    fn scans_needed(&self) -> Result<(), Problem> {
+        if self.ctx.scans {
+            return Ok(());
+        }
+        Err(Problem::new(
+            Code::NeedsRobot,
+            self.span(),
+            "the clearance is read from a simulated robot's scans; this test's robot has none",
         ))
     }
 
@@ -416,7 +431,15 @@ impl Parser<'_, '_> {
             return Err(self.expected("a point `(x, y)` or the name of an object of the world"));
         };
         self.pos += 1;
-        let objects = self.ctx.objects.unwrap_or(&[]);
+        let Some(objects) = self.ctx.objects else {
+            return Err(Problem::new(
+                Code::NeedsRobot,
+                span,
+                format!(
+                    "`{name}` would name a thing of the world; this test's robot has no world (give a point `(x, y)`)"
+                ),
+            ));
+        };
         let names: Vec<&str> = objects
             .iter()
             .filter_map(|o| match o {
@@ -444,7 +467,11 @@ impl Parser<'_, '_> {
         };
         match w.as_str() {
             "speed" | "clearance" => {
-                self.robot_needed()?;
+                if w == "speed" {
+                    self.robot_needed()?;
+                } else {
+                    self.scans_needed()?;
+                }
                 self.pos += 1;
                 let cmp = self.cmp()?;
                 let bound = self.number("a number")?;
