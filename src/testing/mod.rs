@@ -10,6 +10,7 @@ mod execute;
 pub mod file;
 mod junit;
 mod problem;
+mod progress;
 mod render;
 #[cfg(test)]
 mod tests;
@@ -244,7 +245,18 @@ fn run_all(files: &[TestFile], jobs: usize, style: Style) -> Vec<Result_> {
         }
         drop(tx);
         let mut printed = 0;
-        for (i, outcome, took) in rx {
+        let mut finished = 0;
+        let mut progress = progress::Progress::on_terminal();
+        loop {
+            let (i, outcome, took) = match rx.recv_timeout(progress::EVERY) {
+                Ok(got) => got,
+                Err(mpsc::RecvTimeoutError::Timeout) => {
+                    progress.show(finished, queue.len());
+                    continue;
+                }
+                Err(mpsc::RecvTimeoutError::Disconnected) => break,
+            };
+            finished += 1;
             done[queue[i].order].push((outcome, took));
             while let Some(&(fi, ti)) = order.get(printed) {
                 let test = &files[fi].tests[ti];
@@ -253,10 +265,13 @@ fn run_all(files: &[TestFile], jobs: usize, style: Style) -> Vec<Result_> {
                 }
                 let mut outcomes = std::mem::take(&mut done[printed]);
                 outcomes.sort_by_key(|(o, _)| test.seeds.iter().position(|&s| s == o.seed));
+                progress.clear();
                 results.push(report(&files[fi], test, &outcomes, style));
                 printed += 1;
             }
+            progress.show(finished, queue.len());
         }
+        progress.clear();
     });
     let _ = std::fs::remove_dir_all(&scratch);
     results

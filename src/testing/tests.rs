@@ -306,3 +306,16 @@ fn docs_list_every_code_and_key() {
     let (thousands, rest) = seeds.split_at(seeds.len() - 3);
     assert!(docs.contains(&format!("at most {thousands},{rest} (`MAX_SEEDS`)")));
 }
+
+#[test]
+fn the_progress_line_fills_with_the_runs_done() {
+    use super::progress::line;
+    use std::time::Duration;
+    let half = line(5, 10, Duration::from_millis(3400));
+    assert_eq!(
+        half,
+        format!("[{}>{}] 5/10 runs, 3.4 s", "=".repeat(15), " ".repeat(14))
+    );
+    assert!(line(10, 10, Duration::ZERO).starts_with(&format!("[{}]", "=".repeat(30))));
+    assert!(line(0, 0, Duration::ZERO).contains("0/0 runs"));
+}
