@@ -3,7 +3,8 @@
 use ilmr_trace::{Event, How, Record};
 
 use super::assertion::{
-    Assertion, Command, Field, Final, Goal, Happening, Kind, Near, Never, State, VarCheck, num,
+    Assertion, Command, Field, Final, Goal, Happening, Kind, Near, Never, Scope, State, VarCheck,
+    num,
 };
 
 /// Why an assertion does not hold: when, and what was seen.
@@ -19,20 +20,53 @@ pub struct Run<'r> {
     records: &'r [Record<'r>],
     /// The time of the last record: the run's end.
     end: f64,
+    /// The times samples and happenings are read from (a scope of `always`/`never`).
+    window: (f64, f64),
 }
 
 impl<'r> Run<'r> {
     pub fn new(records: &'r [Record<'r>]) -> Run<'r> {
         let end = records.iter().map(|r| r.t.0).fold(0.0, f64::max);
-        Run { records, end }
+        Run {
+            records,
+            end,
+            window: (f64::NEG_INFINITY, f64::INFINITY),
+        }
+    }
+
+    /// The run seen only within the scope. A scope `while C` of a command that never
+    /// ran is a failure: the assertion would hold of nothing.
+    fn scoped(&self, scope: &Scope) -> Result<Run<'r>, Failure> {
+        let mut lo = scope.from.unwrap_or(f64::NEG_INFINITY);
+        let mut hi = scope.until.unwrap_or(f64::INFINITY);
+        if let Some(c) = &scope.during {
+            let (started, ends) = self.life(c);
+            let Some(s) = started.or(ends.first().map(|e| e.0)) else {
+                return Err(Failure {
+                    t: self.end,
+                    message: format!("{} never ran", c.shown),
+                });
+            };
+            lo = lo.max(s);
+            hi = hi.min(ends.first().map_or(self.end, |e| e.0));
+        }
+        Ok(Run {
+            records: self.records,
+            end: self.end,
+            window: (lo, hi),
+        })
+    }
+
+    fn in_window(&self, t: f64) -> bool {
+        self.window.0 - 1e-9 <= t && t <= self.window.1 + 1e-9
     }
 
     pub fn check(&self, a: &Assertion) -> Result<(), Failure> {
         match &a.kind {
             Kind::Eventually { within, goal } => self.eventually(*within, goal),
-            Kind::Always(state) => self.always(state),
-            Kind::Never(Never::State(state)) => self.never_state(state),
-            Kind::Never(Never::Happening(h)) => self.never_happens(h),
+            Kind::Always(scope, state) => self.scoped(scope)?.always(state),
+            Kind::Never(scope, Never::State(state)) => self.scoped(scope)?.never_state(state),
+            Kind::Never(scope, Never::Happening(h)) => self.scoped(scope)?.never_happens(h),
             Kind::Before(x, y) => self.before(x, y),
             Kind::During(x, y) => self.during(x, y),
             Kind::AtEnd(f) => self.at_end(f),
@@ -41,7 +75,7 @@ impl<'r> Run<'r> {
 
     fn poses(&self) -> impl Iterator<Item = (f64, &ilmr_trace::Pose)> {
         self.records.iter().filter_map(|r| match &r.event {
-            Event::Pose(p) => Some((r.t.0, p)),
+            Event::Pose(p) if self.in_window(r.t.0) => Some((r.t.0, p)),
             _ => None,
         })
     }
@@ -49,7 +83,7 @@ impl<'r> Run<'r> {
     /// The nearest hit of each scan, metres from the scanner.
     fn clearances(&self) -> impl Iterator<Item = (f64, f64)> {
         self.records.iter().filter_map(|r| match &r.event {
-            Event::Scan(s) => {
+            Event::Scan(s) if self.in_window(r.t.0) => {
                 let (x, y) = (s.x.0, s.y.0);
                 let nearest = s
                     .hits
@@ -239,10 +273,20 @@ impl<'r> Run<'r> {
             State::Clearance(..) => self.clearances().next().is_none().then_some("scan"),
             _ => self.poses().next().is_none().then_some("pose"),
         };
+        let (lo, hi) = self.window;
+        let scope = if lo.is_finite() || hi.is_finite() {
+            format!(
+                " from t={} to t={}",
+                num(lo.max(0.0)),
+                num(hi.min(self.end))
+            )
+        } else {
+            String::new()
+        };
         match none {
             Some(what) => Err(Failure {
-                t: 0.0,
-                message: format!("the trace has no {what} line to check this on"),
+                t: lo.max(0.0),
+                message: format!("the trace has no {what} line{scope} to check this on"),
             }),
             None => Ok(()),
         }
@@ -284,6 +328,9 @@ impl<'r> Run<'r> {
     fn happenings<'a>(&'a self, h: &'a Happening) -> impl Iterator<Item = (f64, String)> + 'a {
         self.records.iter().filter_map(move |r| {
             let t = r.t.0;
+            if !self.in_window(t) {
+                return None;
+            }
             let seen = match (&r.event, h) {
                 (Event::End(e), Happening::Refused) if e.how == How::Refused => {
                     let why = e

@@ -94,6 +94,9 @@ fn mistakes_are_said_where_they_are_with_a_suggestion() {
     assert_eq!(bad("before(line 4 line 5)").1, 14..18);
     assert_eq!(bad("eventually: `goahead(1.2)").1, 12..25);
     assert_eq!(bad("").1, 0..0);
+    let (code, span, message) = bad("always whle line 4: speed <= 1");
+    assert_eq!((code, span), (Code::Syntax, 7..11));
+    assert!(message.contains("found `whle`"), "{message}");
 }
 
 #[test]
@@ -228,6 +231,10 @@ fn each_assertion_holds_or_fails_with_the_time_and_the_values() {
         "at end: completed == 1",
         "at end: broken == 1",
         "at end: m.status == 1",
+        "always while line 4: speed <= 0.4",
+        "always from 4 s until 6 s: robot within 0.1 of (9.2, 5.5)",
+        "never until 8: broken",
+        "never from 9.5 s: speed > 0",
     ];
     for a in holds {
         assert_eq!(check(a), Ok(()), "{a}");
@@ -276,6 +283,18 @@ fn each_assertion_holds_or_fails_with_the_time_and_the_values() {
             "ended heading 180.0004 deg, 90.0004 deg from 90 deg",
         ),
         ("at end: cnt == 1", 10.0, "`cnt` was never set"),
+        ("always while line 5: speed < 0.3", 5.0, "speed 0.3 m/s"),
+        (
+            "never while `wait(m)`: refused",
+            10.0,
+            "`wait(m)` never ran",
+        ),
+        (
+            "always from 6 until 7: speed <= 1",
+            6.0,
+            "no pose line from t=6 to t=7",
+        ),
+        ("never from 8 s: broken", 9.0, "ended broken"),
     ];
     for (a, t, seen) in fails {
         let (at, message) = check(a).expect_err(a);

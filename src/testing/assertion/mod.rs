@@ -22,7 +22,8 @@ impl Assertion {
     pub fn reads_scans(&self) -> bool {
         matches!(
             &self.kind,
-            Kind::Always(State::Clearance(..)) | Kind::Never(Never::State(State::Clearance(..)))
+            Kind::Always(_, State::Clearance(..))
+                | Kind::Never(_, Never::State(State::Clearance(..)))
         )
     }
 }
@@ -31,10 +32,10 @@ impl Assertion {
 pub enum Kind {
     /// The goal holds at some time, by `within` seconds when given.
     Eventually { within: Option<f64>, goal: Goal },
-    /// The state holds at every sample.
-    Always(State),
-    /// The happening never happens, or the state never holds.
-    Never(Never),
+    /// The state holds at every sample within the scope.
+    Always(Scope, State),
+    /// Within the scope the happening never happens, or the state never holds.
+    Never(Scope, Never),
     /// A's first end is no later than B's first start.
     Before(Command, Command),
     /// A starts no earlier than B and ends no later than B (or the run's end, while B
@@ -42,6 +43,15 @@ pub enum Kind {
     During(Command, Command),
     /// The check holds when the run has ended.
     AtEnd(Final),
+}
+
+/// The part of the run `always` and `never` speak of: from and until given times, and
+/// while a command is live (from its start to its first end, or the run's end).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Scope {
+    pub from: Option<f64>,
+    pub until: Option<f64>,
+    pub during: Option<Command>,
 }
 
 #[derive(Debug, Clone, PartialEq)]

@@ -196,13 +196,13 @@ impl Parser<'_, '_> {
             }
             "always" => {
                 self.pos += 1;
-                self.expect(":")?;
-                Ok(Kind::Always(self.state()?))
+                let scope = self.scope()?;
+                Ok(Kind::Always(scope, self.state()?))
             }
             "never" => {
                 self.pos += 1;
-                self.expect(":")?;
-                Ok(Kind::Never(self.never()?))
+                let scope = self.scope()?;
+                Ok(Kind::Never(scope, self.never()?))
             }
             "before" | "during" => {
                 self.pos += 1;
@@ -227,6 +227,29 @@ impl Parser<'_, '_> {
                 "`eventually`, `always`, `never`, `before`, `during` or `at end`",
                 &STARTS,
             )),
+        }
+    }
+
+    /// `[from T [s]] [until T [s]] [while COMMAND] :`, in any order.
+    fn scope(&mut self) -> Result<Scope, Problem> {
+        let mut scope = Scope::default();
+        loop {
+            if self.eat("from") {
+                scope.from = Some(self.amount("a time in seconds")?);
+                self.eat("s");
+            } else if self.eat("until") {
+                scope.until = Some(self.amount("a time in seconds")?);
+                self.eat("s");
+            } else if self.eat("while") {
+                scope.during = Some(self.command()?);
+            } else if self.eat(":") {
+                return Ok(scope);
+            } else {
+                return Err(self.unknown(
+                    "`:`, or a scope: `from T s`, `until T s` or `while COMMAND`",
+                    &["from", "until", "while"],
+                ));
+            }
         }
     }
 
