@@ -127,6 +127,6 @@ assert "\x1b" not in f.text
     );
     assert_eq!(
         said,
-        "10 3 10 2\ncut short by max_time|the scanner drops out|too slow, too fast, out of order\n"
+        "11 4 11 2\ncut short by max_time|every seed must pass|the scanner drops out|too slow, too fast, out of order\n"
     );
 }
