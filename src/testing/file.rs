@@ -65,6 +65,9 @@ pub const KEYS: [(&str, &str); 13] = [
 
 /// Seeds one test may run: a range beyond this is a typo more likely than a plan.
 pub const MAX_SEEDS: u64 = 10_000;
+/// The longest `max_time`, seconds: a day of logical time (some minutes of a debug
+/// build); a task that never ends is then cut off rather than run for weeks.
+pub const MAX_TIME: f64 = 86_400.0;
 
 /// A test file read and checked.
 pub struct TestFile {
@@ -354,13 +357,15 @@ impl<'a> Reader<'a, '_> {
         }
         let max_time = self.number("max_time");
         if let Some((t, span)) = &max_time {
-            if t.is_finite() && *t > 0.0 {
+            if t.is_finite() && *t > 0.0 && *t <= MAX_TIME {
                 argv.extend(["--max-time".to_string(), t.to_string()]);
             } else {
                 self.problems.push(Problem::new(
                     Code::BadValue,
                     span.clone(),
-                    "`max_time` is a number of seconds above 0",
+                    format!(
+                        "`max_time` is a number of seconds above 0, at most {MAX_TIME} (MAX_TIME)"
+                    ),
                 ));
             }
         }

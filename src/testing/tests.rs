@@ -3,7 +3,7 @@
 use super::assertion::{Context, Kind, Place, parse};
 use super::codes::Code;
 use super::eval::Run;
-use super::file::{KEYS, MAX_SEEDS};
+use super::file::{KEYS, MAX_SEEDS, MAX_TIME};
 
 const STATEMENTS: [(u32, &str); 5] = [
     (3, "speed(0.4)"),
@@ -324,6 +324,9 @@ fn docs_list_every_code_and_key() {
     let seeds = MAX_SEEDS.to_string();
     let (thousands, rest) = seeds.split_at(seeds.len() - 3);
     assert!(docs.contains(&format!("at most {thousands},{rest} (`MAX_SEEDS`)")));
+    assert!(docs.contains(&format!(
+        "at most {MAX_TIME} s, a day of\nlogical time (`MAX_TIME`)"
+    )));
 }
 
 #[test]
