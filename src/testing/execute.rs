@@ -59,7 +59,7 @@ fn verdict(test: &Test, seed: u64, trace: &Path, console: &mut Console) -> Verdi
         .assertions
         .iter()
         .any(super::assertion::Assertion::reads_scans);
-    let mut argv: Vec<String> = test.argv[1..].to_vec();
+    let mut argv: Vec<String> = test.argv.clone();
     argv.extend([
         "--seed".into(),
         seed.to_string(),

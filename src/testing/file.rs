@@ -81,7 +81,7 @@ pub struct Test {
     pub name: String,
     /// The name's place in the file (the table's header when it has none).
     pub span: Range<usize>,
-    /// `ilmrc run`'s arguments, less the seed and the trace.
+    /// `ilmrc run`'s arguments (after `run`), less the seed and the trace.
     pub argv: Vec<String>,
     pub lines: Vec<Line>,
     pub seeds: Vec<u64>,
@@ -309,7 +309,7 @@ impl<'a> Reader<'a, '_> {
                 "this test has no `task`",
             ));
         }
-        let mut argv: Vec<String> = vec!["run".into()];
+        let mut argv: Vec<String> = Vec::new();
         let unplaced = self.problems.len();
         let robot = self.name_or_path("robot");
         if let Some((r, span)) = &robot

@@ -173,7 +173,7 @@ fn walk(dir: &Path, out: &mut Vec<PathBuf>) -> std::io::Result<()> {
 }
 
 /// One test's result, for the summary and the XML.
-struct Result_ {
+struct TestResult {
     file: String,
     name: String,
     seconds: f64,
@@ -192,7 +192,7 @@ struct Job {
 
 /// Runs every test's seeds on `jobs` threads; prints each test's line (and the report
 /// of one that failed) in file order as soon as its runs are done.
-fn run_all(files: &[TestFile], jobs: usize, style: Style) -> Vec<Result_> {
+fn run_all(files: &[TestFile], jobs: usize, style: Style) -> Vec<TestResult> {
     let mut queue = Vec::new();
     let mut order = Vec::new();
     for (fi, f) in files.iter().enumerate() {
@@ -283,7 +283,7 @@ fn report(
     test: &file::Test,
     outcomes: &[(Outcome, Duration)],
     style: Style,
-) -> Result_ {
+) -> TestResult {
     let seconds: f64 = outcomes.iter().map(|(_, d)| d.as_secs_f64()).sum();
     let path = file.path.display().to_string();
     let failing: Vec<&Outcome> = outcomes
@@ -302,7 +302,7 @@ fn report(
     };
     say!("{status} {path}: {} ({seeds}) {seconds:.2} s", test.name);
     if failing.is_empty() {
-        return Result_ {
+        return TestResult {
             file: path,
             name: test.name.clone(),
             seconds,
@@ -338,7 +338,7 @@ fn report(
         Verdict::Broke(m) => m.clone(),
         Verdict::Passed => String::new(),
     };
-    Result_ {
+    TestResult {
         file: path,
         name: test.name.clone(),
         seconds,
