@@ -130,3 +130,96 @@ assert "\x1b" not in f.text
         "11 4 11 2\ncut short by max_time|every seed must pass|the scanner drops out|too slow, too fast, out of order\n"
     );
 }
+
+#[test]
+fn a_stored_snapshot_is_the_same_bytes_from_anywhere() {
+    let (code, out, err) = ilmrc(&["test", "tests/testing/snapshot.test.toml"]);
+    assert_eq!(code, 0, "{out}\n{err}");
+    let absolute = root().join("tests/testing/snapshot.test.toml");
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_ilmrc"))
+        .args(["test", absolute.to_str().unwrap()])
+        .current_dir(std::env::temp_dir())
+        .output()
+        .expect("ilmrc runs");
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stdout)
+    );
+}
+
+#[test]
+fn snapshots_are_pending_then_reviewed_accepted_and_compared() {
+    let dir = scratch("snapshots");
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::copy(
+        root().join("examples/short_task.ilmr"),
+        dir.join("task.ilmr"),
+    )
+    .unwrap();
+    let file = dir.join("s.test.toml");
+    std::fs::write(
+        &file,
+        "task = \"task.ilmr\"\nmax_time = 2\n\n[[test]]\nname = \"Two seconds, seed 3\"\nseeds = 3\nsnapshot = true\nassert = [\"never: refused\"]\n",
+    )
+    .unwrap();
+    let f = file.to_str().unwrap();
+    let stored = dir.join("snapshots/s__two_seconds_seed_3__seed3.jsonl");
+    let pending = dir.join("snapshots/s__two_seconds_seed_3__seed3.jsonl.new");
+
+    let (code, out, _) = ilmrc(&["test", f]);
+    assert_eq!(code, 1, "{out}");
+    assert!(
+        out.contains("[A0304]") && out.contains("yet; the run's is pending"),
+        "{out}"
+    );
+    let first = std::fs::read(&pending).expect("pending written");
+    let (code, _, _) = ilmrc(&["test", f]);
+    assert_eq!(code, 1);
+    assert_eq!(
+        std::fs::read(&pending).unwrap(),
+        first,
+        "same run, same bytes"
+    );
+    let text = String::from_utf8(first).unwrap();
+    assert!(text.starts_with("{\"t\":0,\"event\":\"trace\",\"version\":1}\n{\"t\":0,\"event\":\"run\",\"task\":\"task.ilmr\""), "{text}");
+    assert!(!text.contains("\"scan\""), "scans are left out");
+    assert!(
+        text.contains("{\"t\":0.1,\"event\":\"pose\"")
+            && !text.contains("{\"t\":0.01,\"event\":\"pose\""),
+        "poses ten a second"
+    );
+
+    let (code, out, _) = ilmrc(&["test", "--review", f]);
+    assert_eq!(code, 0);
+    assert!(
+        out.contains("new snapshot") && out.contains("1 pending snapshot(s)"),
+        "{out}"
+    );
+    let (code, out, _) = ilmrc(&["test", "--accept", f]);
+    assert_eq!(code, 0, "{out}");
+    assert!(stored.exists() && !pending.exists());
+    let (code, out, _) = ilmrc(&["test", f]);
+    assert_eq!(code, 0, "{out}");
+
+    // A stored snapshot that differs: the test fails, and --review shows the lines.
+    let changed = text.replacen("\"source\":\"true\"", "\"source\":\"estimated\"", 1);
+    std::fs::write(&stored, &changed).unwrap();
+    let (code, out, _) = ilmrc(&["test", f]);
+    assert_eq!(code, 1);
+    assert!(
+        out.contains("the trace differs from") && out.contains("on; the run's is pending"),
+        "{out}"
+    );
+    let (_, out, _) = ilmrc(&["test", "--review", f]);
+    assert!(out.contains("1 line(s) stored, 1 line(s) now"), "{out}");
+    assert!(
+        out.contains("- {\"t\":0,\"event\":\"pose\"") && out.contains("\"source\":\"estimated\"}"),
+        "{out}"
+    );
+    assert!(out.contains("+ {\"t\":0,\"event\":\"pose\""), "{out}");
+    let (code, _, _) = ilmrc(&["test", "--review", "--accept", f]);
+    assert_eq!(code, 2, "--review and --accept together are a usage error");
+    let _ = std::fs::remove_dir_all(&dir);
+}

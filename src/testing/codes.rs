@@ -42,4 +42,5 @@ codes! {
     Failed = "A0301", "assertion failed";
     TaskRejected = "A0302", "the task does not check";
     RunFailed = "A0303", "the run did not start";
+    SnapshotDiffers = "A0304", "the trace is not its snapshot";
 }

@@ -14,8 +14,12 @@ use crate::run::{Ran, Reached, RunArgs, execute};
 #[derive(Debug)]
 pub enum Verdict {
     Passed,
-    /// The assertions that did not hold, by index, and why.
-    Failed(Vec<(usize, Failure)>),
+    /// The assertions that did not hold, by index, and why; how the trace differs from
+    /// its snapshot.
+    Failed {
+        failures: Vec<(usize, Failure)>,
+        snapshot: Option<String>,
+    },
     /// The task does not check; the log holds the check's diagnostics.
     Rejected,
     /// The run did not start, or its trace could not be read: why.
@@ -106,9 +110,12 @@ fn verdict(test: &Test, seed: u64, trace: &Path, console: &mut Console) -> Verdi
         .enumerate()
         .filter_map(|(i, a)| run.check(a).err().map(|f| (i, f)))
         .collect();
-    if failures.is_empty() {
+    let snapshot = test.snapshot.as_ref().and_then(|s| {
+        super::snapshot::compare(&s.path(seed), &super::snapshot::text(&records, s)).err()
+    });
+    if failures.is_empty() && snapshot.is_none() {
         Verdict::Passed
     } else {
-        Verdict::Failed(failures)
+        Verdict::Failed { failures, snapshot }
     }
 }

@@ -11,10 +11,11 @@ use toml::de::{DeTable, DeValue};
 use super::assertion::{self, Assertion, Context, Place, is_name};
 use super::codes::Code;
 use super::problem::Problem;
+use super::snapshot::{self, Snapshot};
 use crate::run::scenario::{Line, Scenario};
 
 /// Every key of a test and what it takes (docs/testing.md lists them from here).
-pub const KEYS: [(&str, &str); 13] = [
+pub const KEYS: [(&str, &str); 14] = [
     ("name", "the test's name (required in each `[[test]]`)"),
     (
         "task",
@@ -61,6 +62,10 @@ pub const KEYS: [(&str, &str); 13] = [
         "assert",
         "the assertions, one a string (required; grammar in docs/testing.md)",
     ),
+    (
+        "snapshot",
+        "`true`, or `{ precision = 0.01, scans = true }`: compare the trace with a stored snapshot",
+    ),
 ];
 
 /// Seeds one test may run: a range beyond this is a typo more likely than a plan.
@@ -86,6 +91,7 @@ pub struct Test {
     pub lines: Vec<Line>,
     pub seeds: Vec<u64>,
     pub assertions: Vec<Assertion>,
+    pub snapshot: Option<Snapshot>,
 }
 
 /// Reads a test file; `Err` holds every problem found.
@@ -174,6 +180,7 @@ pub fn read(path: &Path, text: String) -> Result<TestFile, Vec<Problem>> {
             names.push((name.to_string(), span));
         }
         let mut reader = Reader {
+            path,
             text: &text,
             dir: &dir,
             keys,
@@ -210,6 +217,7 @@ type Key<'a> = (
 );
 
 struct Reader<'a, 'p> {
+    path: &'a Path,
     text: &'a str,
     dir: &'a Path,
     keys: Vec<Key<'a>>,
@@ -371,6 +379,7 @@ impl<'a> Reader<'a, '_> {
         }
         let seeds = self.seeds();
         let lines = self.lines();
+        let snap = self.snapshot();
         // The robot, world and start together, as `ilmrc run` takes them: the message
         // names the flag, so the problem goes to the key it is about.
         let ros2 = crate::ros2::Ros2Args::default();
@@ -411,6 +420,12 @@ impl<'a> Reader<'a, '_> {
             return None;
         }
         let (name, span) = name?;
+        let snapshot = snap.map(|(precision, scans, at)| Snapshot {
+            precision,
+            scans,
+            span: at,
+            stem: snapshot::stem(self.path, &name),
+        });
         Some(Test {
             name,
             span,
@@ -418,7 +433,52 @@ impl<'a> Reader<'a, '_> {
             lines,
             seeds,
             assertions,
+            snapshot,
         })
+    }
+
+    /// `true`, or a table of `precision` and `scans`; `None` when the test keeps none.
+    fn snapshot(&mut self) -> Option<(f64, bool, Range<usize>)> {
+        let value = self.get("snapshot")?;
+        let span = value.span();
+        if let Some(on) = value.get_ref().as_bool() {
+            return on.then_some((snapshot::PRECISION, false, span));
+        }
+        let Some(table) = value.get_ref().as_table() else {
+            self.wrong(
+                "snapshot",
+                value,
+                "`true` or `{ precision = 0.01, scans = true }`",
+            );
+            return None;
+        };
+        let mut precision = snapshot::PRECISION;
+        let mut scans = false;
+        for (key, v) in table.iter() {
+            match key.get_ref().as_ref() {
+                "precision" => match number(v.get_ref()) {
+                    Some(p) if p.is_finite() && p > 0.0 => precision = p,
+                    _ => self.problems.push(Problem::new(
+                        Code::BadValue,
+                        v.span(),
+                        "`precision` is a number above 0 (metres, radians, m/s)",
+                    )),
+                },
+                "scans" => match v.get_ref().as_bool() {
+                    Some(b) => scans = b,
+                    None => self.wrong("scans", v, "`true` or `false`"),
+                },
+                k => self.problems.push(
+                    Problem::new(
+                        Code::UnknownKey,
+                        key.span(),
+                        format!("unknown key `{k}` of `snapshot`"),
+                    )
+                    .suggest(k, ["precision", "scans"]),
+                ),
+            }
+        }
+        Some((precision, scans, span))
     }
 
     fn start(&mut self) -> Option<(String, Range<usize>)> {

@@ -12,6 +12,7 @@ mod junit;
 mod problem;
 mod progress;
 mod render;
+mod snapshot;
 #[cfg(test)]
 mod tests;
 
@@ -58,6 +59,13 @@ pub struct TestArgs {
     /// Write the results as JUnit XML here.
     #[arg(long, value_name = "OUT.xml")]
     pub junit: Option<PathBuf>,
+    /// Show how each pending snapshot of the test files differs from the stored one,
+    /// without running the tests.
+    #[arg(long, conflicts_with_all = ["accept", "junit"])]
+    pub review: bool,
+    /// Store each pending snapshot of the test files, without running the tests.
+    #[arg(long, conflicts_with = "junit")]
+    pub accept: bool,
     /// Runs at once (default: the machine's cores).
     #[arg(long, value_parser = clap::value_parser!(u32).range(1..=1024))]
     pub jobs: Option<u32>,
@@ -99,6 +107,9 @@ pub fn run(args: TestArgs) -> ExitCode {
         say!("{problems} problem(s) in the test files; no test was run");
         return ExitCode::from(EXIT_USAGE);
     }
+    if args.review || args.accept {
+        return snapshots(&files, args.accept);
+    }
     let jobs = args.jobs.map_or_else(
         || std::thread::available_parallelism().map_or(1, |n| n.get()),
         |j| j as usize,
@@ -132,6 +143,39 @@ pub fn run(args: TestArgs) -> ExitCode {
         }
     }
     ExitCode::from(if failed == 0 { 0 } else { EXIT_ERRORS })
+}
+
+/// `--review` and `--accept`: each pending snapshot of the files shown, or stored.
+fn snapshots(files: &[TestFile], accept: bool) -> ExitCode {
+    let mut count = 0;
+    for f in files {
+        let pending = match snapshot::pending(&f.path) {
+            Ok(p) => p,
+            Err(e) => {
+                eprintln!("error: {e}");
+                return ExitCode::from(EXIT_USAGE);
+            }
+        };
+        for p in pending {
+            count += 1;
+            if !accept {
+                say_raw!("{}", snapshot::review(&p));
+                continue;
+            }
+            match snapshot::accept(&p) {
+                Ok(stored) => say!("stored {}", stored.display()),
+                Err(e) => {
+                    eprintln!("error: {e}");
+                    return ExitCode::from(EXIT_USAGE);
+                }
+            }
+        }
+    }
+    say!(
+        "{count} pending snapshot(s){}",
+        if accept { " stored" } else { "" }
+    );
+    ExitCode::SUCCESS
 }
 
 /// The test files named, folders searched (in name order) for [`SUFFIX`].
@@ -327,13 +371,14 @@ fn report(
     say_raw!("{text}");
     let first = failing[0];
     let why = match &first.verdict {
-        Verdict::Failed(f) => {
-            let (i, fail) = &f[0];
-            format!(
+        Verdict::Failed { failures, snapshot } => match (failures.first(), snapshot) {
+            (Some((i, fail)), _) => format!(
                 "{} (seed {}): {}",
                 test.assertions[*i].text, first.seed, fail.message
-            )
-        }
+            ),
+            (None, Some(miss)) => format!("seed {}: {miss}", first.seed),
+            (None, None) => String::new(),
+        },
         Verdict::Rejected => "the task does not check".to_string(),
         Verdict::Broke(m) => m.clone(),
         Verdict::Passed => String::new(),
@@ -364,7 +409,17 @@ fn failure(file: &TestFile, test: &file::Test, o: &Outcome, style: Style) -> Str
     };
     match &o.verdict {
         Verdict::Passed => return out,
-        Verdict::Failed(failures) => {
+        Verdict::Failed { failures, snapshot } => {
+            if let (Some(miss), Some(s)) = (snapshot, &test.snapshot) {
+                let p = Problem::new(Code::SnapshotDiffers, s.span.clone(), miss.clone()).help(
+                    format!(
+                        "see the difference with `ilmrc test --review {0}`, keep the run's with `ilmrc test --accept {0}`",
+                        file.path.display()
+                    ),
+                );
+                let head = format!("the trace is not its snapshot (seed {})", o.seed);
+                out.push_str(&render::report(&path, &file.text, &head, &p, style));
+            }
             for (i, f) in failures {
                 let a = &test.assertions[*i];
                 let head = format!(
