@@ -12,6 +12,7 @@ use ilmr_vm::Module;
 
 use crate::check::{CheckArgs, Format};
 use crate::inputs;
+use crate::run::console::Console;
 
 #[derive(clap::Args)]
 pub struct BuildArgs {
@@ -61,19 +62,29 @@ pub fn compile(
     skills: Option<&Path>,
     extra: impl Fn(&Module) -> Vec<Diagnostic>,
 ) -> Result<Compiled, String> {
-    compile_leaving(task, robot, skills, &Given::default(), extra, false)
+    let console = &mut Console::Terminal;
+    compile_leaving(
+        task,
+        robot,
+        skills,
+        &Given::default(),
+        console,
+        extra,
+        false,
+    )
 }
 
 /// [`compile`], telling the check what the run is given from outside the program (a
-/// scenario's taught paths).
+/// scenario's taught paths); what the check says goes to `console`.
 pub fn compile_given(
     task: &Path,
     robot: &str,
     skills: Option<&Path>,
     given: &Given,
+    console: &mut Console,
     extra: impl Fn(&Module) -> Vec<Diagnostic>,
 ) -> Result<Compiled, String> {
-    compile_leaving(task, robot, skills, given, extra, false)
+    compile_leaving(task, robot, skills, given, console, extra, false)
 }
 
 /// [`compile`]; with `leave`, the analysis is left to the operating system instead of
@@ -83,6 +94,7 @@ fn compile_leaving(
     robot: &str,
     skills: Option<&Path>,
     given: &Given,
+    console: &mut Console,
     extra: impl Fn(&Module) -> Vec<Diagnostic>,
     leave: bool,
 ) -> Result<Compiled, String> {
@@ -108,7 +120,7 @@ fn compile_leaving(
     let model = &loaded.model;
     let quiet = analysis.diagnostics.is_empty() && !report.errors;
     if !quiet {
-        print!("{}", report.output);
+        console.out(&report.output);
     }
     if report.errors {
         return Ok(Compiled::Rejected);
@@ -127,7 +139,7 @@ fn compile_leaving(
         }
         Err(problems) => problems,
     };
-    print!("{}", render_diagnostics(&analysis, &problems));
+    console.out(&render_diagnostics(&analysis, &problems));
     Ok(Compiled::Rejected)
 }
 
@@ -221,6 +233,7 @@ pub fn build(args: BuildArgs) -> ExitCode {
         &args.robot,
         args.skills.as_deref(),
         &Given::default(),
+        &mut Console::Terminal,
         |_| Vec::new(),
         true,
     );

@@ -13,6 +13,7 @@ mod run;
 mod serve;
 mod shell;
 mod sim;
+mod testing;
 mod view;
 
 use std::process::ExitCode;
@@ -56,6 +57,9 @@ enum Cmd {
     Sim(Box<sim::SimArgs>),
     /// Start a fleet of robots (a fleet file) and show each robot's state.
     Fleet(fleet::FleetArgs),
+    /// Run the tests of test files (`*.test.toml`): tasks run on simulated robots, with
+    /// assertions on what they did.
+    Test(testing::TestArgs),
     /// Redraw a finished run from its trace, without running it.
     Replay(replay::ReplayArgs),
     /// Print the syntax tree of a file, one node per line.
@@ -93,6 +97,7 @@ fn main() -> ExitCode {
         Cmd::Run(args) => run::run(*args),
         Cmd::Sim(args) => sim::run(*args),
         Cmd::Fleet(args) => fleet::run(args),
+        Cmd::Test(args) => testing::run(args),
         Cmd::Replay(args) => replay::run(args),
         Cmd::Serve(args) => serve::run(args),
         Cmd::Shell(args) => shell::run(args),

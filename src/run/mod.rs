@@ -6,6 +6,7 @@
 //! lasted `--hold-limit`, or at `--max-time`; the summary and the exit code say which.
 
 pub(crate) mod backend;
+pub(crate) mod console;
 mod mcap;
 mod progress;
 mod record;
@@ -24,6 +25,7 @@ use ilmr_vm::{Clock, RealClock, SimClock, TraceLevel, Vm};
 
 use crate::build::{Compiled, compile_given};
 use backend::{AnyRobot, Robot};
+use console::Console;
 use progress::Progress;
 use record::{Extra, Sink};
 use report::Report;
@@ -98,13 +100,16 @@ pub struct RunArgs {
     /// scans at 4 Hz; the MCAP file keeps every scan).
     #[arg(long, default_value_t = 1.0)]
     pub scan_every: f64,
+    /// Interactive lines besides the scenario's (`ilmrc test` gives them; no flag).
+    #[arg(skip)]
+    pub lines: Vec<scenario::Line>,
     /// The task file.
     pub task: PathBuf,
 }
 
 pub fn run(args: RunArgs) -> ExitCode {
     let mut reached = Reached::default();
-    let (code, failure) = match execute(&args, &mut reached) {
+    let (code, failure) = match execute(&args, &mut reached, &mut Console::Terminal) {
         Ok(Ran::Ended(code)) => return ExitCode::from(code),
         Ok(Ran::Rejected) => (
             crate::EXIT_ERRORS,
@@ -152,21 +157,26 @@ fn write_failures(args: &RunArgs, reached: &Reached, failure: &str, code: u8) {
 
 /// How far a run got, for the outputs of one that fails.
 #[derive(Default)]
-struct Reached {
+pub(crate) struct Reached {
     /// The trace's `run` line, once the robot and world are known.
     header: Option<ilmr_trace::Record<'static>>,
     /// The VM has started: the trace holds the run so far.
     running: bool,
 }
 
-enum Ran {
+pub(crate) enum Ran {
     /// The task ran; the exit code says how it ended.
     Ended(u8),
     /// The checker rejected the task.
     Rejected,
 }
 
-fn execute(args: &RunArgs, reached: &mut Reached) -> Result<Ran, String> {
+/// Runs the task of `args`; what the run says goes to `console`.
+pub(crate) fn execute(
+    args: &RunArgs,
+    reached: &mut Reached,
+    console: &mut Console,
+) -> Result<Ran, String> {
     if !(args.max_time.is_finite() && args.max_time >= 0.0) {
         return Err(format!("--max-time {} is not a time", args.max_time));
     }
@@ -196,10 +206,12 @@ fn execute(args: &RunArgs, reached: &mut Reached) -> Result<Ran, String> {
         let end = Some(args.max_time);
         setup::check_faults(loaded, &setup.model, kind, end, args.faults.len())?;
     }
-    let scenario = match &args.scenario {
+    let mut scenario = match &args.scenario {
         Some(p) => Scenario::load(p)?,
         None => Scenario::default(),
     };
+    scenario.lines.extend(args.lines.iter().cloned());
+    scenario.lines.sort_by(|a, b| a.t.total_cmp(&b.t));
     // Outputs are opened before the run, so that a path that cannot be written fails
     // at once rather than after minutes of simulation.
     let mut sink = Sink::open(args.trace.as_deref(), args.plot.as_deref())?;
@@ -225,6 +237,7 @@ fn execute(args: &RunArgs, reached: &mut Reached) -> Result<Ran, String> {
         &setup.model_spec,
         args.skills.as_deref(),
         &given,
+        console,
         |m| {
             if robotless {
                 ilmr_compiler::lower::robot_uses(m)
@@ -277,11 +290,11 @@ fn execute(args: &RunArgs, reached: &mut Reached) -> Result<Ran, String> {
     if args.realtime || setup.backend == Backend::Ros2 {
         let vm = Vm::new(module, robot, RealClock::new(), config).map_err(|e| e.to_string())?;
         reached.running = true;
-        drive(vm, parts, args)
+        drive(vm, parts, args, console)
     } else {
         let vm = Vm::new(module, robot, SimClock, config).map_err(|e| e.to_string())?;
         reached.running = true;
-        drive(vm, parts, args)
+        drive(vm, parts, args, console)
     }
 }
 
@@ -298,6 +311,7 @@ fn drive<C: Clock>(
     mut vm: Vm<AnyRobot, C>,
     mut parts: Parts<'_>,
     args: &RunArgs,
+    console: &mut Console,
 ) -> Result<Ran, String> {
     let scenario = parts.scenario;
     for (name, points) in &scenario.paths {
@@ -305,7 +319,7 @@ fn drive<C: Clock>(
     }
     let mut session = Session::new(parts.setup.backend == Backend::None);
     let mut extra = Extra::new(vm.module(), args.scan_every);
-    let mut progress = Progress::on_terminal();
+    let mut progress = Progress::on_terminal(console.is_terminal());
     let mut report = Report::default();
     let mut next_line = 0;
     let max_ticks = (args.max_time / vm.config().period).round() as u64;
@@ -316,7 +330,7 @@ fn drive<C: Clock>(
             .filter(|l| l.t <= vm.time() + 1e-9)
         {
             next_line += 1;
-            let note = session.line(&mut vm, &parts.setup.model, &line.text);
+            let note = session.line(&mut vm, &parts.setup.model, &line.text, console);
             extra.learn(vm.module());
             parts.sink.put(&note)?;
         }
@@ -328,7 +342,7 @@ fn drive<C: Clock>(
         let overran = session.absorb(&events, extra.movement());
         report.absorb(vm.module(), &events, |notice| {
             progress.clear();
-            eprintln!("{notice}");
+            console.err(&format!("{notice}\n"));
         });
         let pose = vm.hal().true_pose();
         session.travel(pose);
@@ -398,6 +412,6 @@ fn drive<C: Clock>(
         l.note(vm.time(), Level::Info, ended.how(&vm, args));
         crate::view::live::close(l);
     }
-    print!("{}", summary::render(&ended, &vm, args, parts.setup));
+    console.out(&summary::render(&ended, &vm, args, parts.setup));
     Ok(Ran::Ended(ended.exit_code()))
 }

@@ -22,9 +22,10 @@ pub struct Progress {
 }
 
 impl Progress {
-    pub fn on_terminal() -> Progress {
+    /// Shown when stderr is a terminal and the run may draw on it (`allowed`).
+    pub fn on_terminal(allowed: bool) -> Progress {
         Progress {
-            enabled: std::io::stderr().is_terminal(),
+            enabled: allowed && std::io::stderr().is_terminal(),
             last: None,
             shown: false,
         }

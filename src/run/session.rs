@@ -10,6 +10,7 @@ use ilmr_vm::LineError;
 use ilmr_vm::{Clock, Event, EventKind, How, Vm};
 
 use super::backend::AnyRobot;
+use super::console::Console;
 
 #[derive(Debug, Default)]
 pub struct Tally {
@@ -113,6 +114,7 @@ impl Session {
         vm: &mut Vm<AnyRobot, C>,
         model: &RobotModel,
         text: &str,
+        console: &mut Console,
     ) -> Record<'static> {
         let t = ilmr_vm::runtime::trace::fmt_num(vm.time());
         let options = self.options;
@@ -123,12 +125,14 @@ impl Session {
             }
             Err(LineError::Invalid(e)) => {
                 self.tally.lines_rejected += 1;
-                eprintln!("line at t={t} not joined: {e}");
+                console.err(&format!("line at t={t} not joined: {e}\n"));
                 (false, Vec::new())
             }
             Err(LineError::Replaced) => {
                 self.tally.lines_rejected += 1;
-                eprintln!("line at t={t} not joined: the lowering did not return the program");
+                console.err(&format!(
+                    "line at t={t} not joined: the lowering did not return the program\n"
+                ));
                 (false, Vec::new())
             }
             Err(LineError::Lower(diagnostics)) => {
@@ -137,10 +141,10 @@ impl Session {
                     path: "<line>",
                     text,
                 }];
-                eprint!(
+                console.err(&format!(
                     "line at t={t} rejected:\n{}",
                     render::human(&diagnostics, &file, Style::PLAIN)
-                );
+                ));
                 let codes = diagnostics.iter().map(|d| d.code.as_str().into()).collect();
                 (false, codes)
             }

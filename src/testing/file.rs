@@ -1,0 +1,772 @@
+//! A test file: TOML, one `[[test]]` table per test, keys at the top as every test's
+//! defaults. Read with every value's span, so that each problem is said where it is;
+//! all of a file's problems are found, not just the first.
+
+use std::ops::Range;
+use std::path::{Path, PathBuf};
+
+use toml::Spanned;
+use toml::de::{DeTable, DeValue};
+
+use super::assertion::{self, Assertion, Context, Place, is_name};
+use super::codes::Code;
+use super::problem::Problem;
+use super::snapshot::{self, Snapshot};
+use crate::run::scenario::{Line, Scenario};
+
+/// Every key of a test and what it takes (docs/testing.md lists them from here).
+pub const KEYS: [(&str, &str); 14] = [
+    ("name", "the test's name (required in each `[[test]]`)"),
+    (
+        "task",
+        "the task file, from the test file's folder (required)",
+    ),
+    ("skills", "a skill file or folder of skill files"),
+    (
+        "robot",
+        "`moro`, `workpartner`, a ROBO.INI path, `scripted` or `none` (default `moro`)",
+    ),
+    (
+        "model",
+        "with `robot = \"scripted\"` or `\"none\"`: the model checked against",
+    ),
+    (
+        "world",
+        "`office`, `yard`, `empty` or a world file (default: the robot's)",
+    ),
+    (
+        "start",
+        "where the robot starts: `\"X,Y,HEADING\"` or `[X, Y, HEADING]`, metres and degrees",
+    ),
+    (
+        "seeds",
+        "a seed, a list of seeds or a range `\"1-20\"`: every seed must pass (default 0)",
+    ),
+    (
+        "faults",
+        "faults to inject, as `--fault` takes them: `[\"scanner_dropout@5+3\"]`",
+    ),
+    (
+        "lines",
+        "interactive lines: `[{ t = 5, text = \"speed(0.2)\" }]`",
+    ),
+    (
+        "scenario",
+        "a scenario file (`--scenario`): taught paths; for `robot = \"scripted\"` its world",
+    ),
+    (
+        "max_time",
+        "seconds of logical time the run may take (default 600, as `ilmrc run`)",
+    ),
+    (
+        "assert",
+        "the assertions, one a string (required; grammar in docs/testing.md)",
+    ),
+    (
+        "snapshot",
+        "`true`, or `{ precision = 0.01, scans = true }`: compare the trace with a stored snapshot",
+    ),
+];
+
+/// Seeds one test may run: a range beyond this is a typo more likely than a plan.
+pub const MAX_SEEDS: u64 = 10_000;
+/// The longest `max_time`, seconds: a day of logical time (some minutes of a debug
+/// build); a task that never ends is then cut off rather than run for weeks.
+pub const MAX_TIME: f64 = 86_400.0;
+
+/// A test file read and checked.
+pub struct TestFile {
+    pub path: PathBuf,
+    pub text: String,
+    pub tests: Vec<Test>,
+}
+
+/// One `[[test]]`: how to run it, and what must hold.
+pub struct Test {
+    pub name: String,
+    /// The name's place in the file (the table's header when it has none).
+    pub span: Range<usize>,
+    /// `ilmrc run`'s arguments (after `run`), less the seed and the trace.
+    pub argv: Vec<String>,
+    pub lines: Vec<Line>,
+    pub seeds: Vec<u64>,
+    pub assertions: Vec<Assertion>,
+    pub snapshot: Option<Snapshot>,
+}
+
+/// Reads a test file; `Err` holds every problem found.
+pub fn read(path: &Path, text: String) -> Result<TestFile, Vec<Problem>> {
+    let mut problems = Vec::new();
+    let (root, errors) = DeTable::parse_recoverable(&text);
+    for e in errors {
+        let span = e.span().unwrap_or(0..0);
+        problems.push(Problem::new(
+            Code::NotToml,
+            span,
+            e.message().trim().to_string(),
+        ));
+    }
+    if !problems.is_empty() {
+        problems.sort_by_key(|p| (p.span.start, p.span.end));
+        return Err(problems);
+    }
+    let dir = path.parent().unwrap_or(Path::new(".")).to_path_buf();
+    let root = root.into_inner();
+    let mut tests = Vec::new();
+    let mut defaults: Vec<(&Spanned<std::borrow::Cow<str>>, &Spanned<DeValue>)> = Vec::new();
+    let mut tables = None;
+    for (key, value) in root.iter() {
+        match key.get_ref().as_ref() {
+            "test" => tables = Some(value),
+            "name" => problems.push(Problem::new(
+                Code::UnknownKey,
+                key.span(),
+                "`name` belongs in a `[[test]]` table; the keys at the top are every test's defaults",
+            )),
+            k if KEYS.iter().any(|(n, _)| *n == k) => defaults.push((key, value)),
+            k => problems.push(unknown_key(k, key.span(), true)),
+        }
+    }
+    let Some(tables) = tables else {
+        problems.push(
+            Problem::new(Code::MissingKey, 0..0, "the file has no `[[test]]` table")
+                .help("add `[[test]]` with a `name`, a `task` and `assert`"),
+        );
+        return Err(problems);
+    };
+    let Some(array) = tables.get_ref().as_array() else {
+        problems.push(Problem::new(
+            Code::WrongType,
+            tables.span(),
+            "`test` is an array of tables: write each test as `[[test]]`",
+        ));
+        return Err(problems);
+    };
+    let mut names: Vec<(String, Range<usize>)> = Vec::new();
+    for item in array.iter() {
+        let Some(table) = item.get_ref().as_table() else {
+            problems.push(Problem::new(
+                Code::WrongType,
+                item.span(),
+                "a test is a table",
+            ));
+            continue;
+        };
+        let mut keys: Vec<(&Spanned<std::borrow::Cow<str>>, &Spanned<DeValue>)> = defaults.clone();
+        for (key, value) in table.iter() {
+            let k = key.get_ref().as_ref();
+            if k != "name" && !KEYS.iter().any(|(n, _)| *n == k) {
+                problems.push(unknown_key(k, key.span(), false));
+                continue;
+            }
+            keys.retain(|(d, _)| d.get_ref() != key.get_ref());
+            keys.push((key, value));
+        }
+        let header = item.span();
+        let named = table
+            .get("name")
+            .and_then(|v| v.get_ref().as_str().map(|n| (n, v.span())));
+        if let Some((name, span)) = named {
+            if names.iter().any(|(n, _)| n == name) {
+                problems.push(
+                    Problem::new(
+                        Code::DuplicateName,
+                        span.clone(),
+                        format!("a second test named `{name}`"),
+                    )
+                    .help("each test of a file needs its own name"),
+                );
+            }
+            names.push((name.to_string(), span));
+        }
+        let mut reader = Reader {
+            path,
+            text: &text,
+            dir: &dir,
+            keys,
+            header: header.clone(),
+            problems: &mut problems,
+        };
+        if let Some(test) = reader.test() {
+            tests.push(test);
+        }
+    }
+    if problems.is_empty() {
+        Ok(TestFile {
+            path: path.to_path_buf(),
+            text,
+            tests,
+        })
+    } else {
+        problems.sort_by_key(|p| (p.span.start, p.span.end));
+        Err(problems)
+    }
+}
+
+fn unknown_key(key: &str, span: Range<usize>, top: bool) -> Problem {
+    let mut names: Vec<&str> = KEYS.iter().map(|(n, _)| *n).collect();
+    if !top {
+        names.push("name");
+    }
+    Problem::new(Code::UnknownKey, span, format!("unknown key `{key}`")).suggest(key, names)
+}
+
+type Key<'a> = (
+    &'a Spanned<std::borrow::Cow<'a, str>>,
+    &'a Spanned<DeValue<'a>>,
+);
+
+struct Reader<'a, 'p> {
+    path: &'a Path,
+    text: &'a str,
+    dir: &'a Path,
+    keys: Vec<Key<'a>>,
+    header: Range<usize>,
+    problems: &'p mut Vec<Problem>,
+}
+
+impl<'a> Reader<'a, '_> {
+    fn get(&self, key: &str) -> Option<&'a Spanned<DeValue<'a>>> {
+        self.keys
+            .iter()
+            .find(|(k, _)| k.get_ref().as_ref() == key)
+            .map(|(_, v)| *v)
+    }
+
+    fn wrong(&mut self, key: &str, value: &Spanned<DeValue>, wanted: &str) {
+        self.problems.push(Problem::new(
+            Code::WrongType,
+            value.span(),
+            format!(
+                "`{key}` takes {wanted}, not a {}",
+                value.get_ref().type_str()
+            ),
+        ));
+    }
+
+    fn string(&mut self, key: &str) -> Option<(String, Range<usize>)> {
+        let value = self.get(key)?;
+        match value.get_ref().as_str() {
+            Some(s) => Some((s.to_string(), value.span())),
+            None => {
+                self.wrong(key, value, "a string");
+                None
+            }
+        }
+    }
+
+    fn number(&mut self, key: &str) -> Option<(f64, Range<usize>)> {
+        let value = self.get(key)?;
+        match number(value.get_ref()) {
+            Some(n) => Some((n, value.span())),
+            None => {
+                self.wrong(key, value, "a number");
+                None
+            }
+        }
+    }
+
+    /// A path from the test file's folder, which must exist.
+    fn file(&mut self, key: &str) -> Option<(PathBuf, Range<usize>)> {
+        let (name, span) = self.string(key)?;
+        let path = self.dir.join(&name);
+        if !path.exists() {
+            self.problems.push(Problem::new(
+                Code::MissingFile,
+                span,
+                format!("no file `{}`", path.display()),
+            ));
+            return None;
+        }
+        Some((path, span))
+    }
+
+    /// A name, or a path when it looks like one (taken from the test file's folder).
+    fn name_or_path(&mut self, key: &str) -> Option<(String, Range<usize>)> {
+        let (name, span) = self.string(key)?;
+        if name.contains(['/', '\\', '.']) {
+            let path = self.dir.join(&name);
+            if !path.exists() {
+                self.problems.push(Problem::new(
+                    Code::MissingFile,
+                    span,
+                    format!("no file `{}`", path.display()),
+                ));
+                return None;
+            }
+            return Some((path.display().to_string(), span));
+        }
+        Some((name, span))
+    }
+
+    fn test(&mut self) -> Option<Test> {
+        let before = self.problems.len();
+        let name = self.string("name");
+        if name.is_none() && self.get("name").is_none() {
+            self.problems.push(Problem::new(
+                Code::MissingKey,
+                self.header.clone(),
+                "this test has no `name`",
+            ));
+        }
+        let task = self.file("task");
+        if task.is_none() && self.get("task").is_none() {
+            self.problems.push(Problem::new(
+                Code::MissingKey,
+                self.header.clone(),
+                "this test has no `task`",
+            ));
+        }
+        let mut argv: Vec<String> = Vec::new();
+        let unplaced = self.problems.len();
+        let robot = self.name_or_path("robot");
+        if let Some((r, span)) = &robot
+            && r.eq_ignore_ascii_case(crate::ros2::ROBOT_NAME)
+        {
+            self.problems.push(Problem::new(
+                Code::BadValue,
+                span.clone(),
+                "a test runs a simulated or scripted robot; `ros2` drives a real one",
+            ));
+        }
+        let model = self.name_or_path("model");
+        let world = self.name_or_path("world");
+        let start = self.start();
+        let placed = self.problems.len() == unplaced;
+        for (flag, v) in [
+            ("--robot", &robot),
+            ("--model", &model),
+            ("--world", &world),
+        ] {
+            if let Some((v, _)) = v {
+                argv.extend([flag.to_string(), v.clone()]);
+            }
+        }
+        if let Some((s, _)) = &start {
+            argv.extend(["--start".to_string(), s.clone()]);
+        }
+        let mut skills = None;
+        for key in ["skills", "scenario"] {
+            if let Some((p, span)) = self.file(key) {
+                if key == "skills" {
+                    skills = Some(p.clone());
+                }
+                if key == "scenario"
+                    && let Err(e) = Scenario::load(&p)
+                {
+                    self.problems.push(Problem::new(Code::BadValue, span, e));
+                    continue;
+                }
+                argv.extend([format!("--{key}"), p.display().to_string()]);
+            }
+        }
+        for fault in self.faults() {
+            argv.extend(["--fault".to_string(), fault]);
+        }
+        let max_time = self.number("max_time");
+        if let Some((t, span)) = &max_time {
+            if t.is_finite() && *t > 0.0 && *t <= MAX_TIME {
+                argv.extend(["--max-time".to_string(), t.to_string()]);
+            } else {
+                self.problems.push(Problem::new(
+                    Code::BadValue,
+                    span.clone(),
+                    format!(
+                        "`max_time` is a number of seconds above 0, at most {MAX_TIME} (MAX_TIME)"
+                    ),
+                ));
+            }
+        }
+        let seeds = self.seeds();
+        let lines = self.lines();
+        let snap = self.snapshot();
+        // The robot, world and start together, as `ilmrc run` takes them: the message
+        // names the flag, so the problem goes to the key it is about.
+        let ros2 = crate::ros2::Ros2Args::default();
+        let choice = crate::run::setup::Choice {
+            robot: robot.as_ref().map_or("moro", |r| r.0.as_str()),
+            model: model.as_ref().map(|m| m.0.as_str()),
+            world: world.as_ref().map(|w| w.0.as_str()),
+            start: start.as_ref().map(|s| s.0.as_str()),
+            ros2: &ros2,
+        };
+        let setup = if placed {
+            match crate::run::setup::choose(&choice) {
+                Ok(setup) => Some(setup),
+                Err(e) => {
+                    let span = [("start", &start), ("world", &world), ("model", &model)]
+                        .into_iter()
+                        .find(|(k, v)| e.contains(k) && v.is_some())
+                        .and_then(|(_, v)| v.as_ref().map(|v| v.1.clone()))
+                        .or_else(|| robot.as_ref().map(|r| r.1.clone()))
+                        .unwrap_or(self.header.clone());
+                    self.problems.push(Problem::new(Code::BadValue, span, e));
+                    None
+                }
+            }
+        } else {
+            None
+        };
+        let assertions = match (&task, &setup) {
+            (Some((task, _)), Some(setup)) => {
+                self.assertions(task, skills.as_deref(), setup, &lines)
+            }
+            _ => Vec::new(),
+        };
+        if let Some((task, _)) = task {
+            argv.push(task.display().to_string());
+        }
+        if self.problems.len() > before {
+            return None;
+        }
+        let (name, span) = name?;
+        let snapshot = snap.map(|(precision, scans, at)| Snapshot {
+            precision,
+            scans,
+            span: at,
+            stem: snapshot::stem(self.path, &name),
+        });
+        Some(Test {
+            name,
+            span,
+            argv,
+            lines,
+            seeds,
+            assertions,
+            snapshot,
+        })
+    }
+
+    /// `true`, or a table of `precision` and `scans`; `None` when the test keeps none.
+    fn snapshot(&mut self) -> Option<(f64, bool, Range<usize>)> {
+        let value = self.get("snapshot")?;
+        let span = value.span();
+        if let Some(on) = value.get_ref().as_bool() {
+            return on.then_some((snapshot::PRECISION, false, span));
+        }
+        let Some(table) = value.get_ref().as_table() else {
+            self.wrong(
+                "snapshot",
+                value,
+                "`true` or `{ precision = 0.01, scans = true }`",
+            );
+            return None;
+        };
+        let mut precision = snapshot::PRECISION;
+        let mut scans = false;
+        for (key, v) in table.iter() {
+            match key.get_ref().as_ref() {
+                "precision" => match number(v.get_ref()) {
+                    Some(p) if p.is_finite() && p > 0.0 => precision = p,
+                    _ => self.problems.push(Problem::new(
+                        Code::BadValue,
+                        v.span(),
+                        "`precision` is a number above 0 (metres, radians, m/s)",
+                    )),
+                },
+                "scans" => match v.get_ref().as_bool() {
+                    Some(b) => scans = b,
+                    None => self.wrong("scans", v, "`true` or `false`"),
+                },
+                k => self.problems.push(
+                    Problem::new(
+                        Code::UnknownKey,
+                        key.span(),
+                        format!("unknown key `{k}` of `snapshot`"),
+                    )
+                    .suggest(k, ["precision", "scans"]),
+                ),
+            }
+        }
+        Some((precision, scans, span))
+    }
+
+    fn start(&mut self) -> Option<(String, Range<usize>)> {
+        let value = self.get("start")?;
+        if let Some(s) = value.get_ref().as_str() {
+            return Some((s.to_string(), value.span()));
+        }
+        let parts: Option<Vec<f64>> = value
+            .get_ref()
+            .as_array()
+            .map(|a| a.iter().map(|v| number(v.get_ref())).collect::<Option<_>>())
+            .unwrap_or(None);
+        match parts {
+            Some(p) if p.len() == 3 => Some((format!("{},{},{}", p[0], p[1], p[2]), value.span())),
+            _ => {
+                self.wrong("start", value, "`\"X,Y,HEADING\"` or `[X, Y, HEADING]`");
+                None
+            }
+        }
+    }
+
+    fn faults(&mut self) -> Vec<String> {
+        let Some(value) = self.get("faults") else {
+            return Vec::new();
+        };
+        let Some(items) = value.get_ref().as_array() else {
+            self.wrong("faults", value, "an array of strings");
+            return Vec::new();
+        };
+        let mut out = Vec::new();
+        for item in items.iter() {
+            match item.get_ref().as_str() {
+                Some(f) => match ilmr_sim::faults::flag::parse(f) {
+                    Ok(_) => out.push(f.to_string()),
+                    Err(e) => self
+                        .problems
+                        .push(Problem::new(Code::BadValue, item.span(), e)),
+                },
+                None => self.wrong("faults", item, "strings"),
+            }
+        }
+        out
+    }
+
+    fn seeds(&mut self) -> Vec<u64> {
+        let Some(value) = self.get("seeds") else {
+            return vec![0];
+        };
+        let span = value.span();
+        let bad = |m: String| Problem::new(Code::BadValue, span.clone(), m);
+        let seed = |v: &DeValue| -> Option<u64> {
+            v.as_integer().and_then(|i| {
+                u64::from_str_radix(i.as_str().replace('_', "").as_str(), i.radix()).ok()
+            })
+        };
+        if let Some(s) = seed(value.get_ref()) {
+            return vec![s];
+        }
+        if let Some(items) = value.get_ref().as_array() {
+            let seeds: Option<Vec<u64>> = items.iter().map(|v| seed(v.get_ref())).collect();
+            return match seeds {
+                Some(s) if !s.is_empty() => s,
+                _ => {
+                    self.problems.push(bad(
+                        "a list of seeds holds whole numbers from 0 up, at least one".into(),
+                    ));
+                    Vec::new()
+                }
+            };
+        }
+        if let Some(text) = value.get_ref().as_str() {
+            let range = text.split_once('-').and_then(|(a, b)| {
+                Some((a.trim().parse::<u64>().ok()?, b.trim().parse::<u64>().ok()?))
+            });
+            return match range {
+                Some((a, b)) if a <= b && b - a < MAX_SEEDS => (a..=b).collect(),
+                Some((a, b)) if a <= b => {
+                    self.problems.push(bad(format!(
+                        "{} seeds; a test runs at most {MAX_SEEDS} (MAX_SEEDS)",
+                        b - a + 1
+                    )));
+                    Vec::new()
+                }
+                _ => {
+                    self.problems.push(bad(format!(
+                        "`{text}` is not a range of seeds such as \"1-20\" (first, then last)"
+                    )));
+                    Vec::new()
+                }
+            };
+        }
+        self.wrong(
+            "seeds",
+            value,
+            "a seed, a list of seeds or a range \"1-20\"",
+        );
+        Vec::new()
+    }
+
+    fn lines(&mut self) -> Vec<Line> {
+        let Some(value) = self.get("lines") else {
+            return Vec::new();
+        };
+        let Some(items) = value.get_ref().as_array() else {
+            self.wrong(
+                "lines",
+                value,
+                "an array of `{ t = SECONDS, text = \"LINE\" }`",
+            );
+            return Vec::new();
+        };
+        let mut out = Vec::new();
+        for item in items.iter() {
+            let table = item.get_ref().as_table();
+            let t = table
+                .and_then(|t| t.get("t"))
+                .and_then(|v| number(v.get_ref()));
+            let text = table
+                .and_then(|t| t.get("text"))
+                .and_then(|v| v.get_ref().as_str());
+            let extra = table.and_then(|t| {
+                t.iter()
+                    .find(|(k, _)| !matches!(k.get_ref().as_ref(), "t" | "text"))
+            });
+            match (t, text, extra) {
+                (Some(t), Some(text), None) if t.is_finite() && t >= 0.0 => out.push(Line {
+                    t,
+                    text: text.to_string(),
+                }),
+                _ => self.problems.push(Problem::new(
+                    Code::BadValue,
+                    item.span(),
+                    "an interactive line is `{ t = SECONDS, text = \"LINE\" }`, t from 0",
+                )),
+            }
+        }
+        out
+    }
+
+    fn assertions(
+        &mut self,
+        task: &Path,
+        skills: Option<&Path>,
+        setup: &crate::run::setup::Setup,
+        lines: &[Line],
+    ) -> Vec<Assertion> {
+        let Some(value) = self.get("assert") else {
+            self.problems.push(
+                Problem::new(
+                    Code::MissingKey,
+                    self.header.clone(),
+                    "this test asserts nothing",
+                )
+                .help("add `assert = [\"...\"]`: a test that cannot fail proves nothing"),
+            );
+            return Vec::new();
+        };
+        let items: Vec<&Spanned<DeValue>> = match value.get_ref().as_array() {
+            Some(a) if !a.is_empty() => a.iter().collect(),
+            _ => {
+                self.wrong("assert", value, "a non-empty array of strings");
+                return Vec::new();
+            }
+        };
+        let source = match crate::inputs::read_source(task) {
+            Ok(s) => s.text,
+            Err(e) => {
+                self.problems
+                    .push(Problem::new(Code::MissingFile, self.header.clone(), e));
+                return Vec::new();
+            }
+        };
+        let statements = statements(&source);
+        // A skill's variables are the task's too: its statements run in the task.
+        let skills: Vec<String> = skills
+            .and_then(|dir| crate::inputs::read_skill_dir(dir).ok())
+            .into_iter()
+            .flatten()
+            .flat_map(|s| self::statements(&s.text))
+            .map(|(_, t)| t)
+            .collect();
+        let mut variables: Vec<String> = statements
+            .iter()
+            .map(|(_, t)| t)
+            .chain(&skills)
+            .chain(lines.iter().map(|l| &l.text))
+            .filter_map(|t| assigned(t))
+            .collect();
+        variables.sort_by_key(|v| v.to_ascii_lowercase());
+        variables.dedup_by(|a, b| a.eq_ignore_ascii_case(b));
+        let objects = setup.world.as_ref().map(|w| places(&w.world));
+        let ctx = Context {
+            statements: &statements,
+            variables: &variables,
+            objects: objects.as_deref(),
+            poses: setup.backend != crate::run::setup::Backend::None,
+            scans: setup.world.is_some(),
+        };
+        let mut out = Vec::new();
+        for item in items {
+            let Some(text) = item.get_ref().as_str() else {
+                self.wrong("assert", item, "strings");
+                continue;
+            };
+            let span = item.span();
+            let base = content_offset(self.text, span.clone(), text);
+            match assertion::parse(text, base, span, &ctx) {
+                Ok(a) => out.push(a),
+                Err(p) => self.problems.push(p),
+            }
+        }
+        out
+    }
+}
+
+fn number(v: &DeValue) -> Option<f64> {
+    if let Some(i) = v.as_integer() {
+        return i64::from_str_radix(&i.as_str().replace('_', ""), i.radix())
+            .ok()
+            .map(|i| i as f64);
+    }
+    v.as_float()
+        .and_then(|f| f.as_str().replace('_', "").parse::<f64>().ok())
+}
+
+/// Where the string's content starts in the file, when its bytes there are the string
+/// as read (a literal string, or a basic one without escapes).
+fn content_offset(file: &str, span: Range<usize>, value: &str) -> Option<usize> {
+    let raw = file.get(span.clone())?;
+    for quote in ["'''", "\"\"\"", "'", "\""] {
+        if raw.len() >= 2 * quote.len() && raw.starts_with(quote) && raw.ends_with(quote) {
+            let mut start = quote.len();
+            let inner = &raw[start..raw.len() - quote.len()];
+            // A newline right after a multi-line string's opening quotes is not part of it.
+            let inner = if quote.len() == 3 && inner.starts_with('\n') {
+                start += 1;
+                &inner[1..]
+            } else {
+                inner
+            };
+            return (inner == value).then_some(span.start + start);
+        }
+    }
+    None
+}
+
+/// The task's statements as the trace names them: line and text, comments left out.
+pub fn statements(source: &str) -> Vec<(u32, String)> {
+    source
+        .lines()
+        .enumerate()
+        .filter_map(|(i, line)| {
+            let code = line.split("//").next().unwrap_or("").trim();
+            (!code.is_empty()).then(|| (i as u32 + 1, code.to_string()))
+        })
+        .collect()
+}
+
+/// The variable a statement assigns (`m=goahead(0.7)`, `cnt = cnt + 1`).
+fn assigned(statement: &str) -> Option<String> {
+    let (name, rest) = statement.split_once('=')?;
+    let name = name.trim();
+    (is_name(name) && !rest.starts_with('=')).then(|| name.to_string())
+}
+
+/// The world's named things: doors, boxes, targets (where they start) and the charger
+/// as points, walls as their segments.
+fn places(world: &ilmr_sim::World) -> Vec<Place> {
+    let point = |name: &str, p: ilmr_sim::Vec2| Place::Object {
+        name: name.to_string(),
+        from: (p.x, p.y),
+        to: (p.x, p.y),
+    };
+    let mut out: Vec<Place> = Vec::new();
+    out.extend(world.doors.iter().map(|d| point(&d.id, d.center)));
+    out.extend(
+        world
+            .pickup_boxes
+            .iter()
+            .map(|b| point(&b.id, b.shape.center)),
+    );
+    out.extend(world.targets.iter().map(|t| point(&t.name, t.start)));
+    out.extend(world.charger.iter().map(|c| point("charger", c.position)));
+    out.extend(world.walls.iter().map(|w| Place::Object {
+        name: w.id.clone(),
+        from: (w.from.x, w.from.y),
+        to: (w.to.x, w.to.y),
+    }));
+    out.retain(|p| matches!(p, Place::Object { name, .. } if !name.is_empty()));
+    out
+}

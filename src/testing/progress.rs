@@ -1,0 +1,65 @@
+//! The progress line on a terminal while tests run long: runs done of all, and the
+//! wall time. Quiet when stderr is not a terminal, and for the first second.
+
+use std::io::{IsTerminal, Write};
+use std::time::{Duration, Instant};
+
+/// Shown once the tests have run this long.
+const AFTER: Duration = Duration::from_secs(1);
+/// Redrawn at most this often.
+pub const EVERY: Duration = Duration::from_millis(100);
+
+pub struct Progress {
+    enabled: bool,
+    started: Instant,
+    shown: bool,
+}
+
+impl Progress {
+    pub fn on_terminal() -> Progress {
+        Progress {
+            enabled: std::io::stderr().is_terminal(),
+            started: Instant::now(),
+            shown: false,
+        }
+    }
+
+    pub fn show(&mut self, done: usize, total: usize) {
+        let elapsed = self.started.elapsed();
+        if !self.enabled || elapsed < AFTER {
+            return;
+        }
+        let mut err = std::io::stderr().lock();
+        let _ = write!(err, "\r\x1b[2K{}", line(done, total, elapsed));
+        let _ = err.flush();
+        self.shown = true;
+    }
+
+    /// Takes the line away before other output.
+    pub fn clear(&mut self) {
+        if self.shown {
+            let _ = write!(std::io::stderr().lock(), "\r\x1b[2K");
+            self.shown = false;
+        }
+    }
+}
+
+/// `[=====>     ] 12/40 runs, 3.4 s`.
+pub fn line(done: usize, total: usize, elapsed: Duration) -> String {
+    const WIDTH: usize = 30;
+    let filled = (done * WIDTH)
+        .checked_div(total)
+        .unwrap_or(WIDTH)
+        .min(WIDTH);
+    let bar: String = (0..WIDTH)
+        .map(|i| match i.cmp(&filled) {
+            std::cmp::Ordering::Less => '=',
+            std::cmp::Ordering::Equal => '>',
+            std::cmp::Ordering::Greater => ' ',
+        })
+        .collect();
+    format!(
+        "[{bar}] {done}/{total} runs, {:.1} s",
+        elapsed.as_secs_f64()
+    )
+}
