@@ -170,6 +170,39 @@ fn break_ends_every_live_command_whose_text_matches() {
 }
 
 #[test]
+fn breaking_a_wait_of_time_wakes_its_block_and_its_old_timer_stays_silent() {
+    // A block sleeps in its own `wait(seconds)` (no node of its own): `break` must
+    // still find it by its text, end it with its variable, and resume the block; the
+    // broken wait's timer (due at 0.5 s) must not cut the next wait (due at 0.7 s).
+    let mut a = Asm::new();
+    let bound = a.wait_bound("w=wait(0.5)", 0.5, "w");
+    let one = vec![
+        bound,
+        a.assign("x=1", "x", &[X::N(1.0)]),
+        a.wait("wait(0.6)", 0.6),
+        a.assign("y=1", "y", &[X::N(1.0)]),
+    ];
+    let b1 = a.block(one);
+    a.blank();
+    let two = vec![a.wait("wait(0.1)", 0.1), a.brk("break(w=wait)", "w=wait")];
+    let b2 = a.block(two);
+    let mut vm = vm(a.task(&[b1, b2]), robot(), config());
+    vm.tick();
+    assert_eq!(vm.activity().sleeping, 2, "both blocks sleep");
+    assert_eq!(vm.live_statements().len(), 2, "both waits are live");
+    assert!(vm.run_for(2.0), "task ends");
+    assert_eq!(ended(&vm, "w=wait(0.5)").as_deref(), Some("broken"));
+    let w = vm.var("w").expect("bound");
+    assert_eq!((w.status, w.how), (1.0, Some(ilmr_vm::How::Broken)));
+    let at = |text| when(&vm, "var", text).map(|t| (t * 100.0).round() as u32);
+    assert_eq!(at("x=1"), Some(10), "resumed by the break at 0.1 s");
+    assert_eq!(at("y=1"), Some(70), "the old timer (0.5 s) woke nothing");
+    assert_eq!(ended(&vm, "wait(0.6)").as_deref(), Some("completed"));
+    assert_eq!(vm.activity().sleeping, 0);
+    assert_eq!(vm.live(), 0);
+}
+
+#[test]
 fn breaking_a_while_ends_everything_inside_it() {
     let mut a = Asm::new();
     let one = vec![a.while_("while(1)", &[X::N(1.0)], None, |a| {

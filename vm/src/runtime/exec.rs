@@ -5,13 +5,13 @@ use ilmr_hal::Hal;
 use ilmr_stdlib::Field;
 
 use super::clock::Clock;
-use super::nodes::{BlockState, Kind, NodeRef};
+use super::nodes::{BlockState, Kind, NodeRef, SLEEPING};
 use super::trace::EventKind;
 use super::vars::{FieldMask, How, NONE, Waiter, Woken};
 use super::watch::{Cmp, Shape};
 use super::{Vm, stmt_of};
 use crate::bytecode::limits::EXPR_STACK;
-use crate::bytecode::{ExprId, ExprOp, Op, StmtId};
+use crate::bytecode::{BlockId, ExprId, ExprOp, Instr, Op, StmtId};
 
 /// What running a block's instructions came to.
 enum Flow {
@@ -53,6 +53,7 @@ impl<H: Hal, C: Clock> Vm<H, C> {
                 block,
                 pc: 0,
                 holder: NONE,
+                nap: 0,
                 issued: false,
                 depth,
                 inline,
@@ -361,13 +362,15 @@ impl<H: Hal, C: Clock> Vm<H, C> {
                 let secs = self.eval(seconds).unwrap_or(0.0);
                 let bind = bind.map_or(NONE, |v| v.0);
                 self.bind_issue(bind, s);
-                let child = self.nodes.alloc(blk, s, bind, Kind::WaitTime);
                 let ticks = (secs.max(0.0) / self.cfg.period).round() as u64;
+                let nap = self.nodes.sleep(blk);
+                let node = self.nodes.at(blk);
                 // `wait(1e26)` checks (a non-negative time) and its tick count saturates;
                 // it must wait for ever, not overflow the tick or wrap round to now.
-                self.timers
-                    .set(self.tick.saturating_add(ticks.max(1)), child);
-                self.hold(blk, child);
+                self.timers.set(
+                    self.tick.saturating_add(ticks.max(1)),
+                    super::timers::Alarm { node, nap },
+                );
             }
             Op::WaitVar { var, bind } => {
                 let bind = bind.map_or(NONE, |v| v.0);
@@ -783,6 +786,12 @@ impl<H: Hal, C: Clock> Vm<H, C> {
     /// [`Vm::end_node`] without telling the parent, which it returns (`None` when the
     /// node had ended already).
     fn end_one(&mut self, idx: u32, how: How, linked: bool, reason: Option<String>) -> Option<u32> {
+        if let Kind::Block(b) = self.nodes.get(idx).kind
+            && b.holder == SLEEPING
+        {
+            // Its wait would have been its last child, ended just before it.
+            self.end_sleep(idx, how);
+        }
         let node = *self.nodes.get(idx);
         if node.kind == Kind::Free {
             return None;
@@ -842,6 +851,56 @@ impl<H: Hal, C: Clock> Vm<H, C> {
             self.start_next_movement(linked);
         }
         Some(parent)
+    }
+
+    /// Ends the `wait(seconds)` block `idx` sleeps in, as [`Vm::end_one`] ends a
+    /// command: its `end` event and its variable. The block is held no longer; the
+    /// caller queues it or ends it.
+    pub(super) fn end_sleep(&mut self, idx: u32, how: How) {
+        let Kind::Block(b) = self.nodes.get(idx).kind else {
+            return;
+        };
+        self.nodes.wake(idx);
+        let code = self.end_code.take();
+        let instr =
+            b.pc.checked_sub(1)
+                .and_then(|pc| self.module.block_code(BlockId(b.block)).get(pc as usize))
+                .copied();
+        let Some(Instr {
+            op: Op::WaitTime { bind, .. },
+            stmt,
+        }) = instr
+        else {
+            return;
+        };
+        self.push_event(
+            Some(stmt),
+            EventKind::End {
+                how,
+                linked: false,
+                code,
+                reason: None,
+            },
+        );
+        if let Some(var) = bind {
+            self.write_reporting(
+                var.0,
+                &[(Field::Status, 1.0)],
+                Some(Some(how)),
+                stmt.0,
+                false,
+                FieldMask::default(),
+            );
+        }
+    }
+
+    /// The `wait(seconds)` a sleeping block sleeps in (the instruction before its pc).
+    pub(super) fn sleep_stmt(&self, b: &BlockState) -> Option<StmtId> {
+        let pc = b.pc.checked_sub(1)?;
+        self.module
+            .block_code(BlockId(b.block))
+            .get(pc as usize)
+            .map(|i| i.stmt)
     }
 
     /// Ends a node as refused with a stable code (issue 7's refusals and faults).
@@ -942,25 +1001,39 @@ impl<H: Hal, C: Clock> Vm<H, C> {
         if pat.is_empty() {
             return;
         }
+        let matches = |stmt: Option<StmtId>| {
+            stmt.and_then(|s| self.lower.get(s.index()))
+                .is_some_and(|t| t.contains(&pat))
+        };
+        // A hit is a node, or the `wait(seconds)` a block sleeps in (its nap).
         let mut hits = Vec::new();
         for (i, n) in self.nodes.all.iter().enumerate() {
-            if n.kind == Kind::Free || n.stmt == NONE {
-                continue;
-            }
-            if self
-                .lower
-                .get(n.stmt as usize)
-                .is_some_and(|t| t.contains(&pat))
-            {
-                hits.push(NodeRef {
-                    idx: i as u32,
-                    epoch: n.epoch,
-                });
+            let r = NodeRef {
+                idx: i as u32,
+                epoch: n.epoch,
+            };
+            match n.kind {
+                Kind::Free => {}
+                Kind::Block(b) if b.holder == SLEEPING => {
+                    if matches(self.sleep_stmt(&b)) {
+                        hits.push((r, Some(b.nap)));
+                    }
+                }
+                _ => {
+                    if matches(stmt_of(n.stmt)) {
+                        hits.push((r, None));
+                    }
+                }
             }
         }
-        for h in hits {
-            if self.nodes.alive(h) {
-                self.end_subtree(h.idx, How::Broken);
+        for (h, nap) in hits {
+            match nap {
+                None if self.nodes.alive(h) => self.end_subtree(h.idx, How::Broken),
+                Some(nap) if self.nodes.asleep(h, nap) => {
+                    self.end_sleep(h.idx, How::Broken);
+                    self.enqueue(h.idx);
+                }
+                _ => {}
             }
         }
     }

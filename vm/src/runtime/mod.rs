@@ -273,8 +273,12 @@ impl<H: Hal, C: Clock> Vm<H, C> {
             .nodes
             .all
             .iter()
-            .filter(|n| !matches!(n.kind, Kind::Free | Kind::Root | Kind::Block(_)))
-            .filter_map(|n| stmt_of(n.stmt))
+            .filter_map(|n| match n.kind {
+                Kind::Free | Kind::Root => None,
+                Kind::Block(b) if b.holder == nodes::SLEEPING => self.sleep_stmt(&b),
+                Kind::Block(_) => None,
+                _ => stmt_of(n.stmt),
+            })
             .collect();
         live.sort_unstable_by_key(|s| s.0);
         live
@@ -308,7 +312,7 @@ impl<H: Hal, C: Clock> Vm<H, C> {
 
     /// Live nodes: commands, guards, loops, calls and blocks.
     pub fn live(&self) -> usize {
-        self.nodes.live.saturating_sub(1)
+        (self.nodes.live + self.nodes.sleepers).saturating_sub(1)
     }
 
     /// Bytes held by the run-time state (nodes, variables, subscriptions, queues,
@@ -471,9 +475,10 @@ impl<H: Hal, C: Clock> Vm<H, C> {
 
     fn fire_timers(&mut self) {
         let due = self.timers.due(self.tick);
-        for &r in &due {
-            if self.nodes.alive(r) {
-                self.end_node(r.idx, vars::How::Completed, false, None, true);
+        for a in &due {
+            if self.nodes.asleep(a.node, a.nap) {
+                self.end_sleep(a.node.idx, vars::How::Completed);
+                self.enqueue(a.node.idx);
             }
         }
         self.timers.done(due);

@@ -8,12 +8,21 @@ use ilmr_stdlib::{Command, Field};
 
 use super::vars::NONE;
 
+/// A block's `holder` while its own `wait(seconds)` holds it. A wait of time is not a
+/// node of its own: it has nothing to step and no children, so the block sleeps in
+/// place and the timer names the block (a node per wait was an allocation, a link and
+/// an unlink per step of every sleeping loop).
+pub(crate) const SLEEPING: u32 = NONE - 1;
+
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct BlockState {
     pub block: u32,
     pub pc: u32,
-    /// The child that holds this block (wait, init), or NONE.
+    /// The child that holds this block (`wait(v)`, init, a skill call), [`SLEEPING`]
+    /// for its own `wait(seconds)` (the instruction before `pc`), or NONE.
     pub holder: u32,
+    /// How many times the block has slept: names the current sleep to its timer.
+    pub nap: u32,
     /// Every instruction has been issued; the block ends when its children have.
     pub issued: bool,
     /// Skill call depth.
@@ -125,7 +134,6 @@ pub(crate) enum Kind {
         unit: u32,
         depth: u16,
     },
-    WaitTime,
     WaitVar {
         var: u32,
     },
@@ -204,7 +212,7 @@ pub(crate) enum Class {
     Issuing,
     /// An `if` that has not fired.
     Guard,
-    /// `wait(seconds)`, `wait(v)`.
+    /// `wait(v)`, and blocks asleep in `wait(seconds)`.
     Sleep,
     Movement,
     /// Readings, searches, asynchronous operations, `speed(v,w)`.
@@ -227,7 +235,7 @@ impl Class {
             | Kind::If { .. }
             | Kind::While { .. }
             | Kind::Call { .. } => Class::Container,
-            Kind::WaitTime | Kind::WaitVar { .. } => Class::Sleep,
+            Kind::WaitVar { .. } => Class::Sleep,
             Kind::Movement { .. } => Class::Movement,
             Kind::Sensor { forever: true, .. } => Class::Endless,
             Kind::Sensor { .. } | Kind::Async { .. } | Kind::SpeedAfter { .. } => Class::Active,
@@ -240,8 +248,11 @@ pub(crate) struct Nodes {
     pub all: Vec<Node>,
     free: Vec<u32>,
     pub live: usize,
-    /// Live nodes per [`Class`].
+    /// Live nodes per [`Class`], and sleeping blocks under [`Class::Sleep`].
     pub classes: [usize; Class::COUNT],
+    /// Blocks asleep in a `wait(seconds)`: each stands for the wait node it replaces
+    /// in [`Nodes::live`]'s count of commands.
+    pub sleepers: usize,
 }
 
 impl Nodes {
@@ -340,6 +351,38 @@ impl Nodes {
         self.live = self.live.saturating_sub(1);
     }
 
+    /// Block `idx` sleeps in its own `wait(seconds)`; returns the sleep's number.
+    pub fn sleep(&mut self, idx: u32) -> u32 {
+        let mut nap = 0;
+        if let Kind::Block(b) = &mut self.all[idx as usize].kind {
+            b.holder = SLEEPING;
+            b.nap = b.nap.wrapping_add(1);
+            nap = b.nap;
+        }
+        self.classes[Class::Sleep as usize] += 1;
+        self.sleepers += 1;
+        nap
+    }
+
+    /// Block `idx` wakes from its `wait(seconds)` (the wait ended); it is held no
+    /// longer.
+    pub fn wake(&mut self, idx: u32) {
+        if let Kind::Block(b) = &mut self.all[idx as usize].kind
+            && b.holder == SLEEPING
+        {
+            b.holder = NONE;
+            let n = &mut self.classes[Class::Sleep as usize];
+            *n = n.saturating_sub(1);
+            self.sleepers = self.sleepers.saturating_sub(1);
+        }
+    }
+
+    /// The block is asleep in the sleep numbered `nap`.
+    pub fn asleep(&self, r: NodeRef, nap: u32) -> bool {
+        self.alive(r)
+            && matches!(self.all[r.idx as usize].kind, Kind::Block(b) if b.holder == SLEEPING && b.nap == nap)
+    }
+
     pub fn footprint(&self) -> usize {
         self.all.capacity() * std::mem::size_of::<Node>()
             + self.free.capacity() * std::mem::size_of::<u32>()
@@ -385,7 +428,7 @@ mod tests {
         let mut n = Nodes::default();
         let root = n.alloc(NONE, NONE, NONE, Kind::Root).idx;
         let kids: Vec<u32> = (0..4)
-            .map(|_| n.alloc(root, NONE, NONE, Kind::WaitTime).idx)
+            .map(|_| n.alloc(root, NONE, NONE, Kind::WaitVar { var: 0 }).idx)
             .collect();
         n.unlink(kids[1]);
         n.unlink(kids[3]);
@@ -397,7 +440,7 @@ mod tests {
         }
         assert_eq!(order, vec![kids[0], kids[2]]);
         assert_eq!(n.get(root).children, 2);
-        let k = n.alloc(root, NONE, NONE, Kind::WaitTime).idx;
+        let k = n.alloc(root, NONE, NONE, Kind::WaitVar { var: 0 }).idx;
         n.unlink(kids[0]);
         let first = n.get(root).first_child;
         assert_eq!(first, kids[2]);
