@@ -279,10 +279,7 @@ impl<H: Hal, C: Clock> Vm<H, C> {
             if b.holder != NONE {
                 return Flow::Held;
             }
-            let instr = {
-                let code = self.module.block_code(crate::bytecode::BlockId(b.block));
-                code.get(b.pc as usize).copied()
-            };
+            let instr = self.module.instr_at(BlockId(b.block), b.pc).copied();
             let Some(instr) = instr else {
                 return Flow::Done;
             };
@@ -484,41 +481,29 @@ impl<H: Hal, C: Clock> Vm<H, C> {
         }
     }
 
-    /// Evaluates an expression on the fixed stack.
+    /// Evaluates an expression: a decoded shape at once, any other on the stack.
+    #[inline]
     pub(super) fn eval(&mut self, id: ExprId) -> Result<f64, &'static str> {
-        let ops = self.module.expr_ops(id);
-        self.ops_left = self.ops_left.saturating_sub(ops.len() as u32);
-        // The shapes most statements have (`c<100`, `c+1`, `0.01`), without the stack;
-        // the same arithmetic and comparisons as the general loop below.
-        let operand = |op: &ExprOp| match *op {
-            ExprOp::Const(c) => Some(self.module.consts.get(c.index()).copied().unwrap_or(0.0)),
-            ExprOp::Field(v, f) => Some(self.vars.field(v.0, f)),
-            _ => None,
-        };
-        match ops {
-            [x] => {
-                if let Some(v) = operand(x) {
-                    return Ok(v);
+        match self.decoded.all.get(id.index()) {
+            Some(d) => {
+                self.ops_left = self.ops_left.saturating_sub(d.len);
+                match d.value(&self.vars) {
+                    Some(v) => Ok(v),
+                    None => self.eval_stack(id),
                 }
             }
-            [x, y, op] => {
-                if let (Some(a), Some(b)) = (operand(x), operand(y)) {
-                    match *op {
-                        ExprOp::Add => return Ok(a + b),
-                        ExprOp::Sub => return Ok(a - b),
-                        ExprOp::Mul => return Ok(a * b),
-                        ExprOp::Div | ExprOp::Neg | ExprOp::PosEq(..) => {}
-                        ExprOp::Const(_) | ExprOp::Field(..) => {}
-                        cmp => {
-                            if let Some(c) = Cmp::of(cmp) {
-                                return Ok(f64::from(u8::from(c.holds(a, b))));
-                            }
-                        }
-                    }
-                }
+            None => {
+                let len = self.module.expr_ops(id).len() as u32;
+                self.ops_left = self.ops_left.saturating_sub(len);
+                self.eval_stack(id)
             }
-            _ => {}
         }
+    }
+
+    /// Evaluates an expression on the fixed stack (the budget is charged already).
+    #[inline(never)]
+    fn eval_stack(&mut self, id: ExprId) -> Result<f64, &'static str> {
+        let ops = self.module.expr_ops(id);
         let mut sp = 0usize;
         let tol = self.cfg.position_tolerance;
         for op in ops {
@@ -786,17 +771,24 @@ impl<H: Hal, C: Clock> Vm<H, C> {
     /// [`Vm::end_node`] without telling the parent, which it returns (`None` when the
     /// node had ended already).
     fn end_one(&mut self, idx: u32, how: How, linked: bool, reason: Option<String>) -> Option<u32> {
-        if let Kind::Block(b) = self.nodes.get(idx).kind
-            && b.holder == SLEEPING
-        {
-            // Its wait would have been its last child, ended just before it.
-            self.end_sleep(idx, how);
+        if let Kind::Block(b) = self.nodes.get(idx).kind {
+            if b.holder == SLEEPING {
+                // Its wait would have been its last child, ended just before it.
+                self.end_sleep(idx, how);
+            }
+            // A block is no command: no event, no variable, no subscription, no
+            // movement; only the code meant for a command's `end` is spent.
+            self.end_code = None;
+            let parent = self.nodes.get(idx).parent;
+            self.nodes.unlink(idx);
+            self.nodes.free(idx);
+            return Some(parent);
         }
         let node = *self.nodes.get(idx);
         if node.kind == Kind::Free {
             return None;
         }
-        let is_command = !matches!(node.kind, Kind::Block(_) | Kind::Root);
+        let is_command = node.kind != Kind::Root;
         let code = self.end_code.take();
         if is_command {
             self.push_event(
@@ -864,7 +856,7 @@ impl<H: Hal, C: Clock> Vm<H, C> {
         let code = self.end_code.take();
         let instr =
             b.pc.checked_sub(1)
-                .and_then(|pc| self.module.block_code(BlockId(b.block)).get(pc as usize))
+                .and_then(|pc| self.module.instr_at(BlockId(b.block), pc))
                 .copied();
         let Some(Instr {
             op: Op::WaitTime { bind, .. },
@@ -897,10 +889,7 @@ impl<H: Hal, C: Clock> Vm<H, C> {
     /// The `wait(seconds)` a sleeping block sleeps in (the instruction before its pc).
     pub(super) fn sleep_stmt(&self, b: &BlockState) -> Option<StmtId> {
         let pc = b.pc.checked_sub(1)?;
-        self.module
-            .block_code(BlockId(b.block))
-            .get(pc as usize)
-            .map(|i| i.stmt)
+        self.module.instr_at(BlockId(b.block), pc).map(|i| i.stmt)
     }
 
     /// Ends a node as refused with a stable code (issue 7's refusals and faults).

@@ -5,6 +5,7 @@ pub mod activity;
 pub mod clock;
 mod commands;
 pub mod config;
+mod decode;
 mod exec;
 mod motion;
 mod nodes;
@@ -89,6 +90,8 @@ pub struct Vm<H: Hal, C: Clock> {
     lower: Vec<String>,
     scratch: Vec<u32>,
     stack: [f64; EXPR_STACK],
+    /// Every expression of the module, decoded for [`Vm::eval`].
+    decoded: decode::Decoder,
     supervisor: safety::supervisor::Supervisor,
     /// The robot's static map, asked for once at the start.
     known_map: Option<KnownMap>,
@@ -179,6 +182,7 @@ impl<H: Hal, C: Clock> Vm<H, C> {
             lower,
             scratch: Vec::new(),
             stack: [0.0; EXPR_STACK],
+            decoded: decode::Decoder::default(),
             supervisor: Default::default(),
             known_map,
             map_from_estimate: ilmr_hal::Pose::default(),
@@ -187,6 +191,7 @@ impl<H: Hal, C: Clock> Vm<H, C> {
             mode_ops: Vec::new(),
             end_code: None,
         };
+        vm.decoded.grow(&vm.module);
         let main = vm.module.main.index();
         let blocks = vm.module.units[main].blocks.clone();
         for b in blocks {
@@ -442,6 +447,7 @@ impl<H: Hal, C: Clock> Vm<H, C> {
     /// the new top-level blocks.
     fn joined(&mut self, start: impl Iterator<Item = u32>) {
         self.vars.grow(self.module.globals.len());
+        self.decoded.grow(&self.module);
         self.lower.extend(
             self.module.stmts[self.lower.len()..]
                 .iter()
