@@ -140,6 +140,63 @@ fn a_while_counts_and_reevaluates_after_each_iteration() {
 }
 
 #[test]
+fn a_loop_steps_in_place_and_a_suspended_one_ends_cleanly() {
+    // Each iteration reuses the loop's body block and the block sleeps in its own
+    // wait: after the first iterations the run-time state neither grows nor shrinks.
+    let counting = |a: &mut Asm| {
+        let code = vec![
+            a.assign("n=0", "n", &[X::N(0.0)]),
+            a.while_(
+                "while(n<50)",
+                &[X::V("n"), X::N(50.0), X::Op(ExprOp::Lt)],
+                None,
+                |a| {
+                    vec![
+                        a.assign("n=n+1", "n", &[X::V("n"), X::N(1.0), X::Op(ExprOp::Add)]),
+                        a.wait("wait(0.01)", 0.01),
+                    ]
+                },
+            ),
+        ];
+        a.block(code)
+    };
+    let mut a = Asm::new();
+    let b = counting(&mut a);
+    let mut vm = vm(a.task(&[b]), robot(), config());
+    vm.tick();
+    vm.tick();
+    let (live, bytes) = (vm.live(), vm.footprint());
+    assert_eq!(live, 4, "the block, the while, its body and the wait");
+    for _ in 0..40 {
+        vm.tick();
+        assert_eq!((vm.live(), vm.footprint()), (live, bytes));
+    }
+    assert!(vm.run_for(1.0));
+    assert_eq!(vm.var("n").map(|v| v.value), Some(50.0));
+    assert_eq!(vm.live(), 0);
+
+    // Under a budget of 3 ops a tick the loop is suspended between statements; a
+    // break ends it wherever it stands, and nothing of it is left (the first part
+    // ended a while whose body was parked).
+    let mut a = Asm::new();
+    let b1 = counting(&mut a);
+    a.blank();
+    let two = vec![a.wait("wait(0.2)", 0.2), a.brk("break(while)", "while")];
+    let b2 = a.block(two);
+    let cfg = Config {
+        budget_ops: 3,
+        ..config()
+    };
+    let mut vm = common::vm(a.task(&[b1, b2]), robot(), cfg);
+    assert!(vm.run_for(1.0), "the loop was broken");
+    assert_eq!(ended(&vm, "while(n<50)").as_deref(), Some("broken"));
+    let n = vm.var("n").map_or(0.0, |v| v.value);
+    assert!(n > 1.0 && n < 50.0, "{n}");
+    assert_eq!((vm.live(), vm.activity().ready), (0, 0));
+    assert!(vm.events().iter().any(|e| e.kind.name() == "overrun"));
+}
+
+#[test]
 fn break_ends_every_live_command_whose_text_matches() {
     let mut a = Asm::new();
     let one = vec![

@@ -661,8 +661,14 @@ impl<H: Hal, C: Clock> Vm<H, C> {
                         iteration: Some(iteration + 1),
                     },
                 );
-                let depth = self.depth_of(idx);
-                self.start_block(idx, body, depth);
+                let last = self.nodes.get(idx).first_child;
+                if self.nodes.parked(last) {
+                    let r = self.nodes.unpark(last);
+                    self.enqueue(r.idx);
+                } else {
+                    let depth = self.depth_of(idx);
+                    self.start_block(idx, body, depth);
+                }
             }
             Ok(_) => self.end_node(idx, How::Completed, false, None, true),
             Err(e) => self.end_node(idx, How::Refused, false, Some(e.to_string()), true),
@@ -779,7 +785,17 @@ impl<H: Hal, C: Clock> Vm<H, C> {
             // A block is no command: no event, no variable, no subscription, no
             // movement; only the code meant for a command's `end` is spent.
             self.end_code = None;
-            let parent = self.nodes.get(idx).parent;
+            let n = self.nodes.get(idx);
+            let parent = n.parent;
+            // A loop's body that completed (was not ended with its subtree) waits
+            // for the next iteration in place.
+            if !n.dying
+                && parent != NONE
+                && matches!(self.nodes.get(parent).kind, Kind::While { .. })
+            {
+                self.nodes.park(idx);
+                return Some(parent);
+            }
             self.nodes.unlink(idx);
             self.nodes.free(idx);
             return Some(parent);
@@ -787,6 +803,10 @@ impl<H: Hal, C: Clock> Vm<H, C> {
         let node = *self.nodes.get(idx);
         if node.kind == Kind::Free {
             return None;
+        }
+        if matches!(node.kind, Kind::While { .. }) && self.nodes.parked(node.first_child) {
+            self.nodes.unlink(node.first_child);
+            self.nodes.free(node.first_child);
         }
         let is_command = node.kind != Kind::Root;
         let code = self.end_code.take();

@@ -14,12 +14,16 @@ use super::vars::NONE;
 /// an unlink per step of every sleeping loop).
 pub(crate) const SLEEPING: u32 = NONE - 1;
 
+/// A block's `holder` when it is a loop's body that has ended, kept in place under
+/// its `while` for the next iteration ([`Nodes::park`]): not live.
+pub(crate) const PARKED: u32 = NONE - 2;
+
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct BlockState {
     pub block: u32,
     pub pc: u32,
     /// The child that holds this block (`wait(v)`, init, a skill call), [`SLEEPING`]
-    /// for its own `wait(seconds)` (the instruction before `pc`), or NONE.
+    /// for its own `wait(seconds)` (the instruction before `pc`), [`PARKED`], or NONE.
     pub holder: u32,
     /// How many times the block has slept: names the current sleep to its timer.
     pub nap: u32,
@@ -348,7 +352,47 @@ impl Nodes {
         n.epoch = n.epoch.wrapping_add(1);
         n.kind = Kind::Free;
         self.free.push(idx);
+        if !matches!(kind, Kind::Block(b) if b.holder == PARKED) {
+            self.live = self.live.saturating_sub(1);
+        }
+    }
+
+    /// A loop's body block has ended: rather than being freed and a new one allocated
+    /// and linked for the next iteration, it stays linked under its `while`, no longer
+    /// live, under a new generation (so that no old reference to it, a queue entry, a
+    /// timer or the priority block, takes it for alive), until [`Nodes::unpark`].
+    pub fn park(&mut self, idx: u32) {
+        let before = self.all[idx as usize].kind;
+        let n = &mut self.all[idx as usize];
+        let Kind::Block(b) = &mut n.kind else {
+            return;
+        };
+        b.issued = true;
+        b.holder = PARKED;
+        n.epoch = n.epoch.wrapping_add(1);
+        n.queued = false;
+        let after = n.kind;
+        self.count(&before, -1);
+        self.count(&after, 1);
         self.live = self.live.saturating_sub(1);
+    }
+
+    /// Block `idx` is a parked loop body.
+    pub fn parked(&self, idx: u32) -> bool {
+        idx != NONE && matches!(self.all[idx as usize].kind, Kind::Block(b) if b.holder == PARKED)
+    }
+
+    /// Starts a parked loop body again from its first statement.
+    pub fn unpark(&mut self, idx: u32) -> NodeRef {
+        self.update_kind(idx, |k| {
+            if let Kind::Block(b) = k {
+                b.holder = NONE;
+                b.issued = false;
+                b.pc = 0;
+            }
+        });
+        self.live += 1;
+        self.at(idx)
     }
 
     /// Block `idx` sleeps in its own `wait(seconds)`; returns the sleep's number.
