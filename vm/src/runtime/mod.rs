@@ -323,14 +323,30 @@ impl<H: Hal, C: Clock> Vm<H, C> {
     /// Bytes held by the run-time state (nodes, variables, subscriptions, queues,
     /// timers), not counting the module or the trace.
     pub fn footprint(&self) -> usize {
+        self.footprint_parts().iter().map(|(_, bytes)| bytes).sum()
+    }
+
+    /// [`Vm::footprint`] part by part: what a live block costs, and where.
+    pub fn footprint_parts(&self) -> [(&'static str, usize); 6] {
         use std::mem::size_of;
-        self.nodes.footprint()
-            + self.vars.footprint()
-            + self.active.capacity() * size_of::<Active>()
-            + self.ready.capacity() * size_of::<exec::Ready>()
-            + self.woken.capacity() * size_of::<vars::Woken>()
-            + self.timers.footprint()
-            + self.followers.capacity() * size_of::<Follower>()
+        [
+            ("nodes", self.nodes.footprint()),
+            ("variables", self.vars.footprint()),
+            (
+                "ready queue",
+                self.ready.capacity() * size_of::<exec::Ready>(),
+            ),
+            ("timers", self.timers.footprint()),
+            (
+                "active commands",
+                self.active.capacity() * size_of::<Active>()
+                    + self.followers.capacity() * size_of::<Follower>(),
+            ),
+            (
+                "wake buffer",
+                self.woken.capacity() * size_of::<vars::Woken>(),
+            ),
+        ]
     }
 
     pub fn module(&self) -> &Module {
