@@ -239,11 +239,7 @@ impl<H: Hal, C: Clock> Vm<H, C> {
         let Kind::Block(b) = self.nodes.get(r.idx).kind else {
             return None;
         };
-        self.nodes.update_kind(r.idx, |k| {
-            if let Kind::Block(s) = k {
-                s.issued = true;
-            }
-        });
+        self.nodes.set_issued(r.idx, true);
         let mut caller = None;
         if b.inline {
             let call = self.nodes.get(r.idx).parent;
@@ -309,7 +305,9 @@ impl<H: Hal, C: Clock> Vm<H, C> {
     /// Executes one statement instruction of block `blk`. Returns the block that
     /// continues the strand when the instruction called a skill.
     fn exec(&mut self, blk: u32, depth: u16, op: Op, stmt: StmtId) -> Option<NodeRef> {
-        self.push_event(Some(stmt), EventKind::Issue);
+        if self.tracing() {
+            self.push_event(Some(stmt), EventKind::Issue);
+        }
         let s = stmt.0;
         match op {
             Op::Issue {
@@ -654,13 +652,11 @@ impl<H: Hal, C: Clock> Vm<H, C> {
                 if let Kind::While { iteration, .. } = &mut self.nodes.get_mut(idx).kind {
                     *iteration += 1;
                 }
-                let stmt = stmt_of(self.nodes.get(idx).stmt);
-                self.push_event(
-                    stmt,
-                    EventKind::Start {
-                        iteration: Some(iteration + 1),
-                    },
-                );
+                if self.tracing() {
+                    let stmt = stmt_of(self.nodes.get(idx).stmt);
+                    let iteration = Some(iteration + 1);
+                    self.push_event(stmt, EventKind::Start { iteration });
+                }
                 let last = self.nodes.get(idx).first_child;
                 if self.nodes.parked(last) {
                     let r = self.nodes.unpark(last);
@@ -885,15 +881,15 @@ impl<H: Hal, C: Clock> Vm<H, C> {
         else {
             return;
         };
-        self.push_event(
-            Some(stmt),
-            EventKind::End {
+        if self.tracing() {
+            let end = EventKind::End {
                 how,
                 linked: false,
                 code,
                 reason: None,
-            },
-        );
+            };
+            self.push_event(Some(stmt), end);
+        }
         if let Some(var) = bind {
             self.write_reporting(
                 var.0,
@@ -926,14 +922,15 @@ impl<H: Hal, C: Clock> Vm<H, C> {
     /// What `parent` does when `child` has ended; when that ends `parent` as well, its
     /// own parent, to be told next.
     fn child_ended(&mut self, parent: u32, child: u32) -> Option<u32> {
-        let p = *self.nodes.get(parent);
-        match p.kind {
+        let p = self.nodes.get(parent);
+        let (kind, children) = (p.kind, p.children);
+        match kind {
             Kind::Block(b) => {
                 if b.holder == child {
                     self.set_block(parent, |s| s.holder = NONE);
                     self.enqueue(parent);
                     None
-                } else if b.issued && p.children == 0 {
+                } else if b.issued && children == 0 {
                     self.end_one(parent, How::Completed, false, None)
                 } else {
                     None
@@ -944,9 +941,7 @@ impl<H: Hal, C: Clock> Vm<H, C> {
                 self.enqueue(parent);
                 None
             }
-            Kind::Call { .. } if p.children == 0 => {
-                self.end_one(parent, How::Completed, false, None)
-            }
+            Kind::Call { .. } if children == 0 => self.end_one(parent, How::Completed, false, None),
             _ => None,
         }
     }

@@ -568,6 +568,13 @@ impl<H: Hal, C: Clock> Vm<H, C> {
         }
     }
 
+    /// Whether events are recorded: callers that must build an event test it first,
+    /// so that with the trace off the event is never made.
+    #[inline]
+    fn tracing(&self) -> bool {
+        self.cfg.trace != TraceLevel::Off
+    }
+
     /// Inlined so that, with the trace off, a statement pays one comparison for it.
     #[inline]
     fn push_event(&mut self, stmt: Option<StmtId>, kind: EventKind) {

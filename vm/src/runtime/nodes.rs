@@ -362,19 +362,33 @@ impl Nodes {
     /// live, under a new generation (so that no old reference to it, a queue entry, a
     /// timer or the priority block, takes it for alive), until [`Nodes::unpark`].
     pub fn park(&mut self, idx: u32) {
-        let before = self.all[idx as usize].kind;
         let n = &mut self.all[idx as usize];
+        // A block ends only when it has issued everything: it is a container already.
         let Kind::Block(b) = &mut n.kind else {
             return;
         };
-        b.issued = true;
+        debug_assert!(b.issued);
         b.holder = PARKED;
         n.epoch = n.epoch.wrapping_add(1);
         n.queued = false;
-        let after = n.kind;
-        self.count(&before, -1);
-        self.count(&after, 1);
         self.live = self.live.saturating_sub(1);
+    }
+
+    /// Block `idx` has issued everything (or, `false`, starts issuing again): moves
+    /// it between [`Class::Issuing`] and [`Class::Container`].
+    pub fn set_issued(&mut self, idx: u32, issued: bool) {
+        if let Kind::Block(b) = &mut self.all[idx as usize].kind
+            && b.issued != issued
+        {
+            b.issued = issued;
+            let (from, to) = if issued {
+                (Class::Issuing, Class::Container)
+            } else {
+                (Class::Container, Class::Issuing)
+            };
+            self.classes[from as usize] = self.classes[from as usize].saturating_sub(1);
+            self.classes[to as usize] += 1;
+        }
     }
 
     /// Block `idx` is a parked loop body.
@@ -384,13 +398,11 @@ impl Nodes {
 
     /// Starts a parked loop body again from its first statement.
     pub fn unpark(&mut self, idx: u32) -> NodeRef {
-        self.update_kind(idx, |k| {
-            if let Kind::Block(b) = k {
-                b.holder = NONE;
-                b.issued = false;
-                b.pc = 0;
-            }
-        });
+        if let Kind::Block(b) = &mut self.all[idx as usize].kind {
+            b.holder = NONE;
+            b.pc = 0;
+        }
+        self.set_issued(idx, false);
         self.live += 1;
         self.at(idx)
     }
