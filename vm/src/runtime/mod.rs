@@ -73,7 +73,8 @@ pub struct Vm<H: Hal, C: Clock> {
     /// detections match each.
     search_keys: Vec<(u32, u32)>,
     key_hit: Vec<bool>,
-    /// The `wait(seconds)` wake-ups; stale entries (a node ended early) are skipped.
+    /// The `wait(seconds)` wake-ups; stale alarms (a block ended, or its sleep was
+    /// broken) are skipped.
     timers: timers::Timers,
     motion: Motion,
     followers: Vec<Follower>,
