@@ -69,4 +69,10 @@ fn main() {
         "ilmr {n} {per_step:.1} {:.0}",
         vm.footprint() as f64 / n as f64
     );
+    // Where the bytes go, for docs/performance.md (BLOCKS_PARTS=1).
+    if std::env::var_os("BLOCKS_PARTS").is_some() {
+        for (part, bytes) in vm.footprint_parts() {
+            eprintln!("{part}: {:.1} bytes per block", bytes as f64 / n as f64);
+        }
+    }
 }

@@ -140,6 +140,63 @@ fn a_while_counts_and_reevaluates_after_each_iteration() {
 }
 
 #[test]
+fn a_loop_steps_in_place_and_a_suspended_one_ends_cleanly() {
+    // Each iteration reuses the loop's body block and the block sleeps in its own
+    // wait: after the first iterations the run-time state neither grows nor shrinks.
+    let counting = |a: &mut Asm| {
+        let code = vec![
+            a.assign("n=0", "n", &[X::N(0.0)]),
+            a.while_(
+                "while(n<50)",
+                &[X::V("n"), X::N(50.0), X::Op(ExprOp::Lt)],
+                None,
+                |a| {
+                    vec![
+                        a.assign("n=n+1", "n", &[X::V("n"), X::N(1.0), X::Op(ExprOp::Add)]),
+                        a.wait("wait(0.01)", 0.01),
+                    ]
+                },
+            ),
+        ];
+        a.block(code)
+    };
+    let mut a = Asm::new();
+    let b = counting(&mut a);
+    let mut vm = vm(a.task(&[b]), robot(), config());
+    vm.tick();
+    vm.tick();
+    let (live, bytes) = (vm.live(), vm.footprint());
+    assert_eq!(live, 4, "the block, the while, its body and the wait");
+    for _ in 0..40 {
+        vm.tick();
+        assert_eq!((vm.live(), vm.footprint()), (live, bytes));
+    }
+    assert!(vm.run_for(1.0));
+    assert_eq!(vm.var("n").map(|v| v.value), Some(50.0));
+    assert_eq!(vm.live(), 0);
+
+    // Under a budget of 3 ops a tick the loop is suspended between statements; a
+    // break ends it wherever it stands, and nothing of it is left (the first part
+    // ended a while whose body was parked).
+    let mut a = Asm::new();
+    let b1 = counting(&mut a);
+    a.blank();
+    let two = vec![a.wait("wait(0.2)", 0.2), a.brk("break(while)", "while")];
+    let b2 = a.block(two);
+    let cfg = Config {
+        budget_ops: 3,
+        ..config()
+    };
+    let mut vm = common::vm(a.task(&[b1, b2]), robot(), cfg);
+    assert!(vm.run_for(1.0), "the loop was broken");
+    assert_eq!(ended(&vm, "while(n<50)").as_deref(), Some("broken"));
+    let n = vm.var("n").map_or(0.0, |v| v.value);
+    assert!(n > 1.0 && n < 50.0, "{n}");
+    assert_eq!((vm.live(), vm.activity().ready), (0, 0));
+    assert!(vm.events().iter().any(|e| e.kind.name() == "overrun"));
+}
+
+#[test]
 fn break_ends_every_live_command_whose_text_matches() {
     let mut a = Asm::new();
     let one = vec![
@@ -167,6 +224,39 @@ fn break_ends_every_live_command_whose_text_matches() {
     assert_eq!((d.status, d.how), (1.0, Some(ilmr_vm::How::Broken)));
     assert!(d.dist > 0.1);
     insta::assert_snapshot!(trace(&vm));
+}
+
+#[test]
+fn breaking_a_wait_of_time_wakes_its_block_and_its_old_timer_stays_silent() {
+    // A block sleeps in its own `wait(seconds)` (no node of its own): `break` must
+    // still find it by its text, end it with its variable, and resume the block; the
+    // broken wait's timer (due at 0.5 s) must not cut the next wait (due at 0.7 s).
+    let mut a = Asm::new();
+    let bound = a.wait_bound("w=wait(0.5)", 0.5, "w");
+    let one = vec![
+        bound,
+        a.assign("x=1", "x", &[X::N(1.0)]),
+        a.wait("wait(0.6)", 0.6),
+        a.assign("y=1", "y", &[X::N(1.0)]),
+    ];
+    let b1 = a.block(one);
+    a.blank();
+    let two = vec![a.wait("wait(0.1)", 0.1), a.brk("break(w=wait)", "w=wait")];
+    let b2 = a.block(two);
+    let mut vm = vm(a.task(&[b1, b2]), robot(), config());
+    vm.tick();
+    assert_eq!(vm.activity().sleeping, 2, "both blocks sleep");
+    assert_eq!(vm.live_statements().len(), 2, "both waits are live");
+    assert!(vm.run_for(2.0), "task ends");
+    assert_eq!(ended(&vm, "w=wait(0.5)").as_deref(), Some("broken"));
+    let w = vm.var("w").expect("bound");
+    assert_eq!((w.status, w.how), (1.0, Some(ilmr_vm::How::Broken)));
+    let at = |text| when(&vm, "var", text).map(|t| (t * 100.0).round() as u32);
+    assert_eq!(at("x=1"), Some(10), "resumed by the break at 0.1 s");
+    assert_eq!(at("y=1"), Some(70), "the old timer (0.5 s) woke nothing");
+    assert_eq!(ended(&vm, "wait(0.6)").as_deref(), Some("completed"));
+    assert_eq!(vm.activity().sleeping, 0);
+    assert_eq!(vm.live(), 0);
 }
 
 #[test]

@@ -212,6 +212,17 @@ impl Module {
             .unwrap_or(&[])
     }
 
+    /// Instruction `pc` of a block, without slicing the block: the VM's fetch.
+    #[inline]
+    pub fn instr_at(&self, id: BlockId, pc: u32) -> Option<&Instr> {
+        let b = self.blocks.get(id.index())?;
+        if pc < b.len {
+            self.code.get(b.start as usize + pc as usize)
+        } else {
+            None
+        }
+    }
+
     pub fn expr_ops(&self, id: ExprId) -> &[ExprOp] {
         self.exprs
             .get(id.index())

@@ -5,13 +5,13 @@ use ilmr_hal::Hal;
 use ilmr_stdlib::Field;
 
 use super::clock::Clock;
-use super::nodes::{BlockState, Kind, NodeRef};
+use super::nodes::{BlockState, Kind, NodeRef, SLEEPING};
 use super::trace::EventKind;
 use super::vars::{FieldMask, How, NONE, Waiter, Woken};
 use super::watch::{Cmp, Shape};
 use super::{Vm, stmt_of};
 use crate::bytecode::limits::EXPR_STACK;
-use crate::bytecode::{ExprId, ExprOp, Op, StmtId};
+use crate::bytecode::{BlockId, ExprId, ExprOp, Instr, Op, StmtId};
 
 /// What running a block's instructions came to.
 enum Flow {
@@ -53,6 +53,7 @@ impl<H: Hal, C: Clock> Vm<H, C> {
                 block,
                 pc: 0,
                 holder: NONE,
+                nap: 0,
                 issued: false,
                 depth,
                 inline,
@@ -238,11 +239,7 @@ impl<H: Hal, C: Clock> Vm<H, C> {
         let Kind::Block(b) = self.nodes.get(r.idx).kind else {
             return None;
         };
-        self.nodes.update_kind(r.idx, |k| {
-            if let Kind::Block(s) = k {
-                s.issued = true;
-            }
-        });
+        self.nodes.set_issued(r.idx, true);
         let mut caller = None;
         if b.inline {
             let call = self.nodes.get(r.idx).parent;
@@ -278,10 +275,7 @@ impl<H: Hal, C: Clock> Vm<H, C> {
             if b.holder != NONE {
                 return Flow::Held;
             }
-            let instr = {
-                let code = self.module.block_code(crate::bytecode::BlockId(b.block));
-                code.get(b.pc as usize).copied()
-            };
+            let instr = self.module.instr_at(BlockId(b.block), b.pc).copied();
             let Some(instr) = instr else {
                 return Flow::Done;
             };
@@ -311,7 +305,9 @@ impl<H: Hal, C: Clock> Vm<H, C> {
     /// Executes one statement instruction of block `blk`. Returns the block that
     /// continues the strand when the instruction called a skill.
     fn exec(&mut self, blk: u32, depth: u16, op: Op, stmt: StmtId) -> Option<NodeRef> {
-        self.push_event(Some(stmt), EventKind::Issue);
+        if self.tracing() {
+            self.push_event(Some(stmt), EventKind::Issue);
+        }
         let s = stmt.0;
         match op {
             Op::Issue {
@@ -361,13 +357,15 @@ impl<H: Hal, C: Clock> Vm<H, C> {
                 let secs = self.eval(seconds).unwrap_or(0.0);
                 let bind = bind.map_or(NONE, |v| v.0);
                 self.bind_issue(bind, s);
-                let child = self.nodes.alloc(blk, s, bind, Kind::WaitTime);
                 let ticks = (secs.max(0.0) / self.cfg.period).round() as u64;
+                let nap = self.nodes.sleep(blk);
+                let node = self.nodes.at(blk);
                 // `wait(1e26)` checks (a non-negative time) and its tick count saturates;
                 // it must wait for ever, not overflow the tick or wrap round to now.
-                self.timers
-                    .set(self.tick.saturating_add(ticks.max(1)), child);
-                self.hold(blk, child);
+                self.timers.set(
+                    self.tick.saturating_add(ticks.max(1)),
+                    super::timers::Alarm { node, nap },
+                );
             }
             Op::WaitVar { var, bind } => {
                 let bind = bind.map_or(NONE, |v| v.0);
@@ -481,41 +479,29 @@ impl<H: Hal, C: Clock> Vm<H, C> {
         }
     }
 
-    /// Evaluates an expression on the fixed stack.
+    /// Evaluates an expression: a decoded shape at once, any other on the stack.
+    #[inline]
     pub(super) fn eval(&mut self, id: ExprId) -> Result<f64, &'static str> {
-        let ops = self.module.expr_ops(id);
-        self.ops_left = self.ops_left.saturating_sub(ops.len() as u32);
-        // The shapes most statements have (`c<100`, `c+1`, `0.01`), without the stack;
-        // the same arithmetic and comparisons as the general loop below.
-        let operand = |op: &ExprOp| match *op {
-            ExprOp::Const(c) => Some(self.module.consts.get(c.index()).copied().unwrap_or(0.0)),
-            ExprOp::Field(v, f) => Some(self.vars.field(v.0, f)),
-            _ => None,
-        };
-        match ops {
-            [x] => {
-                if let Some(v) = operand(x) {
-                    return Ok(v);
+        match self.decoded.all.get(id.index()) {
+            Some(d) => {
+                self.ops_left = self.ops_left.saturating_sub(d.len);
+                match d.value(&self.vars) {
+                    Some(v) => Ok(v),
+                    None => self.eval_stack(id),
                 }
             }
-            [x, y, op] => {
-                if let (Some(a), Some(b)) = (operand(x), operand(y)) {
-                    match *op {
-                        ExprOp::Add => return Ok(a + b),
-                        ExprOp::Sub => return Ok(a - b),
-                        ExprOp::Mul => return Ok(a * b),
-                        ExprOp::Div | ExprOp::Neg | ExprOp::PosEq(..) => {}
-                        ExprOp::Const(_) | ExprOp::Field(..) => {}
-                        cmp => {
-                            if let Some(c) = Cmp::of(cmp) {
-                                return Ok(f64::from(u8::from(c.holds(a, b))));
-                            }
-                        }
-                    }
-                }
+            None => {
+                let len = self.module.expr_ops(id).len() as u32;
+                self.ops_left = self.ops_left.saturating_sub(len);
+                self.eval_stack(id)
             }
-            _ => {}
         }
+    }
+
+    /// Evaluates an expression on the fixed stack (the budget is charged already).
+    #[inline(never)]
+    fn eval_stack(&mut self, id: ExprId) -> Result<f64, &'static str> {
+        let ops = self.module.expr_ops(id);
         let mut sp = 0usize;
         let tol = self.cfg.position_tolerance;
         for op in ops {
@@ -666,15 +652,19 @@ impl<H: Hal, C: Clock> Vm<H, C> {
                 if let Kind::While { iteration, .. } = &mut self.nodes.get_mut(idx).kind {
                     *iteration += 1;
                 }
-                let stmt = stmt_of(self.nodes.get(idx).stmt);
-                self.push_event(
-                    stmt,
-                    EventKind::Start {
-                        iteration: Some(iteration + 1),
-                    },
-                );
-                let depth = self.depth_of(idx);
-                self.start_block(idx, body, depth);
+                if self.tracing() {
+                    let stmt = stmt_of(self.nodes.get(idx).stmt);
+                    let iteration = Some(iteration + 1);
+                    self.push_event(stmt, EventKind::Start { iteration });
+                }
+                let last = self.nodes.get(idx).first_child;
+                if self.nodes.parked(last) {
+                    let r = self.nodes.unpark(last);
+                    self.enqueue(r.idx);
+                } else {
+                    let depth = self.depth_of(idx);
+                    self.start_block(idx, body, depth);
+                }
             }
             Ok(_) => self.end_node(idx, How::Completed, false, None, true),
             Err(e) => self.end_node(idx, How::Refused, false, Some(e.to_string()), true),
@@ -783,11 +773,38 @@ impl<H: Hal, C: Clock> Vm<H, C> {
     /// [`Vm::end_node`] without telling the parent, which it returns (`None` when the
     /// node had ended already).
     fn end_one(&mut self, idx: u32, how: How, linked: bool, reason: Option<String>) -> Option<u32> {
+        if let Kind::Block(b) = self.nodes.get(idx).kind {
+            if b.holder == SLEEPING {
+                // Its wait would have been its last child, ended just before it.
+                self.end_sleep(idx, how);
+            }
+            // A block is no command: no event, no variable, no subscription, no
+            // movement; only the code meant for a command's `end` is spent.
+            self.end_code = None;
+            let n = self.nodes.get(idx);
+            let parent = n.parent;
+            // A loop's body that completed (was not ended with its subtree) waits
+            // for the next iteration in place.
+            if !n.dying
+                && parent != NONE
+                && matches!(self.nodes.get(parent).kind, Kind::While { .. })
+            {
+                self.nodes.park(idx);
+                return Some(parent);
+            }
+            self.nodes.unlink(idx);
+            self.nodes.free(idx);
+            return Some(parent);
+        }
         let node = *self.nodes.get(idx);
         if node.kind == Kind::Free {
             return None;
         }
-        let is_command = !matches!(node.kind, Kind::Block(_) | Kind::Root);
+        if matches!(node.kind, Kind::While { .. }) && self.nodes.parked(node.first_child) {
+            self.nodes.unlink(node.first_child);
+            self.nodes.free(node.first_child);
+        }
+        let is_command = node.kind != Kind::Root;
         let code = self.end_code.take();
         if is_command {
             self.push_event(
@@ -844,6 +861,53 @@ impl<H: Hal, C: Clock> Vm<H, C> {
         Some(parent)
     }
 
+    /// Ends the `wait(seconds)` block `idx` sleeps in, as [`Vm::end_one`] ends a
+    /// command: its `end` event and its variable. The block is held no longer; the
+    /// caller queues it or ends it.
+    pub(super) fn end_sleep(&mut self, idx: u32, how: How) {
+        let Kind::Block(b) = self.nodes.get(idx).kind else {
+            return;
+        };
+        self.nodes.wake(idx);
+        let code = self.end_code.take();
+        let instr =
+            b.pc.checked_sub(1)
+                .and_then(|pc| self.module.instr_at(BlockId(b.block), pc))
+                .copied();
+        let Some(Instr {
+            op: Op::WaitTime { bind, .. },
+            stmt,
+        }) = instr
+        else {
+            return;
+        };
+        if self.tracing() {
+            let end = EventKind::End {
+                how,
+                linked: false,
+                code,
+                reason: None,
+            };
+            self.push_event(Some(stmt), end);
+        }
+        if let Some(var) = bind {
+            self.write_reporting(
+                var.0,
+                &[(Field::Status, 1.0)],
+                Some(Some(how)),
+                stmt.0,
+                false,
+                FieldMask::default(),
+            );
+        }
+    }
+
+    /// The `wait(seconds)` a sleeping block sleeps in (the instruction before its pc).
+    pub(super) fn sleep_stmt(&self, b: &BlockState) -> Option<StmtId> {
+        let pc = b.pc.checked_sub(1)?;
+        self.module.instr_at(BlockId(b.block), pc).map(|i| i.stmt)
+    }
+
     /// Ends a node as refused with a stable code (issue 7's refusals and faults).
     pub(super) fn end_coded(&mut self, idx: u32, code: super::safety::Code, message: String) {
         self.end_code = Some(code);
@@ -858,14 +922,15 @@ impl<H: Hal, C: Clock> Vm<H, C> {
     /// What `parent` does when `child` has ended; when that ends `parent` as well, its
     /// own parent, to be told next.
     fn child_ended(&mut self, parent: u32, child: u32) -> Option<u32> {
-        let p = *self.nodes.get(parent);
-        match p.kind {
+        let p = self.nodes.get(parent);
+        let (kind, children) = (p.kind, p.children);
+        match kind {
             Kind::Block(b) => {
                 if b.holder == child {
                     self.set_block(parent, |s| s.holder = NONE);
                     self.enqueue(parent);
                     None
-                } else if b.issued && p.children == 0 {
+                } else if b.issued && children == 0 {
                     self.end_one(parent, How::Completed, false, None)
                 } else {
                     None
@@ -876,9 +941,7 @@ impl<H: Hal, C: Clock> Vm<H, C> {
                 self.enqueue(parent);
                 None
             }
-            Kind::Call { .. } if p.children == 0 => {
-                self.end_one(parent, How::Completed, false, None)
-            }
+            Kind::Call { .. } if children == 0 => self.end_one(parent, How::Completed, false, None),
             _ => None,
         }
     }
@@ -942,25 +1005,39 @@ impl<H: Hal, C: Clock> Vm<H, C> {
         if pat.is_empty() {
             return;
         }
+        let matches = |stmt: Option<StmtId>| {
+            stmt.and_then(|s| self.lower.get(s.index()))
+                .is_some_and(|t| t.contains(&pat))
+        };
+        // A hit is a node, or the `wait(seconds)` a block sleeps in (its nap).
         let mut hits = Vec::new();
         for (i, n) in self.nodes.all.iter().enumerate() {
-            if n.kind == Kind::Free || n.stmt == NONE {
-                continue;
-            }
-            if self
-                .lower
-                .get(n.stmt as usize)
-                .is_some_and(|t| t.contains(&pat))
-            {
-                hits.push(NodeRef {
-                    idx: i as u32,
-                    epoch: n.epoch,
-                });
+            let r = NodeRef {
+                idx: i as u32,
+                epoch: n.epoch,
+            };
+            match n.kind {
+                Kind::Free => {}
+                Kind::Block(b) if b.holder == SLEEPING => {
+                    if matches(self.sleep_stmt(&b)) {
+                        hits.push((r, Some(b.nap)));
+                    }
+                }
+                _ => {
+                    if matches(stmt_of(n.stmt)) {
+                        hits.push((r, None));
+                    }
+                }
             }
         }
-        for h in hits {
-            if self.nodes.alive(h) {
-                self.end_subtree(h.idx, How::Broken);
+        for (h, nap) in hits {
+            match nap {
+                None if self.nodes.alive(h) => self.end_subtree(h.idx, How::Broken),
+                Some(nap) if self.nodes.asleep(h, nap) => {
+                    self.end_sleep(h.idx, How::Broken);
+                    self.enqueue(h.idx);
+                }
+                _ => {}
             }
         }
     }

@@ -5,6 +5,7 @@ pub mod activity;
 pub mod clock;
 mod commands;
 pub mod config;
+mod decode;
 mod exec;
 mod motion;
 mod nodes;
@@ -72,7 +73,8 @@ pub struct Vm<H: Hal, C: Clock> {
     /// detections match each.
     search_keys: Vec<(u32, u32)>,
     key_hit: Vec<bool>,
-    /// The `wait(seconds)` wake-ups; stale entries (a node ended early) are skipped.
+    /// The `wait(seconds)` wake-ups; stale alarms (a block ended, or its sleep was
+    /// broken) are skipped.
     timers: timers::Timers,
     motion: Motion,
     followers: Vec<Follower>,
@@ -89,6 +91,8 @@ pub struct Vm<H: Hal, C: Clock> {
     lower: Vec<String>,
     scratch: Vec<u32>,
     stack: [f64; EXPR_STACK],
+    /// Every expression of the module, decoded for [`Vm::eval`].
+    decoded: decode::Decoder,
     supervisor: safety::supervisor::Supervisor,
     /// The robot's static map, asked for once at the start.
     known_map: Option<KnownMap>,
@@ -179,6 +183,7 @@ impl<H: Hal, C: Clock> Vm<H, C> {
             lower,
             scratch: Vec::new(),
             stack: [0.0; EXPR_STACK],
+            decoded: decode::Decoder::default(),
             supervisor: Default::default(),
             known_map,
             map_from_estimate: ilmr_hal::Pose::default(),
@@ -187,6 +192,7 @@ impl<H: Hal, C: Clock> Vm<H, C> {
             mode_ops: Vec::new(),
             end_code: None,
         };
+        vm.decoded.grow(&vm.module);
         let main = vm.module.main.index();
         let blocks = vm.module.units[main].blocks.clone();
         for b in blocks {
@@ -273,8 +279,12 @@ impl<H: Hal, C: Clock> Vm<H, C> {
             .nodes
             .all
             .iter()
-            .filter(|n| !matches!(n.kind, Kind::Free | Kind::Root | Kind::Block(_)))
-            .filter_map(|n| stmt_of(n.stmt))
+            .filter_map(|n| match n.kind {
+                Kind::Free | Kind::Root => None,
+                Kind::Block(b) if b.holder == nodes::SLEEPING => self.sleep_stmt(&b),
+                Kind::Block(_) => None,
+                _ => stmt_of(n.stmt),
+            })
             .collect();
         live.sort_unstable_by_key(|s| s.0);
         live
@@ -308,20 +318,36 @@ impl<H: Hal, C: Clock> Vm<H, C> {
 
     /// Live nodes: commands, guards, loops, calls and blocks.
     pub fn live(&self) -> usize {
-        self.nodes.live.saturating_sub(1)
+        (self.nodes.live + self.nodes.sleepers).saturating_sub(1)
     }
 
     /// Bytes held by the run-time state (nodes, variables, subscriptions, queues,
     /// timers), not counting the module or the trace.
     pub fn footprint(&self) -> usize {
+        self.footprint_parts().iter().map(|(_, bytes)| bytes).sum()
+    }
+
+    /// [`Vm::footprint`] part by part: what a live block costs, and where.
+    pub fn footprint_parts(&self) -> [(&'static str, usize); 6] {
         use std::mem::size_of;
-        self.nodes.footprint()
-            + self.vars.footprint()
-            + self.active.capacity() * size_of::<Active>()
-            + self.ready.capacity() * size_of::<exec::Ready>()
-            + self.woken.capacity() * size_of::<vars::Woken>()
-            + self.timers.footprint()
-            + self.followers.capacity() * size_of::<Follower>()
+        [
+            ("nodes", self.nodes.footprint()),
+            ("variables", self.vars.footprint()),
+            (
+                "ready queue",
+                self.ready.capacity() * size_of::<exec::Ready>(),
+            ),
+            ("timers", self.timers.footprint()),
+            (
+                "active commands",
+                self.active.capacity() * size_of::<Active>()
+                    + self.followers.capacity() * size_of::<Follower>(),
+            ),
+            (
+                "wake buffer",
+                self.woken.capacity() * size_of::<vars::Woken>(),
+            ),
+        ]
     }
 
     pub fn module(&self) -> &Module {
@@ -438,6 +464,7 @@ impl<H: Hal, C: Clock> Vm<H, C> {
     /// the new top-level blocks.
     fn joined(&mut self, start: impl Iterator<Item = u32>) {
         self.vars.grow(self.module.globals.len());
+        self.decoded.grow(&self.module);
         self.lower.extend(
             self.module.stmts[self.lower.len()..]
                 .iter()
@@ -471,9 +498,10 @@ impl<H: Hal, C: Clock> Vm<H, C> {
 
     fn fire_timers(&mut self) {
         let due = self.timers.due(self.tick);
-        for &r in &due {
-            if self.nodes.alive(r) {
-                self.end_node(r.idx, vars::How::Completed, false, None, true);
+        for a in &due {
+            if self.nodes.asleep(a.node, a.nap) {
+                self.end_sleep(a.node.idx, vars::How::Completed);
+                self.enqueue(a.node.idx);
             }
         }
         self.timers.done(due);
@@ -539,6 +567,13 @@ impl<H: Hal, C: Clock> Vm<H, C> {
             curvature: self.snap.curvature,
             truth,
         }
+    }
+
+    /// Whether events are recorded: callers that must build an event test it first,
+    /// so that with the trace off the event is never made.
+    #[inline]
+    fn tracing(&self) -> bool {
+        self.cfg.trace != TraceLevel::Off
     }
 
     /// Inlined so that, with the trace off, a statement pays one comparison for it.

@@ -8,12 +8,25 @@ use ilmr_stdlib::{Command, Field};
 
 use super::vars::NONE;
 
+/// A block's `holder` while its own `wait(seconds)` holds it. A wait of time is not a
+/// node of its own: it has nothing to step and no children, so the block sleeps in
+/// place and the timer names the block (a node per wait was an allocation, a link and
+/// an unlink per step of every sleeping loop).
+pub(crate) const SLEEPING: u32 = NONE - 1;
+
+/// A block's `holder` when it is a loop's body that has ended, kept in place under
+/// its `while` for the next iteration ([`Nodes::park`]): not live.
+pub(crate) const PARKED: u32 = NONE - 2;
+
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct BlockState {
     pub block: u32,
     pub pc: u32,
-    /// The child that holds this block (wait, init), or NONE.
+    /// The child that holds this block (`wait(v)`, init, a skill call), [`SLEEPING`]
+    /// for its own `wait(seconds)` (the instruction before `pc`), [`PARKED`], or NONE.
     pub holder: u32,
+    /// How many times the block has slept: names the current sleep to its timer.
+    pub nap: u32,
     /// Every instruction has been issued; the block ends when its children have.
     pub issued: bool,
     /// Skill call depth.
@@ -125,7 +138,6 @@ pub(crate) enum Kind {
         unit: u32,
         depth: u16,
     },
-    WaitTime,
     WaitVar {
         var: u32,
     },
@@ -204,7 +216,7 @@ pub(crate) enum Class {
     Issuing,
     /// An `if` that has not fired.
     Guard,
-    /// `wait(seconds)`, `wait(v)`.
+    /// `wait(v)`, and blocks asleep in `wait(seconds)`.
     Sleep,
     Movement,
     /// Readings, searches, asynchronous operations, `speed(v,w)`.
@@ -227,7 +239,7 @@ impl Class {
             | Kind::If { .. }
             | Kind::While { .. }
             | Kind::Call { .. } => Class::Container,
-            Kind::WaitTime | Kind::WaitVar { .. } => Class::Sleep,
+            Kind::WaitVar { .. } => Class::Sleep,
             Kind::Movement { .. } => Class::Movement,
             Kind::Sensor { forever: true, .. } => Class::Endless,
             Kind::Sensor { .. } | Kind::Async { .. } | Kind::SpeedAfter { .. } => Class::Active,
@@ -240,8 +252,11 @@ pub(crate) struct Nodes {
     pub all: Vec<Node>,
     free: Vec<u32>,
     pub live: usize,
-    /// Live nodes per [`Class`].
+    /// Live nodes per [`Class`], and sleeping blocks under [`Class::Sleep`].
     pub classes: [usize; Class::COUNT],
+    /// Blocks asleep in a `wait(seconds)`: each stands for the wait node it replaces
+    /// in [`Nodes::live`]'s count of commands.
+    pub sleepers: usize,
 }
 
 impl Nodes {
@@ -337,7 +352,91 @@ impl Nodes {
         n.epoch = n.epoch.wrapping_add(1);
         n.kind = Kind::Free;
         self.free.push(idx);
+        if !matches!(kind, Kind::Block(b) if b.holder == PARKED) {
+            self.live = self.live.saturating_sub(1);
+        }
+    }
+
+    /// A loop's body block has ended: rather than being freed and a new one allocated
+    /// and linked for the next iteration, it stays linked under its `while`, no longer
+    /// live, under a new generation (so that no old reference to it, a queue entry, a
+    /// timer or the priority block, takes it for alive), until [`Nodes::unpark`].
+    pub fn park(&mut self, idx: u32) {
+        let n = &mut self.all[idx as usize];
+        // A block ends only when it has issued everything: it is a container already.
+        let Kind::Block(b) = &mut n.kind else {
+            return;
+        };
+        debug_assert!(b.issued);
+        b.holder = PARKED;
+        n.epoch = n.epoch.wrapping_add(1);
+        n.queued = false;
         self.live = self.live.saturating_sub(1);
+    }
+
+    /// Block `idx` has issued everything (or, `false`, starts issuing again): moves
+    /// it between [`Class::Issuing`] and [`Class::Container`].
+    pub fn set_issued(&mut self, idx: u32, issued: bool) {
+        if let Kind::Block(b) = &mut self.all[idx as usize].kind
+            && b.issued != issued
+        {
+            b.issued = issued;
+            let (from, to) = if issued {
+                (Class::Issuing, Class::Container)
+            } else {
+                (Class::Container, Class::Issuing)
+            };
+            self.classes[from as usize] = self.classes[from as usize].saturating_sub(1);
+            self.classes[to as usize] += 1;
+        }
+    }
+
+    /// Block `idx` is a parked loop body.
+    pub fn parked(&self, idx: u32) -> bool {
+        idx != NONE && matches!(self.all[idx as usize].kind, Kind::Block(b) if b.holder == PARKED)
+    }
+
+    /// Starts a parked loop body again from its first statement.
+    pub fn unpark(&mut self, idx: u32) -> NodeRef {
+        if let Kind::Block(b) = &mut self.all[idx as usize].kind {
+            b.holder = NONE;
+            b.pc = 0;
+        }
+        self.set_issued(idx, false);
+        self.live += 1;
+        self.at(idx)
+    }
+
+    /// Block `idx` sleeps in its own `wait(seconds)`; returns the sleep's number.
+    pub fn sleep(&mut self, idx: u32) -> u32 {
+        let mut nap = 0;
+        if let Kind::Block(b) = &mut self.all[idx as usize].kind {
+            b.holder = SLEEPING;
+            b.nap = b.nap.wrapping_add(1);
+            nap = b.nap;
+        }
+        self.classes[Class::Sleep as usize] += 1;
+        self.sleepers += 1;
+        nap
+    }
+
+    /// Block `idx` wakes from its `wait(seconds)` (the wait ended); it is held no
+    /// longer.
+    pub fn wake(&mut self, idx: u32) {
+        if let Kind::Block(b) = &mut self.all[idx as usize].kind
+            && b.holder == SLEEPING
+        {
+            b.holder = NONE;
+            let n = &mut self.classes[Class::Sleep as usize];
+            *n = n.saturating_sub(1);
+            self.sleepers = self.sleepers.saturating_sub(1);
+        }
+    }
+
+    /// The block is asleep in the sleep numbered `nap`.
+    pub fn asleep(&self, r: NodeRef, nap: u32) -> bool {
+        self.alive(r)
+            && matches!(self.all[r.idx as usize].kind, Kind::Block(b) if b.holder == SLEEPING && b.nap == nap)
     }
 
     pub fn footprint(&self) -> usize {
@@ -385,7 +484,7 @@ mod tests {
         let mut n = Nodes::default();
         let root = n.alloc(NONE, NONE, NONE, Kind::Root).idx;
         let kids: Vec<u32> = (0..4)
-            .map(|_| n.alloc(root, NONE, NONE, Kind::WaitTime).idx)
+            .map(|_| n.alloc(root, NONE, NONE, Kind::WaitVar { var: 0 }).idx)
             .collect();
         n.unlink(kids[1]);
         n.unlink(kids[3]);
@@ -397,7 +496,7 @@ mod tests {
         }
         assert_eq!(order, vec![kids[0], kids[2]]);
         assert_eq!(n.get(root).children, 2);
-        let k = n.alloc(root, NONE, NONE, Kind::WaitTime).idx;
+        let k = n.alloc(root, NONE, NONE, Kind::WaitVar { var: 0 }).idx;
         n.unlink(kids[0]);
         let first = n.get(root).first_child;
         assert_eq!(first, kids[2]);

@@ -14,18 +14,27 @@ use std::collections::BinaryHeap;
 
 use super::nodes::NodeRef;
 
+/// A `wait(seconds)` wake-up: the block that sleeps and which of its sleeps this is.
+/// A sleep ended early (`break`) leaves its entry behind; the count tells it from a
+/// later sleep of the same block.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
+pub(crate) struct Alarm {
+    pub node: NodeRef,
+    pub nap: u32,
+}
+
 /// Ticks the wheel holds: ten seconds at 100 Hz.
 pub const SLOTS: u64 = 1024;
 
 #[derive(Debug)]
 pub(crate) struct Timers {
     /// Slot `due % SLOTS` holds the timers due at `due`, for `due` below `horizon`.
-    wheel: Vec<Vec<NodeRef>>,
+    wheel: Vec<Vec<Alarm>>,
     /// Timers due at or past `horizon`, by (due, sequence).
-    far: BinaryHeap<Reverse<(u64, u64, NodeRef)>>,
+    far: BinaryHeap<Reverse<(u64, u64, Alarm)>>,
     /// Emptied slot buffers, for the next slot that fills: the room of a tick's timers
     /// moves on with them rather than staying behind in a slot a thousand ticks away.
-    spare: Vec<Vec<NodeRef>>,
+    spare: Vec<Vec<Alarm>>,
     seq: u64,
     horizon: u64,
 }
@@ -44,7 +53,7 @@ impl Default for Timers {
 
 impl Timers {
     /// Sets a timer for tick `due`, which must be later than the current tick.
-    pub(crate) fn set(&mut self, due: u64, node: NodeRef) {
+    pub(crate) fn set(&mut self, due: u64, node: Alarm) {
         if due < self.horizon {
             self.slot(due).push(node);
         } else {
@@ -55,7 +64,7 @@ impl Timers {
 
     /// The timers due at `tick`, in the order they were set, for `fire` to walk and
     /// hand back with [`Timers::done`]. Called once a tick, for every tick in turn.
-    pub(crate) fn due(&mut self, tick: u64) -> Vec<NodeRef> {
+    pub(crate) fn due(&mut self, tick: u64) -> Vec<Alarm> {
         let horizon = tick.saturating_add(SLOTS);
         while let Some(&Reverse((due, _, node))) = self.far.peek() {
             if due >= horizon {
@@ -69,14 +78,14 @@ impl Timers {
     }
 
     /// Gives back the buffer [`Timers::due`] lent, emptied, so that its room is reused.
-    pub(crate) fn done(&mut self, mut fired: Vec<NodeRef>) {
+    pub(crate) fn done(&mut self, mut fired: Vec<Alarm>) {
         if fired.capacity() > 0 {
             fired.clear();
             self.spare.push(fired);
         }
     }
 
-    fn slot(&mut self, due: u64) -> &mut Vec<NodeRef> {
+    fn slot(&mut self, due: u64) -> &mut Vec<Alarm> {
         let slot = &mut self.wheel[(due % SLOTS) as usize];
         if slot.capacity() == 0
             && let Some(spare) = self.spare.pop()
@@ -89,18 +98,18 @@ impl Timers {
     /// Bytes held.
     pub(crate) fn footprint(&self) -> usize {
         use std::mem::size_of;
-        self.wheel.capacity() * size_of::<Vec<NodeRef>>()
+        self.wheel.capacity() * size_of::<Vec<Alarm>>()
             + self
                 .wheel
                 .iter()
-                .map(|s| s.capacity() * size_of::<NodeRef>())
+                .map(|s| s.capacity() * size_of::<Alarm>())
                 .sum::<usize>()
             + self
                 .spare
                 .iter()
-                .map(|s| s.capacity() * size_of::<NodeRef>())
+                .map(|s| s.capacity() * size_of::<Alarm>())
                 .sum::<usize>()
-            + self.far.capacity() * size_of::<Reverse<(u64, u64, NodeRef)>>()
+            + self.far.capacity() * size_of::<Reverse<(u64, u64, Alarm)>>()
     }
 }
 
@@ -108,8 +117,11 @@ impl Timers {
 mod tests {
     use super::*;
 
-    fn node(idx: u32) -> NodeRef {
-        NodeRef { idx, epoch: 0 }
+    fn node(idx: u32) -> Alarm {
+        Alarm {
+            node: NodeRef { idx, epoch: 0 },
+            nap: 0,
+        }
     }
 
     /// Fires every tick up to `last`, as the VM calls it.
@@ -117,7 +129,7 @@ mod tests {
         let mut out = Vec::new();
         for tick in from..=last {
             let fired = t.due(tick);
-            out.extend(fired.iter().map(|n| (tick, n.idx)));
+            out.extend(fired.iter().map(|n| (tick, n.node.idx)));
             t.done(fired);
         }
         out
@@ -160,7 +172,7 @@ mod tests {
         let mut want = Vec::new();
         for tick in 0..3000u64 {
             let fired = t.due(tick);
-            got.extend(fired.iter().map(|n| n.idx));
+            got.extend(fired.iter().map(|n| n.node.idx));
             t.done(fired);
             while let Some(&Reverse((due, _, idx))) = reference.peek() {
                 if due > tick {

@@ -169,6 +169,14 @@ impl Asm {
         )
     }
 
+    /// `var=wait(seconds)`.
+    pub fn wait_bound(&mut self, text: &str, seconds: f64, var: &str) -> Instr {
+        let stmt = self.stmt(text);
+        let seconds = self.b.num(seconds).expect("num");
+        let bind = Some(self.vid(var));
+        Instr::new(Op::WaitTime { seconds, bind }, stmt)
+    }
+
     pub fn wait_var(&mut self, text: &str, var: &str) -> Instr {
         let stmt = self.stmt(text);
         let var = self.vid(var);
