@@ -41,7 +41,7 @@ pub const BACKLOG: usize = 1024;
 /// Paths and trajectory pieces a late viewer is sent again, newest first.
 pub const KEPT_SCENES: usize = 600;
 
-/// What the publisher is sent: messages, or word that the run has ended.
+/// What the publisher is sent: a message, or how many the tick has dropped so far.
 enum Post {
     Message(Box<Outgoing>),
     Dropped(u64),
