@@ -11,6 +11,7 @@ mod fold;
 mod keywords;
 mod loops;
 mod names;
+mod owners;
 mod paths;
 mod scope;
 mod skills;
@@ -314,6 +315,7 @@ pub fn analyze_given<'s>(
     loops::check_frozen_loops(&files, &skills, &mut diagnostics);
     wakes::check_waits(&files, &mut diagnostics);
     paths::check_paths(&files, &given.paths, &mut diagnostics);
+    owners::check_owners(&files, &skills, model, &mut diagnostics);
     unused_variables(&files, &units, &mut diagnostics);
 
     diagnostics.sort_by_key(|d| (d.file, d.span.start, d.code));
