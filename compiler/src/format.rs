@@ -51,7 +51,11 @@ pub fn format(source: &str, model: &RobotModel) -> Result<String, Vec<Diagnostic
         lines: HashMap::new(),
     };
     for skill in &file.skills {
-        f.put(skill.header, 0, format!("{}:", f.spelling(&skill.name)));
+        let head = f.call(&Call {
+            name: skill.name,
+            args: skill.params.clone(),
+        });
+        f.put(skill.header, 0, format!("{head}:"));
     }
     f.blocks(&file.blocks, 0);
     for skill in &file.skills {

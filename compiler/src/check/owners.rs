@@ -26,11 +26,13 @@ use std::rc::Rc;
 
 use ilmr_model::RobotModel;
 use ilmr_stdlib::{Command, Sets};
-use rustc_hash::FxHashMap;
+use std::hash::{Hash, Hasher};
+
+use rustc_hash::{FxHashMap, FxHasher};
 
 use crate::ast::{Arg, Args, Block, Call, Expr, ExprKind, Stmt, StmtKind};
-use crate::check::FileEntry;
 use crate::check::skills::{SkillId, Skills};
+use crate::check::{FileEntry, Target, Unit};
 use crate::diagnostic::{Code, Diagnostic, FileId};
 use crate::span::Span;
 
@@ -47,19 +49,19 @@ enum Step {
     /// A task file's top-level blocks, or a skill's blocks, starting.
     Unit(u32, u32),
     /// A `wait(v)`: every block waiting on `v` wakes in one tick.
-    Woken(u32),
+    Woken(u64),
     /// A `wait(seconds)` of a number written out.
     Delay(u64),
-    /// A moment of its own: after an `init` or a holding skill call, a guard's or a
-    /// loop's body (the file and the statement's start).
-    Own(u32, u32),
+    /// A moment of its own, met by nothing else: after an `init` or a holding skill
+    /// call, a guard's or a loop's body.
+    Own,
 }
 
 /// A setting a skill makes when it starts, relative to a call of it.
 #[derive(Debug, Clone)]
 struct SkillSet {
-    target: u32,
-    value: u32,
+    target: u64,
+    value: u64,
     /// 0: the first block, which runs in the caller's block; others: blocks of their
     /// own, numbered within the skill's expansion.
     strand: u32,
@@ -68,12 +70,18 @@ struct SkillSet {
     span: Span,
 }
 
+enum Called {
+    Command(Command),
+    Skill(SkillId),
+    Other,
+}
+
 #[derive(Debug, Clone, Copy)]
 struct Record {
-    target: u32,
+    target: u64,
     key: u32,
     strand: u32,
-    value: u32,
+    value: u64,
     file: FileId,
     span: Span,
     /// The skill statement behind a call's record, or the record's own.
@@ -85,39 +93,59 @@ struct Record {
 
 struct Owners<'a, 's> {
     files: &'a [FileEntry<'s>],
+    /// The skill calls the checker resolved in each task file (slot 0) and skill (its
+    /// index in its file, plus 1), by statement: cheaper than looking names up again.
+    calls: FxHashMap<(u32, u32), &'a FxHashMap<Span, Target>>,
     skills: &'a Skills,
     model: &'a RobotModel,
     keys: FxHashMap<(u32, Step), u32>,
-    words: FxHashMap<String, u32>,
-    /// What each target id is called in messages.
-    targets: Vec<String>,
+    next_key: u32,
+    /// What each target is called in messages.
+    targets: FxHashMap<u64, String>,
     records: Vec<Record>,
     strands: u32,
     origins: u32,
     /// Per skill: whether a call of it holds its caller, and its settings at start.
     holds: FxHashMap<u32, bool>,
     starts: FxHashMap<u32, Rc<Vec<SkillSet>>>,
+    /// The commands that set something or hold their block: the others matter here
+    /// only as not being skills.
+    relevant: Vec<(&'static [u8], Command)>,
     buf: String,
 }
 
 pub fn check_owners(
     files: &[FileEntry<'_>],
     skills: &Skills,
+    units: &[Unit],
     model: &RobotModel,
     diags: &mut Vec<Diagnostic>,
 ) {
+    let calls = units
+        .iter()
+        .filter(|u| u.special.is_none())
+        .map(|u| {
+            let slot = u.skill.map_or(0, |id| skills.get(id).index as u32 + 1);
+            ((u.file.0, slot), &u.targets)
+        })
+        .collect();
     let mut o = Owners {
         files,
+        calls,
         skills,
         model,
         keys: FxHashMap::default(),
-        words: FxHashMap::default(),
-        targets: Vec::new(),
+        next_key: 0,
+        targets: FxHashMap::default(),
         records: Vec::new(),
         strands: 0,
         origins: 0,
         holds: FxHashMap::default(),
         starts: FxHashMap::default(),
+        relevant: Command::all()
+            .filter(|c| c.spec().sets != Sets::Nothing || c.spec().holds_block)
+            .map(|c| (c.name().as_bytes(), c))
+            .collect(),
         buf: String::new(),
     };
     for (i, entry) in files.iter().enumerate() {
@@ -126,10 +154,10 @@ pub fn check_owners(
         }
         let file = FileId(i as u32);
         let key = o.key(0, Step::Unit(file.0, 0));
-        o.blocks(file, &entry.tree.blocks, key);
+        o.blocks(file, &entry.tree.blocks, key, 0);
         for (s, skill) in entry.tree.skills.iter().enumerate() {
             let key = o.key(0, Step::Unit(file.0, s as u32 + 1));
-            o.blocks(file, &skill.blocks, key);
+            o.blocks(file, &skill.blocks, key, s as u32 + 1);
         }
     }
     o.report(diags);
@@ -137,20 +165,40 @@ pub fn check_owners(
 
 impl<'s> Owners<'_, 's> {
     fn key(&mut self, parent: u32, step: Step) -> u32 {
-        let next = self.keys.len() as u32 + 1;
-        *self.keys.entry((parent, step)).or_insert(next)
+        if step == Step::Own {
+            // A moment of its own is never met again: no need to look it up.
+            self.next_key += 1;
+            return self.next_key;
+        }
+        let next = self.next_key + 1;
+        let id = *self.keys.entry((parent, step)).or_insert(next);
+        self.next_key = self.next_key.max(id);
+        id
     }
 
-    /// An id for a word or a value's text, the same for any letter case.
-    fn word(&mut self, text: &str) -> u32 {
-        self.buf.clear();
-        self.buf.extend(text.chars().flat_map(char::to_lowercase));
-        if let Some(&id) = self.words.get(self.buf.as_str()) {
-            return id;
+    /// What a called name runs, as far as this check cares: a command that sets
+    /// something or holds its block, a skill, or neither. Most statements are other
+    /// commands, so the few relevant ones are compared first.
+    fn resolve(&mut self, name: &str, at: Span, file: FileId, slot: u32) -> Called {
+        let bytes = name.as_bytes();
+        if let Some(&(_, c)) = self
+            .relevant
+            .iter()
+            .find(|(n, _)| n.len() == bytes.len() && n.eq_ignore_ascii_case(bytes))
+        {
+            return Called::Command(c);
         }
-        let id = self.words.len() as u32;
-        self.words.insert(self.buf.clone(), id);
-        id
+        match self.calls.get(&(file.0, slot)) {
+            Some(targets) => match targets.get(&at) {
+                Some(Target::Skill(id)) => Called::Skill(*id),
+                _ => Called::Other,
+            },
+            // A library skill no call checked: look the name up.
+            None => match self.skills.find_with(name, &mut self.buf) {
+                Some(id) if Command::from_name(name).is_none() => Called::Skill(id),
+                _ => Called::Other,
+            },
+        }
     }
 
     fn strand(&mut self) -> u32 {
@@ -159,25 +207,22 @@ impl<'s> Owners<'_, 's> {
     }
 
     /// Sibling blocks: each its own strand, all starting at `key`.
-    fn blocks(&mut self, file: FileId, blocks: &[Block<'_>], key: u32) {
+    fn blocks(&mut self, file: FileId, blocks: &[Block<'_>], key: u32, slot: u32) {
         for block in blocks {
             let strand = self.strand();
-            self.block(file, block, key, strand);
-        }
-    }
-
-    fn block(&mut self, file: FileId, block: &Block<'_>, mut key: u32, strand: u32) {
-        for stmt in &block.stmts {
-            key = self.stmt(file, stmt, key, strand);
+            let mut key = key;
+            for stmt in &block.stmts {
+                key = self.stmt(file, slot, stmt, key, strand);
+            }
         }
     }
 
     /// Records what `stmt` sets and returns when the next statement of its block is
     /// issued.
-    fn stmt(&mut self, file: FileId, stmt: &Stmt<'_>, key: u32, strand: u32) -> u32 {
-        let own = |o: &mut Self| o.key(key, Step::Own(file.0, stmt.span.start));
+    fn stmt(&mut self, file: FileId, slot: u32, stmt: &Stmt<'_>, key: u32, strand: u32) -> u32 {
+        let own = |o: &mut Self| o.key(key, Step::Own);
         match &stmt.kind {
-            StmtKind::Call { call, .. } => self.call(file, stmt.span, call, key, strand),
+            StmtKind::Call { call, .. } => self.call(file, slot, stmt.span, call, key, strand),
             StmtKind::Assign { value, .. } => match &value.kind {
                 // `v = name`: a bare command or a skill call, or a copy.
                 ExprKind::Name(n) => {
@@ -185,18 +230,18 @@ impl<'s> Owners<'_, 's> {
                         name: *n,
                         args: None,
                     };
-                    self.call(file, stmt.span, &call, key, strand)
+                    self.call(file, slot, stmt.span, &call, key, strand)
                 }
                 _ => key,
             },
             StmtKind::If(c) => {
                 let body = own(self);
-                self.blocks(file, &c.body, body);
+                self.blocks(file, &c.body, body, slot);
                 key
             }
             StmtKind::While { body, .. } => {
                 let at = own(self);
-                self.blocks(file, &body.body, at);
+                self.blocks(file, &body.body, at, slot);
                 key
             }
             StmtKind::Check { .. }
@@ -206,40 +251,65 @@ impl<'s> Owners<'_, 's> {
         }
     }
 
-    fn call(&mut self, file: FileId, at: Span, call: &Call<'_>, key: u32, strand: u32) -> u32 {
-        if let Some(command) = Command::from_name(call.name.text) {
-            let spec = command.spec();
-            if let Some((target, value)) = self.setting(file, command, call.args.as_ref()) {
-                let order = self.records.len() as u32;
-                self.records.push(Record {
-                    target,
-                    key,
-                    strand,
-                    value,
-                    file,
-                    span: at,
-                    via: (file, at),
-                    origin: 0,
-                    order,
-                });
+    fn call(
+        &mut self,
+        file: FileId,
+        slot: u32,
+        at: Span,
+        call: &Call<'_>,
+        key: u32,
+        strand: u32,
+    ) -> u32 {
+        let id = match self.resolve(call.name.text, at, file, slot) {
+            Called::Other => return key,
+            Called::Skill(id) => id,
+            Called::Command(command) => {
+                return self.command(file, at, command, call.args.as_ref(), key, strand);
             }
-            if !spec.holds_block {
-                return key;
-            }
-            let waited = call.args.as_ref().and_then(|a| match a.items.first() {
-                Some(Arg::Positional(e)) if a.items.len() == 1 => Some(e),
-                _ => None,
-            });
-            let step = match (command, waited.map(|e| &e.kind)) {
-                (Command::Wait, Some(ExprKind::Name(n))) => Step::Woken(self.word(n.text)),
-                (Command::Wait, Some(ExprKind::Number(s))) => Step::Delay(s.to_bits()),
-                _ => Step::Own(file.0, at.start),
-            };
-            return self.key(key, step);
-        }
-        let Some(id) = self.skills.find(call.name.text) else {
-            return key;
         };
+        self.skill_call(file, at, id, key, strand)
+    }
+
+    fn command(
+        &mut self,
+        file: FileId,
+        at: Span,
+        command: Command,
+        args: Option<&Args<'_>>,
+        key: u32,
+        strand: u32,
+    ) -> u32 {
+        let spec = command.spec();
+        if let Some((target, value)) = self.setting(file, command, args) {
+            let order = self.records.len() as u32;
+            self.records.push(Record {
+                target,
+                key,
+                strand,
+                value,
+                file,
+                span: at,
+                via: (file, at),
+                origin: 0,
+                order,
+            });
+        }
+        if !spec.holds_block {
+            return key;
+        }
+        let waited = args.and_then(|a| match a.items.first() {
+            Some(Arg::Positional(e)) if a.items.len() == 1 => Some(e),
+            _ => None,
+        });
+        let step = match (command, waited.map(|e| &e.kind)) {
+            (Command::Wait, Some(ExprKind::Name(n))) => Step::Woken(hash_str(n.text)),
+            (Command::Wait, Some(ExprKind::Number(s))) => Step::Delay(s.to_bits()),
+            _ => Step::Own,
+        };
+        self.key(key, step)
+    }
+
+    fn skill_call(&mut self, file: FileId, at: Span, id: SkillId, key: u32, strand: u32) -> u32 {
         let sets = self.skill_start(id, &mut Vec::new());
         if !sets.is_empty() {
             self.origins += 1;
@@ -269,20 +339,21 @@ impl<'s> Owners<'_, 's> {
             }
         }
         if self.skill_holds(id, &mut Vec::new()) {
-            self.key(key, Step::Own(file.0, at.start))
+            self.key(key, Step::Own)
         } else {
             key
         }
     }
 
     /// What a statement of `command` sets, and a value that is equal for statements
-    /// that set the same: the target's id and the value's.
+    /// that set the same: hashes of the target and of the value, made without
+    /// allocating (a large task sets something in most of its blocks).
     fn setting(
         &mut self,
         file: FileId,
         command: Command,
         args: Option<&Args<'_>>,
-    ) -> Option<(u32, u32)> {
+    ) -> Option<(u64, u64)> {
         let items: &[Arg<'_>] = args.map_or(&[], |a| &a.items);
         let words = items.iter().filter_map(|a| match a {
             Arg::Positional(Expr {
@@ -293,56 +364,49 @@ impl<'s> Owners<'_, 's> {
         });
         let (target, rest) = match command.spec().sets.applies(words) {
             Sets::Nothing => return None,
-            Sets::Setting { what, .. } => (what.to_string(), items),
+            Sets::Setting { what, .. } => {
+                let target = hash_str(what);
+                self.targets
+                    .entry(target)
+                    .or_insert_with(|| what.to_string());
+                (target, items)
+            }
             Sets::Device => {
                 let Some(Arg::Positional(first)) = items.first() else {
                     return None;
                 };
-                let text = self.files[file.0 as usize].text;
                 let device = match &first.kind {
-                    ExprKind::Name(n) => self.model.device(n.text).map(|d| d.name.clone()),
-                    ExprKind::Number(n) => {
-                        self.model.device_by_id(*n as i64).map(|d| d.name.clone())
-                    }
+                    ExprKind::Name(n) => self.model.device(n.text),
+                    ExprKind::Number(n) => self.model.device_by_id(*n as i64),
                     _ => None,
-                }
-                .unwrap_or_else(|| first.span.slice(text).trim().to_string());
-                (format!("actuator `{device}`"), &items[1..])
+                };
+                let text = self.files[file.0 as usize].text;
+                let written = first.span.slice(text).trim();
+                let name = device.map_or(written, |d| d.name.as_str());
+                let target = hash_str(name) ^ DEVICE_SEED;
+                self.targets
+                    .entry(target)
+                    .or_insert_with(|| format!("actuator `{name}`"));
+                (target, &items[1..])
             }
         };
-        let mut value = String::from(command.name());
-        let mut settings: Vec<String> = Vec::new();
+        let mut h = FxHasher::default();
+        command.hash(&mut h);
+        // Settings may come in any order: their hashes are summed.
+        let mut settings = 0u64;
         for a in rest {
             match a {
-                Arg::Positional(e) => {
-                    value.push(',');
-                    canonical(e, &mut value);
-                }
+                Arg::Positional(e) => hash_expr(e, &mut h),
                 Arg::Setting { key, value: e } => {
-                    let mut s = key.text.to_lowercase();
-                    s.push('=');
-                    canonical(e, &mut s);
-                    settings.push(s);
+                    let mut one = FxHasher::default();
+                    hash_name(key.text, &mut one);
+                    hash_expr(e, &mut one);
+                    settings = settings.wrapping_add(one.finish());
                 }
             }
         }
-        // Settings may come in any order.
-        settings.sort();
-        for s in settings {
-            value.push(',');
-            value.push_str(&s);
-        }
-        let target = {
-            let id = self.word(&target);
-            if id as usize >= self.targets.len() {
-                self.targets.resize(id as usize + 1, String::new());
-            }
-            if self.targets[id as usize].is_empty() {
-                self.targets[id as usize] = target;
-            }
-            id
-        };
-        Some((target, self.word(&value)))
+        settings.hash(&mut h);
+        Some((target, h.finish()))
     }
 
     /// Whether a call of the skill holds its caller: its first block waits (a `wait`,
@@ -370,12 +434,10 @@ impl<'s> Owners<'_, 's> {
                 },
                 _ => continue,
             };
-            holds = match Command::from_name(name) {
-                Some(c) => c.spec().holds_block,
-                None => self
-                    .skills
-                    .find(name)
-                    .is_some_and(|inner| self.skill_holds(inner, open)),
+            holds = match self.resolve(name, stmt.span, info.file, info.index as u32 + 1) {
+                Called::Command(c) => c.spec().holds_block,
+                Called::Skill(inner) => self.skill_holds(inner, open),
+                Called::Other => false,
             };
             if holds {
                 break;
@@ -420,23 +482,24 @@ impl<'s> Owners<'_, 's> {
                     _ => continue,
                 };
                 let span = stmt.span;
-                if let Some(command) = Command::from_name(name) {
-                    if let Some((target, value)) = self.setting(file, command, args) {
-                        out.push(SkillSet {
-                            target,
-                            value,
-                            strand,
-                            file,
-                            span,
-                        });
+                let inner = match self.resolve(name, span, file, info.index as u32 + 1) {
+                    Called::Other => continue,
+                    Called::Skill(inner) => inner,
+                    Called::Command(command) => {
+                        if let Some((target, value)) = self.setting(file, command, args) {
+                            out.push(SkillSet {
+                                target,
+                                value,
+                                strand,
+                                file,
+                                span,
+                            });
+                        }
+                        if command.spec().holds_block {
+                            break;
+                        }
+                        continue;
                     }
-                    if command.spec().holds_block {
-                        break;
-                    }
-                    continue;
-                }
-                let Some(inner) = self.skills.find(name) else {
-                    continue;
                 };
                 let nested = self.skill_start(inner, open);
                 let mut fresh = FxHashMap::default();
@@ -475,6 +538,15 @@ impl<'s> Owners<'_, 's> {
 
     fn report(&mut self, diags: &mut Vec<Diagnostic>) {
         let mut records = std::mem::take(&mut self.records);
+        // Only settings of a thing that more than one block sets at one moment can
+        // meet: most are alone, and are left out before sorting.
+        let mut groups: FxHashMap<(u64, u32), (u32, bool)> = FxHashMap::default();
+        groups.reserve(records.len());
+        for r in &records {
+            let g = groups.entry((r.target, r.key)).or_insert((r.strand, false));
+            g.1 |= g.0 != r.strand;
+        }
+        records.retain(|r| groups[&(r.target, r.key)].1);
         records.sort_unstable_by_key(|r| (r.target, r.key, r.strand, r.order));
         // The last setting of each block in each tick.
         let mut last: Vec<Record> = Vec::new();
@@ -504,7 +576,7 @@ impl<'s> Owners<'_, 's> {
     }
 
     fn diagnostic(&self, primary: &Record, others: &[&Record]) -> Diagnostic {
-        let what = &self.targets[primary.target as usize];
+        let what = &self.targets[&primary.target];
         let shown = |r: &Record| {
             let own = self.statement(r.via);
             if r.origin == 0 {
@@ -557,35 +629,67 @@ fn max_call_depth() -> usize {
     usize::from(ilmr_vm::Config::default().max_call_depth)
 }
 
-/// A value's text with numbers folded (`0.2*2` and `.4` are `0.4`) and names as
-/// written (the caller ignores case).
-fn canonical(e: &Expr<'_>, out: &mut String) {
+/// Device targets apart from settings of the same name.
+const DEVICE_SEED: u64 = 0x9e37_79b9_7f4a_7c15;
+
+/// A name's hash, the same in any letter case.
+fn hash_str(text: &str) -> u64 {
+    let mut h = FxHasher::default();
+    hash_name(text, &mut h);
+    h.finish()
+}
+
+fn hash_name(text: &str, h: &mut FxHasher) {
+    if text.is_ascii() {
+        // Lower-cased a chunk at a time: per character, hashing cost more than the
+        // rest of the check of a `wait`.
+        let mut chunk = [0u8; 32];
+        for part in text.as_bytes().chunks(chunk.len()) {
+            let lower = &mut chunk[..part.len()];
+            lower.copy_from_slice(part);
+            lower.make_ascii_lowercase();
+            h.write(lower);
+        }
+    } else {
+        let mut utf8 = [0u8; 4];
+        for c in text.chars().flat_map(char::to_lowercase) {
+            h.write(c.encode_utf8(&mut utf8).as_bytes());
+        }
+    }
+    h.write_u8(0xff);
+}
+
+/// A value's hash: numbers folded (`0.2*2` and `.4` hash alike), names in any case.
+fn hash_expr(e: &Expr<'_>, h: &mut FxHasher) {
     if let Some(v) = number(e) {
-        use std::fmt::Write;
-        let _ = write!(out, "{v}");
+        h.write_u8(0);
+        // 0.0 and -0.0 are one value.
+        h.write_u64((v + 0.0).to_bits());
         return;
     }
     match &e.kind {
-        ExprKind::Number(n) => out.push_str(&n.to_string()),
-        ExprKind::Name(n) => out.push_str(n.text),
+        ExprKind::Number(_) => unreachable!("a number folds"),
+        ExprKind::Name(n) => {
+            h.write_u8(1);
+            hash_name(n.text, h);
+        }
         ExprKind::Neg(inner) => {
-            out.push_str("-(");
-            canonical(inner, out);
-            out.push(')');
+            h.write_u8(2);
+            hash_expr(inner, h);
         }
         ExprKind::Binary { op, lhs, rhs } => {
-            out.push('(');
-            canonical(lhs, out);
-            out.push_str(op.symbol());
-            canonical(rhs, out);
-            out.push(')');
+            h.write_u8(3);
+            h.write_u8(*op as u8);
+            hash_expr(lhs, h);
+            hash_expr(rhs, h);
         }
         ExprKind::Compare { op, lhs, rhs, .. } => {
-            canonical(lhs, out);
-            out.push_str(op.symbol());
-            canonical(rhs, out);
+            h.write_u8(4);
+            h.write_u8(*op as u8);
+            hash_expr(lhs, h);
+            hash_expr(rhs, h);
         }
-        ExprKind::Error => out.push('?'),
+        ExprKind::Error => h.write_u8(5),
     }
 }
 
