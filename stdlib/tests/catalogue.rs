@@ -161,5 +161,5 @@ fn settings_end_at_issue_outside_the_movement_queue() {
             spec.name
         );
     }
-    assert_eq!(setters, 5);
+    assert_eq!(setters, 3);
 }

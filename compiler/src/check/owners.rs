@@ -1,6 +1,6 @@
-//! Actuators set by two blocks in one tick (W0905). `speed`, `bodypose`, `stop` and
-//! `cont`, and `actuator` (per device) act the instant they are issued and outside the
-//! movement queue (the catalogue's `Sets`), and the robot keeps the last value set.
+//! Actuators set by two blocks in one tick (W0905). `speed`, `bodypose` and
+//! `actuator` (per device) act the instant they are issued and outside the movement
+//! queue (the catalogue's `Sets`), and the robot keeps the last value set.
 //! Two statements of one block are issued in the order written; but when two blocks
 //! that run at the same time set the same thing in the same tick, the robot keeps
 //! whichever the VM happens to issue last, and nothing at run time says so.
@@ -16,7 +16,8 @@
 //! issued in the same tick. Only the last setting of each block in that tick
 //! matters, so a conflict is two blocks whose last settings of one thing in one tick
 //! differ. Statements are grouped by what they set and when, so the check is linear
-//! in the statements plus a sort of the settings, never a comparison of every pair.
+//! in the statements plus a sort of the settings that do meet, never a comparison of
+//! every pair.
 //!
 //! A skill call brings the settings its skill makes when it starts (the first block
 //! in line, in the caller's block; the others as blocks of their own), reported at
@@ -31,6 +32,7 @@ use std::hash::{Hash, Hasher};
 use rustc_hash::{FxHashMap, FxHasher};
 
 use crate::ast::{Arg, Args, Block, Call, Expr, ExprKind, Stmt, StmtKind};
+use crate::check::params;
 use crate::check::skills::{SkillId, Skills};
 use crate::check::{FileEntry, Target, Unit};
 use crate::diagnostic::{Code, Diagnostic, FileId};
@@ -661,7 +663,7 @@ fn hash_name(text: &str, h: &mut FxHasher) {
 
 /// A value's hash: numbers folded (`0.2*2` and `.4` hash alike), names in any case.
 fn hash_expr(e: &Expr<'_>, h: &mut FxHasher) {
-    if let Some(v) = number(e) {
+    if let Some(v) = params::number(e) {
         h.write_u8(0);
         // 0.0 and -0.0 are one value.
         h.write_u64((v + 0.0).to_bits());
@@ -690,23 +692,5 @@ fn hash_expr(e: &Expr<'_>, h: &mut FxHasher) {
             hash_expr(rhs, h);
         }
         ExprKind::Error => h.write_u8(5),
-    }
-}
-
-/// The value of an expression of numbers alone.
-fn number(e: &Expr<'_>) -> Option<f64> {
-    match &e.kind {
-        ExprKind::Number(n) => Some(*n),
-        ExprKind::Neg(inner) => number(inner).map(|v| -v),
-        ExprKind::Binary { op, lhs, rhs } => {
-            let (a, b) = (number(lhs)?, number(rhs)?);
-            match op {
-                crate::ast::BinOp::Add => Some(a + b),
-                crate::ast::BinOp::Sub => Some(a - b),
-                crate::ast::BinOp::Mul => Some(a * b),
-                crate::ast::BinOp::Div => (b != 0.0).then(|| a / b),
-            }
-        }
-        _ => None,
     }
 }
