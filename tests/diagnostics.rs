@@ -267,3 +267,83 @@ fn approach_takes_an_object_of_the_model() {
     let analysis = analyze(&sources, &m);
     assert!(analysis.has_errors(), "an unknown name is still an error");
 }
+
+/// The time each of `lines` of `task` was first issued, from the trace of a run on a
+/// simulated Workpartner in the empty world.
+fn issued_at(dir: &std::path::Path, name: &str, task: &str, lines: &[u64]) -> Vec<f64> {
+    let path = dir.join(format!("{name}.ilmr"));
+    let trace = dir.join(format!("{name}.jsonl"));
+    std::fs::write(&path, task).unwrap();
+    let (code, out, err) = ilmrc(&[
+        "run",
+        "--robot",
+        "workpartner",
+        "--world",
+        "empty",
+        "--max-time",
+        "20",
+        "--trace",
+        trace.to_str().unwrap(),
+        path.to_str().unwrap(),
+    ]);
+    assert!(code == 0 || code == 5, "{task}\n{out}{err}");
+    let text = std::fs::read_to_string(&trace).unwrap();
+    let events: Vec<serde_json::Value> = text
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap())
+        .collect();
+    lines
+        .iter()
+        .map(|line| {
+            events
+                .iter()
+                .find(|e| e["event"] == "issue" && e["line"] == *line)
+                .and_then(|e| e["t"].as_f64())
+                .unwrap_or_else(|| panic!("line {line} never issued in\n{text}"))
+        })
+        .collect()
+}
+
+/// W0905 says two settings of concurrent blocks are issued in the same tick: the VM
+/// issues them at one time where it warns, and at different times where statements
+/// held by different waits are not compared.
+#[test]
+fn settings_said_to_meet_are_issued_in_one_tick() {
+    let dir = scratch("settings");
+    let m = model("workpartner");
+    // (task, the two setting lines, whether W0905 is said)
+    let cases: [(&str, [u64; 2], bool); 5] = [
+        ("speed(0.4)\ngoahead(1)\n\nspeed(0.5)\n", [1, 4], true),
+        (
+            "m = goahead(0.5)\nwait(m)\nspeed(0.3)\n\nwait(m)\nspeed(0.5)\n",
+            [3, 6],
+            true,
+        ),
+        (
+            "speed(0.2)\nwait(1)\nspeed(0.3)\n\nwait(1)\nspeed(0.5)\n",
+            [3, 6],
+            true,
+        ),
+        (
+            "speed(0.4)\ngoahead(1)\n\nwait(0.5)\nspeed(0.5)\n",
+            [1, 5],
+            false,
+        ),
+        (
+            "m = goahead(0.5)\nwait(m)\nspeed(0.3)\n\nwait(5)\nwait(m)\nspeed(0.5)\n",
+            [3, 7],
+            false,
+        ),
+    ];
+    for (i, (task, lines, warned)) in cases.iter().enumerate() {
+        let sources = vec![Source::new("t.ilmr", task.to_string())];
+        let analysis = analyze(&sources, &m);
+        let said = analysis
+            .diagnostics
+            .iter()
+            .any(|d| d.code == Code::SettingRace);
+        assert_eq!(said, *warned, "{task}\n{:?}", analysis.diagnostics);
+        let t = issued_at(&dir, &format!("case{i}"), task, lines);
+        assert_eq!(t[0] == t[1], *warned, "{task}: issued at {t:?}");
+    }
+}

@@ -26,6 +26,8 @@ pub struct SourceFile<'s> {
 #[derive(Debug, Clone)]
 pub struct Skill<'s> {
     pub name: Name<'s>,
+    /// `NAME(a, side=left/right):`: the parameters as written (the checker reads them).
+    pub params: Option<Args<'s>>,
     /// The header line `NAME:`.
     pub header: Span,
     pub blocks: Box<[Block<'s>]>,

@@ -51,7 +51,8 @@ pub fn format(source: &str, model: &RobotModel) -> Result<String, Vec<Diagnostic
         lines: HashMap::new(),
     };
     for skill in &file.skills {
-        f.put(skill.header, 0, format!("{}:", f.spelling(&skill.name)));
+        let head = f.header(skill);
+        f.put(skill.header, 0, head);
     }
     f.blocks(&file.blocks, 0);
     for skill in &file.skills {
@@ -142,6 +143,35 @@ impl<'s> Formatter<'_, 's> {
             StmtKind::Error => stmt.span.slice(self.source).to_string(),
         };
         self.put(stmt.span, depth, text);
+    }
+
+    /// `NAME:`, or `NAME(d,side=left/right):` with a word list written as declared.
+    fn header(&self, skill: &crate::ast::Skill<'s>) -> String {
+        let name = self.spelling(&skill.name);
+        let Some(params) = &skill.params else {
+            return format!("{name}:");
+        };
+        let items: Vec<String> = params
+            .items
+            .iter()
+            .map(|a| match a {
+                Arg::Setting { key, value } => format!("{}={}", key.text, self.words(value)),
+                Arg::Positional(e) => self.expr(e, None),
+            })
+            .collect();
+        format!("{name}({}):", items.join(","))
+    }
+
+    /// `left/right`: the words of a parameter, without the spaces of a division.
+    fn words(&self, e: &Expr<'s>) -> String {
+        match &e.kind {
+            ExprKind::Binary {
+                op: crate::ast::BinOp::Div,
+                lhs,
+                rhs,
+            } => format!("{}/{}", self.words(lhs), self.words(rhs)),
+            _ => self.expr(e, None),
+        }
     }
 
     fn call(&self, call: &Call<'s>) -> String {
@@ -282,6 +312,15 @@ mod tests {
         assert_eq!(
             format(src).unwrap(),
             "turn1:\nspeed(-0.4)\nT1 = turn(d=90,c=0.25)\nbreak(turn(d=))\n"
+        );
+    }
+
+    #[test]
+    fn a_header_keeps_its_parameters_and_word_lists() {
+        let src = "Corner( d , side = left/ right ):\nTurn(side)\ngoahead( d )\n";
+        assert_eq!(
+            format(src).unwrap(),
+            "Corner(d,side=left/right):\nturn(side)\ngoahead(d)\n"
         );
     }
 }

@@ -99,7 +99,22 @@ pub fn complete(req: &Request<'_>) -> CompletionList {
             ..
         } => {
             let Some(spec) = context::command(name) else {
-                return CompletionList::default();
+                // A skill with parameters: the parameter at this argument.
+                if let Some(id) = req.program.analysis().skills.find(name) {
+                    let info = req.program.analysis().skills.get(id);
+                    if let Some(p) = info.params.get(previous.len()) {
+                        if p.words.is_empty() {
+                            items.variables(&vars, |k| k.numeric_field().is_some());
+                            items.constants(true);
+                        } else {
+                            let doc = format!("`{}` of skill `{}`", p.name, info.name);
+                            for w in &p.words {
+                                items.keyword(w, &doc);
+                            }
+                        }
+                    }
+                }
+                return items.finish(req, text, cursor.word, incomplete);
             };
             if setting.is_some() {
                 items.variables(&vars, |k| k.numeric_field().is_some());
@@ -112,25 +127,39 @@ pub fn complete(req: &Request<'_>) -> CompletionList {
             }
         }
     }
-    let word = req.index.range(text, cursor.word);
-    let mut out: Vec<(Group, usize, CompletionItem)> = items.items.into_values().collect();
-    out.sort_by(|a, b| (a.0, a.1, &a.2.label).cmp(&(b.0, b.1, &b.2.label)));
-    let items = out
-        .into_iter()
-        .enumerate()
-        .map(|(i, (_, _, mut item))| {
-            item.sort_text = Some(format!("{i:04}"));
-            let new_text = item
-                .insert_text
-                .take()
-                .unwrap_or_else(|| item.label.clone());
-            item.text_edit = Some(CompletionTextEdit::Edit(TextEdit::new(word, new_text)));
-            item
-        })
-        .collect();
-    CompletionList {
-        is_incomplete: incomplete,
-        items,
+    items.finish(req, text, cursor.word, incomplete)
+}
+
+impl Items<'_> {
+    /// The list as the editor gets it: ordered by group and rank, each item replacing
+    /// the word at the cursor.
+    fn finish(
+        self,
+        req: &Request<'_>,
+        text: &str,
+        at: ilmr_compiler::span::Span,
+        incomplete: bool,
+    ) -> CompletionList {
+        let word = req.index.range(text, at);
+        let mut out: Vec<(Group, usize, CompletionItem)> = self.items.into_values().collect();
+        out.sort_by(|a, b| (a.0, a.1, &a.2.label).cmp(&(b.0, b.1, &b.2.label)));
+        let items = out
+            .into_iter()
+            .enumerate()
+            .map(|(i, (_, _, mut item))| {
+                item.sort_text = Some(format!("{i:04}"));
+                let new_text = item
+                    .insert_text
+                    .take()
+                    .unwrap_or_else(|| item.label.clone());
+                item.text_edit = Some(CompletionTextEdit::Edit(TextEdit::new(word, new_text)));
+                item
+            })
+            .collect();
+        CompletionList {
+            is_incomplete: incomplete,
+            items,
+        }
     }
 }
 
@@ -251,9 +280,43 @@ impl Items<'_> {
     fn skills(&mut self) {
         let program = self.req.program;
         for (_, info) in program.analysis().skills.iter() {
-            let detail = match program.uri(info.file) {
+            let place = match program.uri(info.file) {
                 Some(uri) => format!("skill in {}", uri.rsplit('/').next().unwrap_or(uri)),
                 None => "built-in skill".to_string(),
+            };
+            let (detail, insert, format) = if info.params.is_empty() {
+                (place, None, None)
+            } else {
+                // `Corner(${1:d}, ${2|left,right|})`: a number's name to type over, a
+                // word to choose.
+                let insert = if self.req.snippets {
+                    let slots: Vec<String> = info
+                        .params
+                        .iter()
+                        .enumerate()
+                        .map(|(i, p)| {
+                            if p.words.is_empty() {
+                                format!("${{{}:{}}}", i + 1, p.name)
+                            } else {
+                                format!("${{{}|{}|}}", i + 1, p.words.join(","))
+                            }
+                        })
+                        .collect();
+                    (
+                        format!("{}({})", info.name, slots.join(", ")),
+                        InsertTextFormat::SNIPPET,
+                    )
+                } else {
+                    (format!("{}(", info.name), InsertTextFormat::PLAIN_TEXT)
+                };
+                (
+                    format!(
+                        "{}, {place}",
+                        ilmr_compiler::check::params::signature(&info.name, &info.params)
+                    ),
+                    Some(insert.0),
+                    Some(insert.1),
+                )
             };
             self.add(
                 Group::Skill,
@@ -261,6 +324,8 @@ impl Items<'_> {
                     label: info.name.clone(),
                     kind: Some(CompletionItemKind::METHOD),
                     detail: Some(detail),
+                    insert_text: insert,
+                    insert_text_format: format,
                     ..Default::default()
                 },
             );

@@ -29,7 +29,23 @@ pub fn hover(
     };
     let text = match resolved {
         Resolved::Command(c) => docs::command(c.spec(), model),
-        Resolved::Skill(id) => skill(program, id),
+        Resolved::Skill(id) => {
+            let mut text = skill(program, id);
+            // A call of a skill with parameters runs its specialization for the call's
+            // arguments.
+            if let Some(&i) = unit
+                .specials
+                .iter()
+                .find(|(stmt, _)| stmt.contains(span.start as usize))
+                .map(|(_, i)| i)
+            {
+                let label = &program.analysis().specials[i as usize].label;
+                text.push_str(&format!(
+                    "\n\nThis call runs `{label}`: the skill's body with these arguments in place of its parameters."
+                ));
+            }
+            text
+        }
         Resolved::Variable(id) => variable(
             program,
             &unit.vars.get(id).spelling.to_lowercase(),
@@ -65,10 +81,29 @@ fn skill(program: &Program, id: SkillId) -> String {
         Some(uri) => format!("defined in `{}`", uri.rsplit('/').next().unwrap_or(uri)),
         None => "a built-in skill".to_string(),
     };
-    format!(
+    let mut text = format!(
         "**{}** — skill, {place}\n\n```ilmr\n{source}\n```",
         info.name
-    )
+    );
+    if !info.params.is_empty() {
+        let params: Vec<String> = info
+            .params
+            .iter()
+            .map(|p| {
+                if p.words.is_empty() {
+                    format!("`{}`: a number", p.name)
+                } else {
+                    let words: Vec<String> = p.words.iter().map(|w| format!("`{w}`")).collect();
+                    format!("`{}`: one of {}", p.name, words.join(", "))
+                }
+            })
+            .collect();
+        text.push_str(&format!(
+            "\n\nParameters, given in this order: {}.",
+            params.join("; ")
+        ));
+    }
+    text
 }
 
 fn variable(program: &Program, name: &str, kind: ilmr_stdlib::VarKind) -> String {

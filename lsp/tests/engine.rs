@@ -546,3 +546,60 @@ fn a_document_larger_than_ilmrc_reads_is_not_analysed() {
     );
     assert!(engine.semantic_tokens(&big).is_empty());
 }
+
+const CORNER: &str =
+    "Corner(d, side=left/right):\nspeed(0.3)\nm = goahead(d)\nwait(m)\nturn(side)\n";
+
+#[test]
+fn a_skill_with_parameters_is_offered_with_a_snippet_of_them() {
+    let (engine, u, p) = setup(&[(TASK, "Cor$0\n"), (SKILLS, CORNER)]);
+    let items = engine.completion(&u, p);
+    let corner = items
+        .iter()
+        .find(|i| i.label == "Corner")
+        .expect("the skill is offered");
+    let Some(CompletionTextEdit::Edit(edit)) = &corner.text_edit else {
+        panic!("an edit")
+    };
+    assert_eq!(edit.new_text, "Corner(${1:d}, ${2|left,right|})");
+    assert!(
+        corner
+            .detail
+            .as_deref()
+            .unwrap()
+            .starts_with("Corner(d, side=left/right), skill in skills.ilms"),
+        "{:?}",
+        corner.detail
+    );
+}
+
+#[test]
+fn a_skill_argument_offers_what_its_parameter_takes() {
+    let (engine, u, p) = setup(&[(TASK, "Corner(1.5, $0\n"), (SKILLS, CORNER)]);
+    let words: Vec<String> = engine
+        .completion(&u, p)
+        .into_iter()
+        .map(|i| i.label)
+        .collect();
+    assert_eq!(words, ["left", "right"]);
+    let (engine, u, p) = setup(&[(TASK, "n = 2\nCorner($0\n"), (SKILLS, CORNER)]);
+    let numbers: Vec<String> = engine
+        .completion(&u, p)
+        .into_iter()
+        .map(|i| i.label)
+        .collect();
+    assert!(numbers.contains(&"n".to_string()), "{numbers:?}");
+    assert!(!numbers.contains(&"left".to_string()), "{numbers:?}");
+}
+
+#[test]
+fn hover_on_a_call_of_a_skill_with_parameters_names_them_and_what_it_runs() {
+    let text = hover(&[(TASK, "Cor$0ner(1.5, left)\n"), (SKILLS, CORNER)]);
+    assert!(
+        text.contains(
+            "Parameters, given in this order: `d`: a number; `side`: one of `left`, `right`."
+        ),
+        "{text}"
+    );
+    assert!(text.contains("This call runs `Corner(1.5,left)`"), "{text}");
+}

@@ -4,8 +4,8 @@
 use crate::Command;
 use crate::spec::{
     Category::{self, *},
-    CommandSpec, Ends, Form, Limit, ModelNames, NameSpace, Occurs, Param, ParamKind, Range, Syntax,
-    Unit, VarKind,
+    CommandSpec, Ends, Form, Limit, ModelNames, NameSpace, Occurs, Param, ParamKind, Range, Sets,
+    Syntax, Unit, VarKind,
 };
 
 const fn param(name: &'static str, kind: ParamKind, occurs: Occurs, doc: &'static str) -> Param {
@@ -104,6 +104,7 @@ const fn spec(
         holds_block: false,
         needs_device: None,
         ends: Ends::Later,
+        sets: Sets::Nothing,
         grammar,
         forms,
         summary,
@@ -125,6 +126,11 @@ const fn at_issue_without(mut s: CommandSpec, keyword: &'static str) -> CommandS
 
 const fn ends(mut s: CommandSpec, ends: Ends) -> CommandSpec {
     s.ends = ends;
+    s
+}
+
+const fn sets(mut s: CommandSpec, sets: Sets) -> CommandSpec {
+    s.sets = sets;
     s
 }
 
@@ -195,104 +201,116 @@ pub static CATALOGUE: [CommandSpec; Command::COUNT] = [
         &["locmode(odo)"],
         "4.5.1",
     )),
-    at_issue_without(
-        define(
-            Command::Speed,
-            "speed",
-            "Speed",
-            "speed ::= \"speed\" \"(\" value [\",\" \"w\"] \")\"\nvalue ::= number | variable  (-max_speed ... max_speed m/s)",
+    sets(
+        at_issue_without(
+            define(
+                Command::Speed,
+                "speed",
+                "Speed",
+                "speed ::= \"speed\" \"(\" value [\",\" \"w\"] \")\"\nvalue ::= number | variable  (-max_speed ... max_speed m/s)",
+                &[form(
+                    &[
+                        param(
+                            "value",
+                            value(
+                                Unit::MetresPerSecond,
+                                Range::Symmetric {
+                                    param: "max_speed",
+                                    limit: Limit::Refuse,
+                                },
+                            ),
+                            Occurs::One,
+                            "speed in m/s; negative drives backwards",
+                        ),
+                        param(
+                            "w",
+                            keyword(&["w"]),
+                            Occurs::Optional,
+                            "wait: the speed is set only when the running movement command has ended",
+                        ),
+                    ],
+                    1,
+                    VarKind::Status,
+                    "speed",
+                )],
+                "Sets the speed for the current or next movement command.",
+                "Takes effect at once (or, with `w`, when the running movement command ends). The robot \
+         does not move from this command alone. Without it the robot uses the model's \
+         `default_speed`. Speeds beyond the model's `max_speed` are refused.",
+                &["speed(0.4)", "speed(-0.5)", "speed(-0.6,w)"],
+                "4.5.1",
+            ),
+            "w",
+        ),
+        Sets::Setting {
+            what: "speed",
+            unless: Some("w"),
+        },
+    ),
+    sets(
+        at_issue(define(
+            Command::BodyPose,
+            "bodypose",
+            "BodyPose",
+            "bodypose ::= \"bodypose\" \"(\" setting {\",\" setting} \")\"\nsetting ::= sel \"=\" value\nsel ::= \"r\" | \"p\" | \"rc\"",
             &[form(
                 &[
                     param(
-                        "value",
-                        value(
-                            Unit::MetresPerSecond,
+                        "r",
+                        setting(
+                            "r",
+                            Unit::Degrees,
                             Range::Symmetric {
-                                param: "max_speed",
+                                param: "max_roll",
                                 limit: Limit::Refuse,
                             },
                         ),
-                        Occurs::One,
-                        "speed in m/s; negative drives backwards",
+                        Occurs::Optional,
+                        "roll angle in degrees",
                     ),
                     param(
-                        "w",
-                        keyword(&["w"]),
+                        "p",
+                        setting(
+                            "p",
+                            Unit::Degrees,
+                            Range::Symmetric {
+                                param: "max_pitch",
+                                limit: Limit::Refuse,
+                            },
+                        ),
                         Occurs::Optional,
-                        "wait: the speed is set only when the running movement command has ended",
+                        "pitch angle in degrees",
+                    ),
+                    param(
+                        "rc",
+                        setting(
+                            "rc",
+                            Unit::Metres,
+                            Range::UpTo {
+                                param: "max_clearance",
+                                limit: Limit::Refuse,
+                            },
+                        ),
+                        Occurs::Optional,
+                        "road clearance in metres",
                     ),
                 ],
                 1,
                 VarKind::Status,
-                "speed",
+                "body pose",
             )],
-            "Sets the speed for the current or next movement command.",
-            "Takes effect at once (or, with `w`, when the running movement command ends). The robot \
-         does not move from this command alone. Without it the robot uses the model's \
-         `default_speed`. Speeds beyond the model's `max_speed` are refused.",
-            &["speed(0.4)", "speed(-0.5)", "speed(-0.6,w)"],
-            "4.5.1",
-        ),
-        "w",
-    ),
-    at_issue(define(
-        Command::BodyPose,
-        "bodypose",
-        "BodyPose",
-        "bodypose ::= \"bodypose\" \"(\" setting {\",\" setting} \")\"\nsetting ::= sel \"=\" value\nsel ::= \"r\" | \"p\" | \"rc\"",
-        &[form(
-            &[
-                param(
-                    "r",
-                    setting(
-                        "r",
-                        Unit::Degrees,
-                        Range::Symmetric {
-                            param: "max_roll",
-                            limit: Limit::Refuse,
-                        },
-                    ),
-                    Occurs::Optional,
-                    "roll angle in degrees",
-                ),
-                param(
-                    "p",
-                    setting(
-                        "p",
-                        Unit::Degrees,
-                        Range::Symmetric {
-                            param: "max_pitch",
-                            limit: Limit::Refuse,
-                        },
-                    ),
-                    Occurs::Optional,
-                    "pitch angle in degrees",
-                ),
-                param(
-                    "rc",
-                    setting(
-                        "rc",
-                        Unit::Metres,
-                        Range::UpTo {
-                            param: "max_clearance",
-                            limit: Limit::Refuse,
-                        },
-                    ),
-                    Occurs::Optional,
-                    "road clearance in metres",
-                ),
-            ],
-            1,
-            VarKind::Status,
-            "body pose",
-        )],
-        "Sets the body's roll, pitch and road clearance.",
-        "The only define command that acts at once, even when the robot stands still. The limits \
+            "Sets the body's roll, pitch and road clearance.",
+            "The only define command that acts at once, even when the robot stands still. The limits \
          come from the model (`max_roll`, `max_pitch`, `max_clearance`); a robot whose model has \
          none cannot take a body pose.",
-        &["bodypose(r=10,p=20,rc=0.5)"],
-        "4.5.1",
-    )),
+            &["bodypose(r=10,p=20,rc=0.5)"],
+            "4.5.1",
+        )),
+        Sets::Setting {
+            what: "body pose",
+            unless: None,
+        },
+    ),
     at_issue(define(
         Command::Locate,
         "locate",
@@ -955,42 +973,45 @@ pub static CATALOGUE: [CommandSpec; Command::COUNT] = [
         &["door = findtarget(scanner,door)"],
         "4.5.4",
     ),
-    at_issue(spec(
-        Command::Actuator,
-        "actuator",
-        "Actuator",
-        Action,
-        false,
-        "actuator ::= \"actuator\" \"(\" actuatorID \",\" value \")\"\nactuatorID ::= name | number\nvalue ::= on | off | number",
-        &[form(
-            &[
-                param(
-                    "actuator",
-                    DEVICE,
-                    Occurs::One,
-                    "an actuator of the model, by name or number",
-                ),
-                param(
-                    "value",
-                    ParamKind::OneOf {
-                        kinds: &[
-                            keyword(&["on", "off"]),
-                            value(Unit::None, Range::DeviceRange),
-                        ],
-                    },
-                    Occurs::One,
-                    "on, off, or a reference value within the actuator's range",
-                ),
-            ],
-            2,
-            VarKind::Status,
+    sets(
+        at_issue(spec(
+            Command::Actuator,
             "actuator",
-        )],
-        "Sets an actuator directly.",
-        "The value must lie within the range the model gives the actuator.",
-        &["actuator(brake,on)", "actuator(leg1,90)"],
-        "4.5.4",
-    )),
+            "Actuator",
+            Action,
+            false,
+            "actuator ::= \"actuator\" \"(\" actuatorID \",\" value \")\"\nactuatorID ::= name | number\nvalue ::= on | off | number",
+            &[form(
+                &[
+                    param(
+                        "actuator",
+                        DEVICE,
+                        Occurs::One,
+                        "an actuator of the model, by name or number",
+                    ),
+                    param(
+                        "value",
+                        ParamKind::OneOf {
+                            kinds: &[
+                                keyword(&["on", "off"]),
+                                value(Unit::None, Range::DeviceRange),
+                            ],
+                        },
+                        Occurs::One,
+                        "on, off, or a reference value within the actuator's range",
+                    ),
+                ],
+                2,
+                VarKind::Status,
+                "actuator",
+            )],
+            "Sets an actuator directly.",
+            "The value must lie within the range the model gives the actuator.",
+            &["actuator(brake,on)", "actuator(leg1,90)"],
+            "4.5.4",
+        )),
+        Sets::Device,
+    ),
     needs_device(
         spec(
             Command::Manipulate,

@@ -17,7 +17,7 @@ pub use catalogue::CATALOGUE;
 pub use command::Command;
 pub use spec::{
     Category, CommandSpec, Ends, Field, Form, Limit, ModelNames, NameSpace, Occurs, Param,
-    ParamKind, Range, Syntax, Unit, VarKind,
+    ParamKind, Range, Sets, Syntax, Unit, VarKind,
 };
 
 /// Words that are statements of their own and can name neither a variable nor a skill.

@@ -43,6 +43,17 @@ pub fn reference_markdown() -> String {
                 ),
                 crate::spec::Ends::Later => {}
             }
+            match spec.sets {
+                crate::spec::Sets::Nothing => {}
+                crate::spec::Sets::Setting { what, unless } => facts.push(format!(
+                    "sets the robot's {what}{}: of two blocks that set it in the same tick, the one issued last wins (W0905)",
+                    unless.map_or(String::new(), |k| format!(" (unless written with `{k}`)"))
+                )),
+                crate::spec::Sets::Device => facts.push(
+                    "sets the device it names: of two blocks that set one device in the same tick, the one issued last wins (W0905)"
+                        .into(),
+                ),
+            }
             if let Some(device) = spec.needs_device {
                 facts.push(format!(
                     "needs a `{device}` in the robot model's [SENSORSANDACTUATORS] (E0407 otherwise)"

@@ -331,6 +331,38 @@ impl Ends {
     }
 }
 
+/// What a command sets on the robot outside the movement queue. The robot keeps the
+/// last value set, so when two blocks that run at the same time set the same thing in
+/// one tick, the one the VM issues last wins (docs/language.md, "Actuators outside the
+/// movement queue"; the checker's W0905).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case", tag = "type")]
+pub enum Sets {
+    Nothing,
+    /// One setting of the robot, named for messages (`speed`, `body pose`), unless the
+    /// statement is written with `unless` (`speed(v,w)` acts through the movement
+    /// queue).
+    Setting {
+        what: &'static str,
+        unless: Option<&'static str>,
+    },
+    /// The device its first argument names (`actuator(brake,on)` sets the brake).
+    Device,
+}
+
+impl Sets {
+    /// What a statement of this command with these keyword arguments sets: the name
+    /// of a setting, or `Device` for the device of its first argument.
+    pub fn applies<'a>(self, mut keywords: impl Iterator<Item = &'a str>) -> Sets {
+        match self {
+            Sets::Setting {
+                unless: Some(k), ..
+            } if keywords.any(|w| w.eq_ignore_ascii_case(k)) => Sets::Nothing,
+            other => other,
+        }
+    }
+}
+
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct CommandSpec {
     pub command: Command,
@@ -350,6 +382,8 @@ pub struct CommandSpec {
     /// Whether the command can last past the instant it is issued: a `while` whose
     /// body holds only commands that cannot never gives the tick back (W0902).
     pub ends: Ends,
+    /// What it sets outside the movement queue, which the robot keeps until set again.
+    pub sets: Sets,
     /// The BNF as the dissertation gives it (with this project's decisions applied).
     pub grammar: &'static str,
     pub forms: &'static [Form],

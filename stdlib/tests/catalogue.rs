@@ -122,3 +122,44 @@ fn command_reference_is_fresh() {
         "docs/commands.md is stale: run `UPDATE_DOCS=1 cargo test -p ilmr-stdlib`"
     );
 }
+
+/// A setting acts the instant it is issued and outside the movement queue: that is what
+/// makes two of them in one tick a race (W0905). Its exception is a keyword of its own
+/// grammar, and a device setter's first argument names a device.
+#[test]
+fn settings_end_at_issue_outside_the_movement_queue() {
+    use ilmr_stdlib::{ModelNames, Sets};
+    let mut setters = 0;
+    for spec in &CATALOGUE {
+        match spec.sets {
+            Sets::Nothing => continue,
+            Sets::Setting { unless, .. } => {
+                if let Some(k) = unless {
+                    assert!(
+                        spec.has_keyword(k),
+                        "{}: `{k}` is not its keyword",
+                        spec.name
+                    );
+                }
+            }
+            Sets::Device => {
+                for form in spec.forms {
+                    assert!(matches!(
+                        form.params[0].kind,
+                        ParamKind::Model {
+                            names: ModelNames::Device
+                        }
+                    ));
+                }
+            }
+        }
+        setters += 1;
+        assert!(!spec.movement, "{} is queued", spec.name);
+        assert!(
+            spec.ends.at_issue(std::iter::empty()),
+            "{} lasts past its issue",
+            spec.name
+        );
+    }
+    assert_eq!(setters, 3);
+}

@@ -252,6 +252,10 @@ struct Program<'g> {
     /// Variables already named by a `break`: a second break of one would match two
     /// statements.
     broken: Vec<String>,
+    /// The first statement written for each setting (`speed`, `bodypose`, an
+    /// actuator): later ones repeat it, since blocks that start together and set one
+    /// thing to two values race (W0905) and the program must check clean.
+    settings: Vec<(String, String)>,
 }
 
 #[derive(Debug, Clone)]
@@ -302,9 +306,13 @@ impl Generator {
         };
         let mut skill_text = String::new();
         let mut skills: Vec<String> = Vec::new();
+        // One value per setting across the skills and the task (a skill's settings
+        // are made in its caller's tick).
+        let mut settings = Vec::new();
         for i in 0..skill_count {
             let name = format!("Skill{}", i + 1);
             let mut p = Program::new(self, Rng(rng.next()), &format!("s{}_", i + 1));
+            p.settings = std::mem::take(&mut settings);
             p.skill = true;
             p.must_end = 1;
             // A skill calls only the skills before it: never recursion.
@@ -313,8 +321,10 @@ impl Generator {
             let body = p.blocks(count, 0);
             skill_text.push_str(&format!("{name}:\n{body}\n"));
             skills.push(name);
+            settings = p.settings;
         }
         let mut p = Program::new(self, Rng(rng.next()), "t");
+        p.settings = settings;
         p.callable = skills;
         let blocks = 1 + p.rng.below(self.shape.max_blocks.max(1));
         let task = p.blocks(blocks, 0);
@@ -342,6 +352,7 @@ impl<'g> Program<'g> {
             open: Vec::new(),
             blocks_made: 0,
             broken: Vec::new(),
+            settings: Vec::new(),
         }
     }
 
@@ -373,8 +384,41 @@ impl<'g> Program<'g> {
     }
 
     fn emit(&mut self, depth: usize, text: impl AsRef<str>) {
-        self.lines
-            .push(format!("{}{}", "    ".repeat(depth), text.as_ref()));
+        let text = self.one_value_per_setting(text.as_ref());
+        self.lines.push(format!("{}{}", "    ".repeat(depth), text));
+    }
+
+    /// `text`, or the statement first written for the setting it makes. The random
+    /// draws are made as before, so the rest of the program does not change.
+    fn one_value_per_setting(&mut self, text: &str) -> String {
+        use ilmr_stdlib::Sets;
+        let (bound, call) = match text.split_once(" = ") {
+            Some((v, call)) => (Some(v), call),
+            None => (None, text),
+        };
+        let Some((name, args)) = call.split_once('(') else {
+            return text.to_string();
+        };
+        let Some(command) = Command::from_name(name) else {
+            return text.to_string();
+        };
+        let words = args.trim_end_matches(')').split(',').map(str::trim);
+        let target = match command.spec().sets.applies(words) {
+            Sets::Nothing => return text.to_string(),
+            Sets::Setting { what, .. } => what.to_string(),
+            Sets::Device => format!("{name}:{}", args.split(',').next().unwrap_or("")),
+        };
+        let first = match self.settings.iter().find(|(t, _)| *t == target) {
+            Some((_, first)) => first.clone(),
+            None => {
+                self.settings.push((target, call.to_string()));
+                call.to_string()
+            }
+        };
+        match bound {
+            Some(v) => format!("{v} = {first}"),
+            None => first,
+        }
     }
 
     /// `count` blocks separated by empty lines, as text.

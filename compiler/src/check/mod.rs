@@ -11,6 +11,8 @@ mod fold;
 mod keywords;
 mod loops;
 mod names;
+mod owners;
+pub mod params;
 mod paths;
 mod scope;
 mod skills;
@@ -22,7 +24,7 @@ use ilmr_model::RobotModel;
 use ilmr_stdlib::{Command, Syntax, VarKind};
 use rustc_hash::FxHashMap;
 
-use crate::ast::{Block, Call, ExprKind, FileKind, Name, SourceFile, Stmt, StmtKind};
+use crate::ast::{Arg, Block, Call, ExprKind, FileKind, Name, SourceFile, Stmt, StmtKind};
 use crate::diagnostic::{Code, Diagnostic, FileId};
 use crate::parser;
 use crate::span::Span;
@@ -118,6 +120,12 @@ pub enum Detail {
 pub struct Unit {
     pub file: FileId,
     pub skill: Option<SkillId>,
+    /// A specialization of a parameterized skill (`Analysis::specials`), checked with
+    /// one call's arguments in place of its parameters.
+    pub special: Option<u32>,
+    /// Calls of parameterized skills in this unit: the call statement's span and the
+    /// specialization it runs.
+    pub specials: FxHashMap<Span, u32>,
     pub vars: Vars,
     pub refs: Vec<(Span, Resolved)>,
     pub targets: FxHashMap<Span, Target>,
@@ -127,6 +135,10 @@ pub struct Unit {
 pub struct Analysis<'s> {
     pub files: Vec<FileEntry<'s>>,
     pub skills: skills::Skills,
+    /// Parameterized skills as the program's calls specialize them, and each one's
+    /// body with the arguments in place of the parameters.
+    pub specials: Vec<params::Special>,
+    pub special_blocks: Vec<Box<[Block<'s>]>>,
     pub units: Vec<Unit>,
     /// Sorted by file and position.
     pub diagnostics: Vec<Diagnostic>,
@@ -219,6 +231,7 @@ pub fn analyze_given<'s>(
     }
 
     let mut skills = skills::Skills::collect(&files, model, &mut diagnostics);
+    let mut specials = params::Specials::default();
     let constants = constants::Constants::new(model);
     let names = names::Names::new(&constants, &skills);
     let mut units = Vec::new();
@@ -229,6 +242,8 @@ pub fn analyze_given<'s>(
         let mut unit = Unit {
             file: FileId(i as u32),
             skill: None,
+            special: None,
+            specials: FxHashMap::default(),
             vars: Vars::default().with_detail(detail),
             refs: Vec::new(),
             targets: FxHashMap::default(),
@@ -241,6 +256,7 @@ pub fn analyze_given<'s>(
             &mut unit,
             &mut diagnostics,
             detail,
+            &mut specials,
         )
         .blocks(&entry.tree.blocks);
         units.push(unit);
@@ -291,12 +307,35 @@ pub fn analyze_given<'s>(
             let mut unit = Unit {
                 file: skill.file,
                 skill: Some(id),
+                special: None,
+                specials: FxHashMap::default(),
                 vars: Vars::with_globals(globals.clone()).with_detail(detail),
                 refs: Vec::new(),
                 targets: FxHashMap::default(),
             };
             let blocks = &entry.tree.skills[skill.index].blocks;
-            Walker::new(
+            // A parameterized skill is checked on its own with its number parameters
+            // bound as numbers and each keyword parameter as its first word; each call's
+            // specialization is checked again below.
+            let abstract_blocks;
+            let blocks = if skill.params.is_empty() {
+                blocks
+            } else {
+                let with: Vec<params::Replace<'s>> = skill
+                    .params
+                    .iter()
+                    .map(|p| match p.word_spans.first() {
+                        Some(w) => params::Replace::Text(w.slice(entry.text)),
+                        None => params::Replace::Keep,
+                    })
+                    .collect();
+                for p in skill.params.iter().filter(|p| p.words.is_empty()) {
+                    unit.vars.bind(&p.name, VarKind::Number, skill.file, p.span);
+                }
+                abstract_blocks = params::substitute(blocks, &skill.params, &with);
+                &abstract_blocks
+            };
+            let mut walker = Walker::new(
                 model,
                 &constants,
                 &names,
@@ -304,16 +343,33 @@ pub fn analyze_given<'s>(
                 &mut unit,
                 &mut diagnostics,
                 detail,
-            )
-            .blocks(blocks);
+                &mut specials,
+            );
+            walker.own_params = &skill.params;
+            walker.blocks(blocks);
             units.push(unit);
         }
     }
+    let special_blocks = check_specials(
+        &files,
+        &skills,
+        &mut specials,
+        &mut units,
+        &mut diagnostics,
+        Checking {
+            model,
+            constants: &constants,
+            names: &names,
+            globals: &globals,
+            detail,
+        },
+    );
 
     breaks::check_patterns(&files, &skills, &mut diagnostics);
     loops::check_frozen_loops(&files, &skills, &mut diagnostics);
     wakes::check_waits(&files, &mut diagnostics);
     paths::check_paths(&files, &given.paths, &mut diagnostics);
+    owners::check_owners(&files, &skills, &units, model, &mut diagnostics);
     unused_variables(&files, &units, &mut diagnostics);
 
     diagnostics.sort_by_key(|d| (d.file, d.span.start, d.code));
@@ -321,9 +377,86 @@ pub fn analyze_given<'s>(
     Analysis {
         files,
         skills,
+        specials: specials.list,
+        special_blocks,
         units,
         diagnostics,
     }
+}
+
+/// What checking a unit needs besides the unit.
+struct Checking<'c> {
+    model: &'c RobotModel,
+    constants: &'c constants::Constants,
+    names: &'c names::Names,
+    globals: &'c std::rc::Rc<fold::FoldMap<VarKind>>,
+    detail: Detail,
+}
+
+/// Checks each specialization of a parameterized skill (those its checking makes
+/// too), and returns their bodies. What the skill's own check said already is not
+/// said again; the rest points at the call whose arguments made it.
+fn check_specials<'s>(
+    files: &[FileEntry<'s>],
+    skills: &skills::Skills,
+    specials: &mut params::Specials,
+    units: &mut Vec<Unit>,
+    diagnostics: &mut Vec<Diagnostic>,
+    c: Checking<'_>,
+) -> Vec<Box<[Block<'s>]>> {
+    let mut bodies = Vec::new();
+    while bodies.len() < specials.list.len() {
+        let i = bodies.len();
+        let special = specials.list[i].clone();
+        let info = skills.get(special.skill);
+        let entry = &files[info.file.0 as usize];
+        let with: Vec<params::Replace<'s>> = special
+            .args
+            .iter()
+            .map(|g| match *g {
+                params::Given::Number(v) => params::Replace::Number(v),
+                params::Given::Text(f, span) => {
+                    params::Replace::Text(span.slice(files[f.0 as usize].text))
+                }
+            })
+            .collect();
+        let blocks = params::substitute(&entry.tree.skills[info.index].blocks, &info.params, &with);
+        let mut unit = Unit {
+            file: info.file,
+            skill: Some(special.skill),
+            special: Some(i as u32),
+            specials: FxHashMap::default(),
+            vars: Vars::with_globals(c.globals.clone()).with_detail(c.detail),
+            refs: Vec::new(),
+            targets: FxHashMap::default(),
+        };
+        let mut found = Vec::new();
+        Walker::new(
+            c.model,
+            c.constants,
+            c.names,
+            skills,
+            &mut unit,
+            &mut found,
+            c.detail,
+            specials,
+        )
+        .blocks(&blocks);
+        let (call_file, call) = special.call;
+        for d in found {
+            if diagnostics.contains(&d) {
+                continue;
+            }
+            diagnostics.push(d.with_secondary(
+                call_file,
+                call,
+                format!("with the arguments of this call: `{}`", special.label),
+            ));
+        }
+        units.push(unit);
+        bodies.push(blocks);
+    }
+    bodies
 }
 
 /// Checks a fragment (an interactive line or block) that joins a running program: the
@@ -348,6 +481,8 @@ pub fn check_fragment<'n>(
     let mut unit = Unit {
         file,
         skill: None,
+        special: None,
+        specials: FxHashMap::default(),
         vars: Vars::with_fixed_globals(globals),
         refs: Vec::new(),
         targets: FxHashMap::default(),
@@ -361,6 +496,7 @@ pub fn check_fragment<'n>(
         &mut unit,
         &mut diagnostics,
         Detail::Full,
+        &mut params::Specials::default(),
     )
     .blocks(&tree.blocks);
     diagnostics.sort_by_key(|d| (d.span.start, d.code));
@@ -415,9 +551,16 @@ struct Walker<'a, 'm> {
     full: bool,
     buf: String,
     spare: Vec<Findings>,
+    /// The specializations calls of parameterized skills make.
+    specials: &'a mut params::Specials,
+    /// The parameters of the skill being checked, which cannot be bound.
+    own_params: &'a [params::Param],
 }
 
 impl<'a, 'm> Walker<'a, 'm> {
+    // Each argument is a table the walk reads or fills; bundling them would only move
+    // the list into a struct built once per call.
+    #[allow(clippy::too_many_arguments)]
     fn new(
         model: &'m RobotModel,
         constants: &'m constants::Constants,
@@ -426,8 +569,11 @@ impl<'a, 'm> Walker<'a, 'm> {
         unit: &'a mut Unit,
         diagnostics: &'a mut Vec<Diagnostic>,
         detail: Detail,
+        specials: &'a mut params::Specials,
     ) -> Self {
         Walker {
+            specials,
+            own_params: &[],
             model,
             constants,
             names,
@@ -640,7 +786,9 @@ impl<'a, 'm> Walker<'a, 'm> {
         }
         if let Some(id) = meaning.skill {
             self.resolved(call.name.span, Resolved::Skill(id));
-            if let Some(args) = &call.args {
+            if !self.skills.get(id).params.is_empty() {
+                self.skill_args(id, call, stmt);
+            } else if let Some(args) = &call.args {
                 self.diagnostics.push(
                     Diagnostic::new(
                         Code::ArgumentCount,
@@ -689,6 +837,131 @@ impl<'a, 'm> Walker<'a, 'm> {
         };
         self.diagnostics.push(d);
         None
+    }
+
+    /// The arguments of a call of a parameterized skill, checked against its header
+    /// like a command's: a number where it takes a number, one of its words where it
+    /// takes a word. When they fit, the call runs the skill's specialization for them.
+    fn skill_args(&mut self, id: SkillId, call: &Call<'_>, stmt: Span) {
+        let file = self.unit.file;
+        let skill = self.skills.get(id);
+        let signature = params::signature(&skill.name, &skill.params);
+        let items: &[Arg<'_>] = call.args.as_ref().map_or(&[], |a| &a.items);
+        if items.len() != skill.params.len() {
+            let at = call.args.as_ref().map_or(call.name.span, |a| a.span);
+            self.diagnostics.push(
+                Diagnostic::new(
+                    Code::ArgumentCount,
+                    file,
+                    at,
+                    format!(
+                        "skill `{}` takes {} argument{}, given {}",
+                        call.name.text,
+                        skill.params.len(),
+                        if skill.params.len() == 1 { "" } else { "s" },
+                        items.len()
+                    ),
+                )
+                .with_label(format!("the header is `{signature}:`")),
+            );
+            return;
+        }
+        let mut given = Vec::with_capacity(items.len());
+        let mut fits = true;
+        for (param, arg) in skill.params.iter().zip(items) {
+            let e = match arg {
+                Arg::Positional(e) => e,
+                Arg::Setting { .. } => {
+                    self.diagnostics.push(
+                        Diagnostic::new(
+                            Code::ArgumentKind,
+                            file,
+                            arg.span(),
+                            "a skill's arguments are given in order, without names",
+                        )
+                        .with_label(format!("the header is `{signature}:`")),
+                    );
+                    fits = false;
+                    continue;
+                }
+            };
+            if !param.words.is_empty() {
+                let word = match &e.kind {
+                    ExprKind::Name(n) if param.words.iter().any(|w| n.is(w)) => Some(n),
+                    _ => None,
+                };
+                match word {
+                    Some(n) => {
+                        self.resolved(n.span, Resolved::Keyword);
+                        given.push((params::Given::Text(file, n.span), n.text));
+                    }
+                    None => {
+                        let words: Vec<&str> = param.words.iter().map(String::as_str).collect();
+                        let mut d = Diagnostic::new(
+                            Code::UnknownKeyword,
+                            file,
+                            e.span,
+                            format!(
+                                "parameter `{}` of `{}` takes {}",
+                                param.name,
+                                skill.name,
+                                suggest::one_of(&words)
+                            ),
+                        )
+                        .with_label(format!("the header is `{signature}:`"));
+                        if let ExprKind::Name(n) = &e.kind
+                            && let Some(s) = suggest::closest(n.text, words.iter().copied())
+                        {
+                            d = d.with_fix(format!("replace with `{s}`"), n.span, s);
+                        }
+                        self.diagnostics.push(d);
+                        fits = false;
+                    }
+                }
+                continue;
+            }
+            if let Some(v) = params::number(e) {
+                given.push((params::Given::Number(v), ""));
+                continue;
+            }
+            match &e.kind {
+                ExprKind::Name(n) => {
+                    let mut f = self.findings();
+                    self.cx().value(&mut f, e);
+                    fits &= f.diags.is_empty();
+                    self.absorb(f);
+                    given.push((params::Given::Text(file, n.span), n.text));
+                }
+                _ => {
+                    self.diagnostics.push(
+                        Diagnostic::new(
+                            Code::ArgumentKind,
+                            file,
+                            e.span,
+                            format!(
+                                "parameter `{}` of `{}` takes a number, a variable or a constant",
+                                param.name, skill.name
+                            ),
+                        )
+                        .with_label("arithmetic of variables")
+                        .with_help(format!(
+                            "the skill uses `{}` as if the argument were written there; write the value into a variable first (`v = ...`, then `{}(v, ...)`)",
+                            param.name, skill.name
+                        )),
+                    );
+                    fits = false;
+                }
+            }
+        }
+        // A parameterized skill checked on its own has no values for its parameters
+        // to pass on: its specializations make theirs.
+        if !fits || !self.own_params.is_empty() {
+            return;
+        }
+        let name = skill.name.clone();
+        if let Some(i) = self.specials.get_or_add(id, &name, given, (file, stmt)) {
+            self.unit.specials.insert(stmt, i);
+        }
     }
 
     /// The command or skill a misspelt call most likely meant.
@@ -741,6 +1014,22 @@ impl<'a, 'm> Walker<'a, 'm> {
                     format!("`{}` is {what} and cannot be a variable", name.text),
                 )
                 .with_label("choose another name"),
+            );
+            return;
+        }
+        if self.own_params.iter().any(|p| name.is(&p.name)) {
+            self.diagnostics.push(
+                Diagnostic::new(
+                    Code::ReservedName,
+                    file,
+                    name.span,
+                    format!(
+                        "`{}` is a parameter of this skill and cannot be bound",
+                        name.text
+                    ),
+                )
+                .with_label("a parameter stands for what the call gives")
+                .with_help("bind another name"),
             );
             return;
         }

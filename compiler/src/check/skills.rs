@@ -22,6 +22,8 @@ pub struct SkillInfo {
     /// Index into the file's `skills`.
     pub index: usize,
     pub header: Span,
+    /// The header's parameters (`NAME(d, side=left/right):`); empty for most skills.
+    pub params: Vec<super::params::Param>,
     /// Skills called directly, with the call's span.
     calls: Vec<(SkillId, Span)>,
     /// Variables bound directly in the body.
@@ -95,6 +97,13 @@ impl Skills {
                     file: FileId(i as u32),
                     index,
                     header: skill.header,
+                    params: match &skill.params {
+                        Some(args) if !entry.builtin => {
+                            super::params::read(args, FileId(i as u32), diags)
+                        }
+                        Some(args) => super::params::read(args, FileId(i as u32), &mut Vec::new()),
+                        None => Vec::new(),
+                    },
                     calls: Vec::new(),
                     binds: Vec::new(),
                     transitive: Vec::new(),
@@ -137,6 +146,7 @@ impl Skills {
                 file: FileId(u32::MAX),
                 index: usize::MAX,
                 header: Span::default(),
+                params: Vec::new(),
                 calls: Vec::new(),
                 binds: Vec::new(),
                 transitive: Vec::new(),
@@ -162,13 +172,15 @@ impl Skills {
     }
 
     pub fn find(&self, name: &str) -> Option<SkillId> {
+        self.find_with(name, &mut String::new())
+    }
+
+    /// As `find`, lower-casing into `buf` (reused by a caller that looks up many).
+    pub fn find_with(&self, name: &str, buf: &mut String) -> Option<SkillId> {
         if self.index.is_empty() {
             return None;
         }
-        let mut buf = String::with_capacity(name.len());
-        self.index
-            .get(super::constants::key(name, &mut buf))
-            .copied()
+        self.index.get(super::constants::key(name, buf)).copied()
     }
 
     pub fn len(&self) -> usize {

@@ -121,7 +121,8 @@ pub fn lower_line_warned(
     let module_file = b
         .new_file(&path)
         .map_err(|e| vec![*build_error(file, Span::default(), e)])?;
-    let skill_unit = |id: SkillId| skill_units.get(id.0 as usize).map(|&i| UnitId(i));
+    let skill_unit =
+        |id: SkillId, _: Option<u32>| skill_units.get(id.0 as usize).map(|&i| UnitId(i));
     let lines = LineIndex::new(text);
     let scope = Scope::from_parts(file, module_file, text, &lines, &unit, &skill_unit);
     // The lowerer owns its builder; lend it this one and put it back whatever happens.

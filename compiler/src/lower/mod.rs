@@ -72,23 +72,36 @@ pub fn lower(
         .map_err(|e| fail(e.to_string()))?;
     low.b.set_main(main);
 
-    // Each skill's checked unit, found once rather than by a search per skill.
-    let checked_units: HashMap<SkillId, &crate::check::Unit> = analysis
+    // Each skill's checked unit (and each specialization's), found once rather than
+    // by a search per skill.
+    let checked_units: HashMap<Reach, &crate::check::Unit> = analysis
         .units
         .iter()
-        .filter_map(|u| Some((u.skill?, u)))
+        .filter_map(|u| {
+            let reach = match u.special {
+                Some(i) => Reach::Special(i),
+                None => Reach::Skill(u.skill?),
+            };
+            Some((reach, u))
+        })
         .collect();
     let reached = reachable(analysis, task, &checked_units);
-    let mut units: HashMap<SkillId, UnitId> = HashMap::new();
-    for &id in &reached {
-        let name = &analysis.skills.get(id).name;
+    let mut units: HashMap<Reach, UnitId> = HashMap::new();
+    for &r in &reached {
+        let name = match r {
+            Reach::Skill(id) => &analysis.skills.get(id).name,
+            Reach::Special(i) => &analysis.specials[i as usize].label,
+        };
         let unit = low
             .b
             .declare_unit(name, true)
             .map_err(|e| fail(e.to_string()))?;
-        units.insert(id, unit);
+        units.insert(r, unit);
     }
-    let skill_unit = |id: SkillId| units.get(&id).copied();
+    let skill_unit = |id: SkillId, special: Option<u32>| {
+        let reach = special.map_or(Reach::Skill(id), Reach::Special);
+        units.get(&reach).copied()
+    };
 
     // Each file's lines indexed once, not once per skill in it.
     let lines: Vec<LineIndex> = analysis
@@ -96,12 +109,8 @@ pub fn lower(
         .iter()
         .map(|f| LineIndex::new(f.text))
         .collect();
-    let bodies = reached.iter().filter_map(|&id| {
-        let info = analysis.skills.get(id);
-        let file = analysis.files.get(info.file.0 as usize)?;
-        Some(&file.tree.skills.get(info.index)?.blocks)
-    });
-    let statements: usize = std::iter::once(&entry.tree.blocks)
+    let bodies = reached.iter().filter_map(|&r| body(analysis, r));
+    let statements: usize = std::iter::once(&entry.tree.blocks[..])
         .chain(bodies)
         .map(|b| statements(b))
         .sum();
@@ -111,10 +120,13 @@ pub fn lower(
     };
     let blocks = low.blocks(&scope, &entry.tree.blocks);
     low.b.define_unit(main, &blocks);
-    for &id in &reached {
+    for &r in &reached {
+        let id = match r {
+            Reach::Skill(id) => id,
+            Reach::Special(i) => analysis.specials[i as usize].skill,
+        };
         let info = analysis.skills.get(id);
-        let (Some(unit), Some(checked)) =
-            (units.get(&id).copied(), checked_units.get(&id).copied())
+        let (Some(unit), Some(checked)) = (units.get(&r).copied(), checked_units.get(&r).copied())
         else {
             low.diags.push(*internal(
                 info.file,
@@ -123,17 +135,13 @@ pub fn lower(
             ));
             continue;
         };
-        let Some(body) = analysis
-            .files
-            .get(info.file.0 as usize)
-            .and_then(|f| f.tree.skills.get(info.index))
-        else {
+        let Some(body) = body(analysis, r) else {
             continue;
         };
         let Some(scope) = Scope::new(analysis, &lines, checked, &skill_unit) else {
             continue;
         };
-        let blocks = low.blocks(&scope, &body.blocks);
+        let blocks = low.blocks(&scope, body);
         low.b.define_unit(unit, &blocks);
     }
     low.finish(task_file)
@@ -151,36 +159,59 @@ fn statements(blocks: &[Block<'_>]) -> usize {
         .sum()
 }
 
+/// A skill to lower: a skill as written, or a parameterized skill specialized by a
+/// call's arguments (`Analysis::specials`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+enum Reach {
+    Skill(SkillId),
+    Special(u32),
+}
+
+/// The blocks a reached skill lowers: its own, or its specialization's.
+fn body<'a, 's>(analysis: &'a Analysis<'s>, r: Reach) -> Option<&'a [Block<'s>]> {
+    match r {
+        Reach::Skill(id) => {
+            let info = analysis.skills.get(id);
+            let file = analysis.files.get(info.file.0 as usize)?;
+            Some(&file.tree.skills.get(info.index)?.blocks)
+        }
+        Reach::Special(i) => analysis.special_blocks.get(i as usize).map(|b| &b[..]),
+    }
+}
+
 /// The skills a task calls, directly or through other skills, in the order first
 /// reached (depth first, calls in text order), so that module layout is stable. Calls
 /// inside `check` blocks never run and reach nothing.
 fn reachable(
     analysis: &Analysis<'_>,
     task: &crate::check::Unit,
-    checked_units: &HashMap<SkillId, &crate::check::Unit>,
-) -> Vec<SkillId> {
-    fn calls(analysis: &Analysis<'_>, unit: &crate::check::Unit) -> Vec<SkillId> {
-        let Some(entry) = analysis.files.get(unit.file.0 as usize) else {
-            return Vec::new();
-        };
-        let blocks = match unit.skill {
-            None => &entry.tree.blocks,
-            Some(id) => match entry.tree.skills.get(analysis.skills.get(id).index) {
-                Some(s) => &s.blocks,
-                None => return Vec::new(),
-            },
+    checked_units: &HashMap<Reach, &crate::check::Unit>,
+) -> Vec<Reach> {
+    fn calls(analysis: &Analysis<'_>, unit: &crate::check::Unit) -> Vec<Reach> {
+        let blocks = match (unit.special, unit.skill) {
+            (Some(i), _) => body(analysis, Reach::Special(i)),
+            (None, Some(id)) => body(analysis, Reach::Skill(id)),
+            (None, None) => analysis
+                .files
+                .get(unit.file.0 as usize)
+                .map(|e| &e.tree.blocks[..]),
         };
         let mut out = Vec::new();
-        walk(blocks, unit, &mut out);
+        if let Some(blocks) = blocks {
+            walk(blocks, unit, &mut out);
+        }
         out
     }
-    fn walk(blocks: &[Block<'_>], unit: &crate::check::Unit, out: &mut Vec<SkillId>) {
+    fn walk(blocks: &[Block<'_>], unit: &crate::check::Unit, out: &mut Vec<Reach>) {
         for stmt in blocks.iter().flat_map(|b| &b.stmts) {
             match &stmt.kind {
                 // Only a call, or an assignment of a call's value, can run a skill.
                 StmtKind::Call { .. } | StmtKind::Assign { .. } => {
                     if let Some(crate::check::Target::Skill(id)) = unit.targets.get(&stmt.span) {
-                        out.push(*id);
+                        out.push(match unit.specials.get(&stmt.span) {
+                            Some(&i) => Reach::Special(i),
+                            None => Reach::Skill(*id),
+                        });
                     }
                 }
                 StmtKind::If(c) | StmtKind::While { body: c, .. } => walk(&c.body, unit, out),
@@ -190,13 +221,13 @@ fn reachable(
     }
     let mut order = Vec::new();
     let mut seen = std::collections::HashSet::new();
-    let mut stack: Vec<SkillId> = calls(analysis, task).into_iter().rev().collect();
-    while let Some(id) = stack.pop() {
-        if !seen.insert(id) {
+    let mut stack: Vec<Reach> = calls(analysis, task).into_iter().rev().collect();
+    while let Some(r) = stack.pop() {
+        if !seen.insert(r) {
             continue;
         }
-        order.push(id);
-        if let Some(unit) = checked_units.get(&id) {
+        order.push(r);
+        if let Some(unit) = checked_units.get(&r) {
             stack.extend(calls(analysis, unit).into_iter().rev());
         }
     }

@@ -24,7 +24,10 @@ pub struct Scope<'a> {
     refs: Refs<'a>,
     pub targets: &'a FxHashMap<Span, Target>,
     pub vars: &'a Vars,
-    pub skill_unit: &'a dyn Fn(SkillId) -> Option<UnitId>,
+    /// The module unit that runs a skill, or one of its specializations.
+    pub skill_unit: &'a dyn Fn(SkillId, Option<u32>) -> Option<UnitId>,
+    /// Calls of parameterized skills: the specialization each runs.
+    pub specials: &'a FxHashMap<Span, u32>,
     /// The module's variable for each of `vars` the unit has used so far (`NO_SLOT`
     /// for the others), so that a name is hashed once per unit, not once per use.
     slots: RefCell<Vec<u32>>,
@@ -40,7 +43,7 @@ impl<'a> Scope<'a> {
         analysis: &'a Analysis<'_>,
         lines: &'a [LineIndex],
         unit: &'a Unit,
-        skill_unit: &'a dyn Fn(SkillId) -> Option<UnitId>,
+        skill_unit: &'a dyn Fn(SkillId, Option<u32>) -> Option<UnitId>,
     ) -> Option<Scope<'a>> {
         let file = unit.file.0 as usize;
         Some(Scope::from_parts(
@@ -59,7 +62,7 @@ impl<'a> Scope<'a> {
         text: &'a str,
         lines: &'a LineIndex,
         unit: &'a Unit,
-        skill_unit: &'a dyn Fn(SkillId) -> Option<UnitId>,
+        skill_unit: &'a dyn Fn(SkillId, Option<u32>) -> Option<UnitId>,
     ) -> Scope<'a> {
         Scope {
             file,
@@ -70,6 +73,7 @@ impl<'a> Scope<'a> {
             targets: &unit.targets,
             vars: &unit.vars,
             skill_unit,
+            specials: &unit.specials,
             slots: RefCell::new(Vec::new()),
             line_hint: Cell::new(0),
         }

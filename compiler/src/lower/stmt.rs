@@ -209,7 +209,7 @@ impl<'m> Lowerer<'m> {
         let bind = bind.map(|n| self.bound(sc, n)).transpose()?;
         let command = match target {
             Target::Skill(id) => {
-                let unit = (sc.skill_unit)(id)
+                let unit = (sc.skill_unit)(id, sc.specials.get(&span).copied())
                     .ok_or_else(|| internal(sc.file, span, "the skill has no unit"))?;
                 return Ok(Some(Op::Call { unit, bind }));
             }

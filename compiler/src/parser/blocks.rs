@@ -3,7 +3,9 @@
 //! reported and repaired (a missing `endif` is taken to be where the enclosing block
 //! ends), so the tree is always complete.
 
-use crate::ast::{Block, Conditional, Expr, FileKind, Name, Skill, SourceFile, Stmt, StmtKind};
+use crate::ast::{
+    Args, Block, Conditional, Expr, FileKind, Name, Skill, SourceFile, Stmt, StmtKind,
+};
 use crate::diagnostic::{Code, Diagnostic, FileId};
 use crate::limits::MAX_BLOCK_DEPTH;
 use crate::parser::lines::{Line, ParsedLine};
@@ -13,6 +15,7 @@ enum Opener<'s> {
     Root,
     Skill {
         name: Name<'s>,
+        params: Option<Args<'s>>,
         header: Span,
     },
     If {
@@ -183,7 +186,7 @@ impl<'s> Builder<'s> {
         match line {
             Line::IfHead { .. } | Line::WhileHead { .. } | Line::Check => self.skipped += 1,
             Line::EndIf | Line::EndWhile | Line::Checkend => self.skipped -= 1,
-            Line::SkillHeader(_) => {
+            Line::SkillHeader(..) => {
                 self.skipped = 0;
                 return false;
             }
@@ -238,7 +241,7 @@ impl<'s> Builder<'s> {
             Line::EndIf => self.close(Closer::EndIf, span),
             Line::EndWhile => self.close(Closer::EndWhile, span),
             Line::Checkend => self.close(Closer::Checkend, span),
-            Line::SkillHeader(name) => self.skill_header(name, span),
+            Line::SkillHeader(name, params) => self.skill_header(name, params, span),
         }
     }
 
@@ -276,7 +279,7 @@ impl<'s> Builder<'s> {
         self.pop(Some(span));
     }
 
-    fn skill_header(&mut self, name: Name<'s>, span: Span) {
+    fn skill_header(&mut self, name: Name<'s>, params: Option<Args<'s>>, span: Span) {
         if self.stack.len() > 1 && !matches!(self.stack[1].opener, Opener::Skill { .. })
             || self.stack.len() > 2
         {
@@ -301,7 +304,14 @@ impl<'s> Builder<'s> {
             self.flush();
             self.task_blocks = Some(self.parts.take_blocks(self.top().blocks));
         }
-        self.open(Opener::Skill { name, header: span }, span);
+        self.open(
+            Opener::Skill {
+                name,
+                params,
+                header: span,
+            },
+            span,
+        );
     }
 
     /// Closes the top frame for lack of its closer, which is taken to stand at `at`.
@@ -363,9 +373,14 @@ impl<'s> Builder<'s> {
                 }),
             },
             Opener::Check => StmtKind::Check { body, end },
-            Opener::Skill { name, header } => {
+            Opener::Skill {
+                name,
+                params,
+                header,
+            } => {
                 self.skills.push(Skill {
                     name,
+                    params,
                     header,
                     span: header.to(last),
                     blocks: body,

@@ -132,7 +132,7 @@ impl<'s> Reader<'_, 's> {
         match self.peek() {
             Some(Token::Colon) => {
                 self.pos += 1;
-                Some(Line::SkillHeader(name))
+                Some(Line::SkillHeader(name, None))
             }
             Some(Token::Assign) => {
                 self.pos += 1;
@@ -140,6 +140,11 @@ impl<'s> Reader<'_, 's> {
             }
             Some(Token::LParen) => {
                 let args = self.args()?;
+                if self.peek() == Some(Token::Colon) {
+                    // `NAME(a, b):`, a skill with parameters.
+                    self.pos += 1;
+                    return Some(Line::SkillHeader(name, Some(args)));
+                }
                 Some(Line::Stmt(StmtKind::Call {
                     bind: None,
                     call: Call {

@@ -31,7 +31,8 @@ pub enum Line<'s> {
     EndWhile,
     Check,
     Checkend,
-    SkillHeader(Name<'s>),
+    /// `NAME:`, or `NAME(parameters):`.
+    SkillHeader(Name<'s>, Option<Args<'s>>),
 }
 
 #[derive(Debug, Clone)]
@@ -203,16 +204,25 @@ where
         expr.labelled("expression").map(Rhs::Expr),
     ));
     let after_name = choice((
-        just(Token::Colon).to(Tail::Header),
+        just(Token::Colon).to(Tail::Header(None)),
         just(Token::Assign)
             .ignore_then(after_assign)
             .map(Tail::Assign),
-        args.or_not().map(Tail::Call),
+        // A colon after a call makes it a header with parameters; a statement ends
+        // there, so where one is broken the colon is not offered: it is told as the
+        // end of the line.
+        args.or_not()
+            .then(just(Token::Colon).labelled("end of line").or_not())
+            .map(|(args, colon)| match (args, colon) {
+                // `NAME(a, b):`, a skill with parameters.
+                (args, Some(_)) => Tail::Header(args),
+                (args, None) => Tail::Call(args),
+            }),
     ));
     let named = name(source)
         .then(after_name)
         .map(|(name, tail)| match tail {
-            Tail::Header => Line::SkillHeader(name),
+            Tail::Header(params) => Line::SkillHeader(name, params),
             Tail::Call(args) => Line::Stmt(StmtKind::Call {
                 bind: None,
                 call: Call { name, args },
@@ -246,7 +256,7 @@ where
 /// What follows a line's first name.
 #[derive(Clone)]
 enum Tail<'s> {
-    Header,
+    Header(Option<Args<'s>>),
     Assign(Rhs<'s>),
     Call(Option<Args<'s>>),
 }

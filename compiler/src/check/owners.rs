@@ -1,0 +1,696 @@
+//! Actuators set by two blocks in one tick (W0905). `speed`, `bodypose` and
+//! `actuator` (per device) act the instant they are issued and outside the movement
+//! queue (the catalogue's `Sets`), and the robot keeps the last value set.
+//! Two statements of one block are issued in the order written; but when two blocks
+//! that run at the same time set the same thing in the same tick, the robot keeps
+//! whichever the VM happens to issue last, and nothing at run time says so.
+//!
+//! When a statement is issued is read from the text as a chain of what its block
+//! waited for since its unit started: a task's top-level blocks (and a skill's blocks,
+//! and the blocks of one `if` or `while` body) start together; a block goes on in the
+//! same tick until a `wait`, an `init`, or a call of a skill whose first block holds
+//! (the call holds the caller until that block has issued its last statement).
+//! `wait(v)` is woken in one tick for every block that waits on `v`; `wait(2)` from
+//! one tick ends in one tick; anything else (an `init`, a holding skill call, a guard's
+//! or a loop's body) is a moment of its own. Two statements with the same chain are
+//! issued in the same tick. Only the last setting of each block in that tick
+//! matters, so a conflict is two blocks whose last settings of one thing in one tick
+//! differ. Statements are grouped by what they set and when, so the check is linear
+//! in the statements plus a sort of the settings that do meet, never a comparison of
+//! every pair.
+//!
+//! A skill call brings the settings its skill makes when it starts (the first block
+//! in line, in the caller's block; the others as blocks of their own), reported at
+//! the call.
+
+use std::rc::Rc;
+
+use ilmr_model::RobotModel;
+use ilmr_stdlib::{Command, Sets};
+use std::hash::{Hash, Hasher};
+
+use rustc_hash::{FxHashMap, FxHasher};
+
+use crate::ast::{Arg, Args, Block, Call, Expr, ExprKind, Stmt, StmtKind};
+use crate::check::params;
+use crate::check::skills::{SkillId, Skills};
+use crate::check::{FileEntry, Target, Unit};
+use crate::diagnostic::{Code, Diagnostic, FileId};
+use crate::span::Span;
+
+/// A skill's settings at its start beyond this many are not followed into its callers
+/// (nested skills could multiply them); the skill's own blocks are still checked.
+const SKILL_SETTINGS_KEPT: usize = 256;
+
+/// Other blocks named in one warning beyond the one it is said at.
+const SECONDARY_SHOWN: usize = 3;
+
+/// One step of the chain that says when a statement is issued.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+enum Step {
+    /// A task file's top-level blocks, or a skill's blocks, starting.
+    Unit(u32, u32),
+    /// A `wait(v)`: every block waiting on `v` wakes in one tick.
+    Woken(u64),
+    /// A `wait(seconds)` of a number written out.
+    Delay(u64),
+    /// A moment of its own, met by nothing else: after an `init` or a holding skill
+    /// call, a guard's or a loop's body.
+    Own,
+}
+
+/// A setting a skill makes when it starts, relative to a call of it.
+#[derive(Debug, Clone)]
+struct SkillSet {
+    target: u64,
+    value: u64,
+    /// 0: the first block, which runs in the caller's block; others: blocks of their
+    /// own, numbered within the skill's expansion.
+    strand: u32,
+    /// The statement inside the skill, for the message.
+    file: FileId,
+    span: Span,
+}
+
+enum Called {
+    Command(Command),
+    Skill(SkillId),
+    Other,
+}
+
+#[derive(Debug, Clone, Copy)]
+struct Record {
+    target: u64,
+    key: u32,
+    strand: u32,
+    value: u64,
+    file: FileId,
+    span: Span,
+    /// The skill statement behind a call's record, or the record's own.
+    via: (FileId, Span),
+    /// The call expansion it came from (0: written in the unit itself).
+    origin: u32,
+    order: u32,
+}
+
+struct Owners<'a, 's> {
+    files: &'a [FileEntry<'s>],
+    /// The skill calls the checker resolved in each task file (slot 0) and skill (its
+    /// index in its file, plus 1), by statement: cheaper than looking names up again.
+    calls: FxHashMap<(u32, u32), &'a FxHashMap<Span, Target>>,
+    skills: &'a Skills,
+    model: &'a RobotModel,
+    keys: FxHashMap<(u32, Step), u32>,
+    next_key: u32,
+    /// What each target is called in messages.
+    targets: FxHashMap<u64, String>,
+    records: Vec<Record>,
+    strands: u32,
+    origins: u32,
+    /// Per skill: whether a call of it holds its caller, and its settings at start.
+    holds: FxHashMap<u32, bool>,
+    starts: FxHashMap<u32, Rc<Vec<SkillSet>>>,
+    /// The commands that set something or hold their block: the others matter here
+    /// only as not being skills.
+    relevant: Vec<(&'static [u8], Command)>,
+    buf: String,
+}
+
+pub fn check_owners(
+    files: &[FileEntry<'_>],
+    skills: &Skills,
+    units: &[Unit],
+    model: &RobotModel,
+    diags: &mut Vec<Diagnostic>,
+) {
+    let calls = units
+        .iter()
+        .filter(|u| u.special.is_none())
+        .map(|u| {
+            let slot = u.skill.map_or(0, |id| skills.get(id).index as u32 + 1);
+            ((u.file.0, slot), &u.targets)
+        })
+        .collect();
+    let mut o = Owners {
+        files,
+        calls,
+        skills,
+        model,
+        keys: FxHashMap::default(),
+        next_key: 0,
+        targets: FxHashMap::default(),
+        records: Vec::new(),
+        strands: 0,
+        origins: 0,
+        holds: FxHashMap::default(),
+        starts: FxHashMap::default(),
+        relevant: Command::all()
+            .filter(|c| c.spec().sets != Sets::Nothing || c.spec().holds_block)
+            .map(|c| (c.name().as_bytes(), c))
+            .collect(),
+        buf: String::new(),
+    };
+    for (i, entry) in files.iter().enumerate() {
+        if entry.library {
+            continue;
+        }
+        let file = FileId(i as u32);
+        let key = o.key(0, Step::Unit(file.0, 0));
+        o.blocks(file, &entry.tree.blocks, key, 0);
+        for (s, skill) in entry.tree.skills.iter().enumerate() {
+            let key = o.key(0, Step::Unit(file.0, s as u32 + 1));
+            o.blocks(file, &skill.blocks, key, s as u32 + 1);
+        }
+    }
+    o.report(diags);
+}
+
+impl<'s> Owners<'_, 's> {
+    fn key(&mut self, parent: u32, step: Step) -> u32 {
+        if step == Step::Own {
+            // A moment of its own is never met again: no need to look it up.
+            self.next_key += 1;
+            return self.next_key;
+        }
+        let next = self.next_key + 1;
+        let id = *self.keys.entry((parent, step)).or_insert(next);
+        self.next_key = self.next_key.max(id);
+        id
+    }
+
+    /// What a called name runs, as far as this check cares: a command that sets
+    /// something or holds its block, a skill, or neither. Most statements are other
+    /// commands, so the few relevant ones are compared first.
+    fn resolve(&mut self, name: &str, at: Span, file: FileId, slot: u32) -> Called {
+        let bytes = name.as_bytes();
+        if let Some(&(_, c)) = self
+            .relevant
+            .iter()
+            .find(|(n, _)| n.len() == bytes.len() && n.eq_ignore_ascii_case(bytes))
+        {
+            return Called::Command(c);
+        }
+        match self.calls.get(&(file.0, slot)) {
+            Some(targets) => match targets.get(&at) {
+                Some(Target::Skill(id)) => Called::Skill(*id),
+                _ => Called::Other,
+            },
+            // A library skill no call checked: look the name up.
+            None => match self.skills.find_with(name, &mut self.buf) {
+                Some(id) if Command::from_name(name).is_none() => Called::Skill(id),
+                _ => Called::Other,
+            },
+        }
+    }
+
+    fn strand(&mut self) -> u32 {
+        self.strands += 1;
+        self.strands
+    }
+
+    /// Sibling blocks: each its own strand, all starting at `key`.
+    fn blocks(&mut self, file: FileId, blocks: &[Block<'_>], key: u32, slot: u32) {
+        for block in blocks {
+            let strand = self.strand();
+            let mut key = key;
+            for stmt in &block.stmts {
+                key = self.stmt(file, slot, stmt, key, strand);
+            }
+        }
+    }
+
+    /// Records what `stmt` sets and returns when the next statement of its block is
+    /// issued.
+    fn stmt(&mut self, file: FileId, slot: u32, stmt: &Stmt<'_>, key: u32, strand: u32) -> u32 {
+        let own = |o: &mut Self| o.key(key, Step::Own);
+        match &stmt.kind {
+            StmtKind::Call { call, .. } => self.call(file, slot, stmt.span, call, key, strand),
+            StmtKind::Assign { value, .. } => match &value.kind {
+                // `v = name`: a bare command or a skill call, or a copy.
+                ExprKind::Name(n) => {
+                    let call = Call {
+                        name: *n,
+                        args: None,
+                    };
+                    self.call(file, slot, stmt.span, &call, key, strand)
+                }
+                _ => key,
+            },
+            StmtKind::If(c) => {
+                let body = own(self);
+                self.blocks(file, &c.body, body, slot);
+                key
+            }
+            StmtKind::While { body, .. } => {
+                let at = own(self);
+                self.blocks(file, &body.body, at, slot);
+                key
+            }
+            StmtKind::Check { .. }
+            | StmtKind::Break { .. }
+            | StmtKind::Priority
+            | StmtKind::Error => key,
+        }
+    }
+
+    fn call(
+        &mut self,
+        file: FileId,
+        slot: u32,
+        at: Span,
+        call: &Call<'_>,
+        key: u32,
+        strand: u32,
+    ) -> u32 {
+        let id = match self.resolve(call.name.text, at, file, slot) {
+            Called::Other => return key,
+            Called::Skill(id) => id,
+            Called::Command(command) => {
+                return self.command(file, at, command, call.args.as_ref(), key, strand);
+            }
+        };
+        self.skill_call(file, at, id, key, strand)
+    }
+
+    fn command(
+        &mut self,
+        file: FileId,
+        at: Span,
+        command: Command,
+        args: Option<&Args<'_>>,
+        key: u32,
+        strand: u32,
+    ) -> u32 {
+        let spec = command.spec();
+        if let Some((target, value)) = self.setting(file, command, args) {
+            let order = self.records.len() as u32;
+            self.records.push(Record {
+                target,
+                key,
+                strand,
+                value,
+                file,
+                span: at,
+                via: (file, at),
+                origin: 0,
+                order,
+            });
+        }
+        if !spec.holds_block {
+            return key;
+        }
+        let waited = args.and_then(|a| match a.items.first() {
+            Some(Arg::Positional(e)) if a.items.len() == 1 => Some(e),
+            _ => None,
+        });
+        let step = match (command, waited.map(|e| &e.kind)) {
+            (Command::Wait, Some(ExprKind::Name(n))) => Step::Woken(hash_str(n.text)),
+            (Command::Wait, Some(ExprKind::Number(s))) => Step::Delay(s.to_bits()),
+            _ => Step::Own,
+        };
+        self.key(key, step)
+    }
+
+    fn skill_call(&mut self, file: FileId, at: Span, id: SkillId, key: u32, strand: u32) -> u32 {
+        let sets = self.skill_start(id, &mut Vec::new());
+        if !sets.is_empty() {
+            self.origins += 1;
+            let origin = self.origins;
+            let mut fresh = FxHashMap::default();
+            for s in sets.iter() {
+                let strand = if s.strand == 0 {
+                    strand
+                } else {
+                    *fresh.entry(s.strand).or_insert_with(|| {
+                        self.strands += 1;
+                        self.strands
+                    })
+                };
+                let order = self.records.len() as u32;
+                self.records.push(Record {
+                    target: s.target,
+                    key,
+                    strand,
+                    value: s.value,
+                    file,
+                    span: at,
+                    via: (s.file, s.span),
+                    origin,
+                    order,
+                });
+            }
+        }
+        if self.skill_holds(id, &mut Vec::new()) {
+            self.key(key, Step::Own)
+        } else {
+            key
+        }
+    }
+
+    /// What a statement of `command` sets, and a value that is equal for statements
+    /// that set the same: hashes of the target and of the value, made without
+    /// allocating (a large task sets something in most of its blocks).
+    fn setting(
+        &mut self,
+        file: FileId,
+        command: Command,
+        args: Option<&Args<'_>>,
+    ) -> Option<(u64, u64)> {
+        let items: &[Arg<'_>] = args.map_or(&[], |a| &a.items);
+        let words = items.iter().filter_map(|a| match a {
+            Arg::Positional(Expr {
+                kind: ExprKind::Name(n),
+                ..
+            }) => Some(n.text),
+            _ => None,
+        });
+        let (target, rest) = match command.spec().sets.applies(words) {
+            Sets::Nothing => return None,
+            Sets::Setting { what, .. } => {
+                let target = hash_str(what);
+                self.targets
+                    .entry(target)
+                    .or_insert_with(|| what.to_string());
+                (target, items)
+            }
+            Sets::Device => {
+                let Some(Arg::Positional(first)) = items.first() else {
+                    return None;
+                };
+                let device = match &first.kind {
+                    ExprKind::Name(n) => self.model.device(n.text),
+                    ExprKind::Number(n) => self.model.device_by_id(*n as i64),
+                    _ => None,
+                };
+                let text = self.files[file.0 as usize].text;
+                let written = first.span.slice(text).trim();
+                let name = device.map_or(written, |d| d.name.as_str());
+                let target = hash_str(name) ^ DEVICE_SEED;
+                self.targets
+                    .entry(target)
+                    .or_insert_with(|| format!("actuator `{name}`"));
+                (target, &items[1..])
+            }
+        };
+        let mut h = FxHasher::default();
+        command.hash(&mut h);
+        // Settings may come in any order: their hashes are summed.
+        let mut settings = 0u64;
+        for a in rest {
+            match a {
+                Arg::Positional(e) => hash_expr(e, &mut h),
+                Arg::Setting { key, value: e } => {
+                    let mut one = FxHasher::default();
+                    hash_name(key.text, &mut one);
+                    hash_expr(e, &mut one);
+                    settings = settings.wrapping_add(one.finish());
+                }
+            }
+        }
+        settings.hash(&mut h);
+        Some((target, h.finish()))
+    }
+
+    /// Whether a call of the skill holds its caller: its first block waits (a `wait`,
+    /// an `init` or a call that holds) before it has issued its last statement.
+    fn skill_holds(&mut self, id: SkillId, open: &mut Vec<u32>) -> bool {
+        if let Some(&h) = self.holds.get(&id.0) {
+            return h;
+        }
+        if open.contains(&id.0) || open.len() >= max_call_depth() {
+            // Recursion (E0601) or a chain the VM refuses (E0603): say it holds,
+            // which warns of less.
+            return true;
+        }
+        open.push(id.0);
+        let info = self.skills.get(id);
+        let files = self.files;
+        let blocks = &files[info.file.0 as usize].tree.skills[info.index].blocks;
+        let mut holds = false;
+        for stmt in blocks.first().map_or(&[][..], |b| &b.stmts) {
+            let name = match &stmt.kind {
+                StmtKind::Call { call, .. } => call.name.text,
+                StmtKind::Assign { value, .. } => match &value.kind {
+                    ExprKind::Name(n) => n.text,
+                    _ => continue,
+                },
+                _ => continue,
+            };
+            holds = match self.resolve(name, stmt.span, info.file, info.index as u32 + 1) {
+                Called::Command(c) => c.spec().holds_block,
+                Called::Skill(inner) => self.skill_holds(inner, open),
+                Called::Other => false,
+            };
+            if holds {
+                break;
+            }
+        }
+        open.pop();
+        self.holds.insert(id.0, holds);
+        holds
+    }
+
+    /// The settings a skill makes in the tick it is called: the statements of each of
+    /// its blocks up to the first that holds, through the skills they call.
+    fn skill_start(&mut self, id: SkillId, open: &mut Vec<u32>) -> Rc<Vec<SkillSet>> {
+        if let Some(s) = self.starts.get(&id.0) {
+            return s.clone();
+        }
+        if open.contains(&id.0) || open.len() >= max_call_depth() {
+            return Rc::default();
+        }
+        open.push(id.0);
+        let info = self.skills.get(id);
+        let file = info.file;
+        let files = self.files;
+        let blocks = &files[file.0 as usize].tree.skills[info.index].blocks;
+        let mut out: Vec<SkillSet> = Vec::new();
+        let mut strands = 0u32;
+        for (b, block) in blocks.iter().enumerate() {
+            let strand = if b == 0 {
+                0
+            } else {
+                strands += 1;
+                strands
+            };
+            for stmt in &block.stmts {
+                let (name, args) = match &stmt.kind {
+                    StmtKind::Call { call, .. } => (call.name.text, call.args.as_ref()),
+                    StmtKind::Assign { value, .. } => match &value.kind {
+                        ExprKind::Name(n) => (n.text, None),
+                        _ => continue,
+                    },
+                    // Guards and loops run their bodies later; they do not hold.
+                    _ => continue,
+                };
+                let span = stmt.span;
+                let inner = match self.resolve(name, span, file, info.index as u32 + 1) {
+                    Called::Other => continue,
+                    Called::Skill(inner) => inner,
+                    Called::Command(command) => {
+                        if let Some((target, value)) = self.setting(file, command, args) {
+                            out.push(SkillSet {
+                                target,
+                                value,
+                                strand,
+                                file,
+                                span,
+                            });
+                        }
+                        if command.spec().holds_block {
+                            break;
+                        }
+                        continue;
+                    }
+                };
+                let nested = self.skill_start(inner, open);
+                let mut fresh = FxHashMap::default();
+                for s in nested.iter() {
+                    let strand = if s.strand == 0 {
+                        strand
+                    } else {
+                        *fresh.entry(s.strand).or_insert_with(|| {
+                            strands += 1;
+                            strands
+                        })
+                    };
+                    out.push(SkillSet {
+                        strand,
+                        ..s.clone()
+                    });
+                }
+                if self.skill_holds(inner, open) {
+                    break;
+                }
+            }
+        }
+        // Only the last setting of a block in the tick is seen by the others.
+        let mut seen = FxHashMap::default();
+        for (i, s) in out.iter().enumerate() {
+            seen.insert((s.target, s.strand), i);
+        }
+        let mut kept: Vec<usize> = seen.into_values().collect();
+        kept.sort_unstable();
+        kept.truncate(SKILL_SETTINGS_KEPT);
+        let out = Rc::new(kept.into_iter().map(|i| out[i].clone()).collect::<Vec<_>>());
+        open.pop();
+        self.starts.insert(id.0, out.clone());
+        out
+    }
+
+    fn report(&mut self, diags: &mut Vec<Diagnostic>) {
+        let mut records = std::mem::take(&mut self.records);
+        // Only settings of a thing that more than one block sets at one moment can
+        // meet: most are alone, and are left out before sorting.
+        let mut groups: FxHashMap<(u64, u32), (u32, bool)> = FxHashMap::default();
+        groups.reserve(records.len());
+        for r in &records {
+            let g = groups.entry((r.target, r.key)).or_insert((r.strand, false));
+            g.1 |= g.0 != r.strand;
+        }
+        records.retain(|r| groups[&(r.target, r.key)].1);
+        records.sort_unstable_by_key(|r| (r.target, r.key, r.strand, r.order));
+        // The last setting of each block in each tick.
+        let mut last: Vec<Record> = Vec::new();
+        for r in records {
+            match last.last_mut() {
+                Some(l) if (l.target, l.key, l.strand) == (r.target, r.key, r.strand) => *l = r,
+                _ => last.push(r),
+            }
+        }
+        for group in last.chunk_by(|a, b| (a.target, a.key) == (b.target, b.key)) {
+            if group.len() < 2 || group.iter().all(|r| r.value == group[0].value) {
+                continue;
+            }
+            // A skill's own blocks are reported in the skill, not at each call.
+            if group[0].origin != 0 && group.iter().all(|r| r.origin == group[0].origin) {
+                continue;
+            }
+            let primary = group.iter().max_by_key(|r| r.order).copied().unwrap();
+            let others: Vec<&Record> = group.iter().filter(|r| r.value != primary.value).collect();
+            diags.push(self.diagnostic(&primary, &others));
+        }
+    }
+
+    fn statement(&self, (file, span): (FileId, Span)) -> &str {
+        let text = span.slice(self.files[file.0 as usize].text);
+        text.lines().next().unwrap_or("").trim()
+    }
+
+    fn diagnostic(&self, primary: &Record, others: &[&Record]) -> Diagnostic {
+        let what = &self.targets[&primary.target];
+        let shown = |r: &Record| {
+            let own = self.statement(r.via);
+            if r.origin == 0 {
+                format!("`{own}`")
+            } else {
+                format!("`{}` (through `{own}`)", self.statement((r.file, r.span)))
+            }
+        };
+        let mut d = Diagnostic::new(
+            Code::SettingRace,
+            primary.file,
+            primary.span,
+            format!(
+                "{} and {} set the robot's {what} in the same tick from blocks that run at the same time",
+                shown(primary),
+                shown(others[0]),
+            ),
+        )
+        .with_label(if primary.origin == 0 {
+            format!("sets {what}")
+        } else {
+            format!("sets {what} through the skill: `{}`", self.statement(primary.via))
+        });
+        for r in others.iter().take(SECONDARY_SHOWN) {
+            let label = if r.origin == 0 {
+                format!("also sets {what} in that tick, to another value")
+            } else {
+                format!(
+                    "also sets {what} in that tick, through the skill: `{}`",
+                    self.statement(r.via)
+                )
+            };
+            d = d.with_secondary(r.file, r.span, label);
+        }
+        let more = others.len().saturating_sub(SECONDARY_SHOWN);
+        let more = if more > 0 {
+            format!(" ({more} more blocks set it in that tick too)")
+        } else {
+            String::new()
+        };
+        d.with_help(format!(
+            "the robot keeps whichever the VM issues last, which the order of the blocks decides, not the text{more}; set it in one block, in the order meant, or hold one of them (`wait(v)`) until the other's moment has passed"
+        ))
+    }
+}
+
+/// The VM's skill call depth: deeper chains are refused (E0603), and following them
+/// would recurse as deep as they go.
+fn max_call_depth() -> usize {
+    usize::from(ilmr_vm::Config::default().max_call_depth)
+}
+
+/// Device targets apart from settings of the same name.
+const DEVICE_SEED: u64 = 0x9e37_79b9_7f4a_7c15;
+
+/// A name's hash, the same in any letter case.
+fn hash_str(text: &str) -> u64 {
+    let mut h = FxHasher::default();
+    hash_name(text, &mut h);
+    h.finish()
+}
+
+fn hash_name(text: &str, h: &mut FxHasher) {
+    if text.is_ascii() {
+        // Lower-cased a chunk at a time: per character, hashing cost more than the
+        // rest of the check of a `wait`.
+        let mut chunk = [0u8; 32];
+        for part in text.as_bytes().chunks(chunk.len()) {
+            let lower = &mut chunk[..part.len()];
+            lower.copy_from_slice(part);
+            lower.make_ascii_lowercase();
+            h.write(lower);
+        }
+    } else {
+        let mut utf8 = [0u8; 4];
+        for c in text.chars().flat_map(char::to_lowercase) {
+            h.write(c.encode_utf8(&mut utf8).as_bytes());
+        }
+    }
+    h.write_u8(0xff);
+}
+
+/// A value's hash: numbers folded (`0.2*2` and `.4` hash alike), names in any case.
+fn hash_expr(e: &Expr<'_>, h: &mut FxHasher) {
+    if let Some(v) = params::number(e) {
+        h.write_u8(0);
+        // 0.0 and -0.0 are one value.
+        h.write_u64((v + 0.0).to_bits());
+        return;
+    }
+    match &e.kind {
+        ExprKind::Number(_) => unreachable!("a number folds"),
+        ExprKind::Name(n) => {
+            h.write_u8(1);
+            hash_name(n.text, h);
+        }
+        ExprKind::Neg(inner) => {
+            h.write_u8(2);
+            hash_expr(inner, h);
+        }
+        ExprKind::Binary { op, lhs, rhs } => {
+            h.write_u8(3);
+            h.write_u8(*op as u8);
+            hash_expr(lhs, h);
+            hash_expr(rhs, h);
+        }
+        ExprKind::Compare { op, lhs, rhs, .. } => {
+            h.write_u8(4);
+            h.write_u8(*op as u8);
+            hash_expr(lhs, h);
+            hash_expr(rhs, h);
+        }
+        ExprKind::Error => h.write_u8(5),
+    }
+}
