@@ -115,12 +115,28 @@ fn checking_an_empty_program_is_clean() {
     assert!(analyze(&sources, &m).diagnostics.is_empty());
 }
 
-/// A scratch directory of this test binary, emptied first.
-fn scratch(name: &str) -> std::path::PathBuf {
+/// A scratch directory of this test binary, emptied first and removed when the test
+/// is done with it (its traces take some 60 MB).
+struct Scratch(std::path::PathBuf);
+
+impl std::ops::Deref for Scratch {
+    type Target = std::path::Path;
+    fn deref(&self) -> &std::path::Path {
+        &self.0
+    }
+}
+
+impl Drop for Scratch {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_dir_all(&self.0);
+    }
+}
+
+fn scratch(name: &str) -> Scratch {
     let dir = std::env::temp_dir().join(format!("ilmr-diagnostics-{}-{name}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
-    dir
+    Scratch(dir)
 }
 
 /// The passes a `while` on line 2 made in the first tick that started it, from the
