@@ -219,11 +219,7 @@ pub fn render_diagnostics(analysis: &Analysis<'_>, diagnostics: &[Diagnostic]) -
             text: f.text,
         })
         .collect();
-    let terminal = std::io::stdout().is_terminal();
-    let style = Style {
-        color: terminal && std::env::var_os("NO_COLOR").is_none(),
-        unicode: terminal,
-    };
+    let style = Style::on_terminal(std::io::stdout().is_terminal());
     render::human(diagnostics, &files, style)
 }
 

@@ -199,11 +199,7 @@ fn report_with(
             s
         }
         Format::Human => {
-            let terminal = std::io::stdout().is_terminal();
-            let style = Style {
-                color: terminal && std::env::var_os("NO_COLOR").is_none(),
-                unicode: terminal,
-            };
+            let style = Style::on_terminal(std::io::stdout().is_terminal());
             let mut s = render::human(&diagnostics, &files, style);
             let count = |e: bool| diagnostics.iter().filter(|d| d.is_error() == e).count();
             let checked = args.files.len();

@@ -13,6 +13,7 @@ mod run;
 mod serve;
 mod shell;
 mod sim;
+mod status_line;
 mod testing;
 mod view;
 

@@ -139,9 +139,9 @@ fn scratch(name: &str) -> Scratch {
     Scratch(dir)
 }
 
-/// The passes a `while` on line 2 made in the first tick that started it, from the
-/// trace of `task` run on a simulated Workpartner in the empty world.
-fn passes_in_first_tick(dir: &std::path::Path, name: &str, task: &str) -> u64 {
+/// The trace of `task` run for `max_time` seconds on a simulated Workpartner in the
+/// empty world.
+fn traced(dir: &std::path::Path, name: &str, task: &str, max_time: &str) -> String {
     let path = dir.join(format!("{name}.ilmr"));
     let trace = dir.join(format!("{name}.jsonl"));
     std::fs::write(&path, task).unwrap();
@@ -152,13 +152,19 @@ fn passes_in_first_tick(dir: &std::path::Path, name: &str, task: &str) -> u64 {
         "--world",
         "empty",
         "--max-time",
-        "0.03",
+        max_time,
         "--trace",
         trace.to_str().unwrap(),
         path.to_str().unwrap(),
     ]);
     assert!(code == 0 || code == 5, "{task}\n{out}{err}");
-    let text = std::fs::read_to_string(&trace).unwrap();
+    std::fs::read_to_string(&trace).unwrap()
+}
+
+/// The passes a `while` on line 2 made in the first tick that started it, from the
+/// trace of `task` run on a simulated Workpartner in the empty world.
+fn passes_in_first_tick(dir: &std::path::Path, name: &str, task: &str) -> u64 {
+    let text = traced(dir, name, task, "0.03");
     let first = text
         .lines()
         .map(|l| serde_json::from_str::<serde_json::Value>(l).unwrap())
@@ -287,23 +293,7 @@ fn approach_takes_an_object_of_the_model() {
 /// The time each of `lines` of `task` was first issued, from the trace of a run on a
 /// simulated Workpartner in the empty world.
 fn issued_at(dir: &std::path::Path, name: &str, task: &str, lines: &[u64]) -> Vec<f64> {
-    let path = dir.join(format!("{name}.ilmr"));
-    let trace = dir.join(format!("{name}.jsonl"));
-    std::fs::write(&path, task).unwrap();
-    let (code, out, err) = ilmrc(&[
-        "run",
-        "--robot",
-        "workpartner",
-        "--world",
-        "empty",
-        "--max-time",
-        "20",
-        "--trace",
-        trace.to_str().unwrap(),
-        path.to_str().unwrap(),
-    ]);
-    assert!(code == 0 || code == 5, "{task}\n{out}{err}");
-    let text = std::fs::read_to_string(&trace).unwrap();
+    let text = traced(dir, name, task, "20");
     let events: Vec<serde_json::Value> = text
         .lines()
         .map(|l| serde_json::from_str(l).unwrap())

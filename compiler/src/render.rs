@@ -28,6 +28,27 @@ impl Style {
         color: false,
         unicode: false,
     };
+
+    /// Colour (unless `NO_COLOR` is set) and box drawing on a terminal, plain ASCII
+    /// elsewhere.
+    pub fn on_terminal(terminal: bool) -> Style {
+        Style {
+            color: terminal && std::env::var_os("NO_COLOR").is_none(),
+            unicode: terminal,
+        }
+    }
+
+    /// ariadne's configuration in this style, spans in bytes.
+    pub fn config(self) -> Config {
+        Config::default()
+            .with_index_type(IndexType::Byte)
+            .with_color(self.color)
+            .with_char_set(if self.unicode {
+                CharSet::Unicode
+            } else {
+                CharSet::Ascii
+            })
+    }
 }
 
 pub fn human(diagnostics: &[Diagnostic], files: &[RenderFile<'_>], style: Style) -> String {
@@ -35,14 +56,7 @@ pub fn human(diagnostics: &[Diagnostic], files: &[RenderFile<'_>], style: Style)
     if diagnostics.is_empty() {
         return String::new();
     }
-    let config = Config::default()
-        .with_index_type(IndexType::Byte)
-        .with_color(style.color)
-        .with_char_set(if style.unicode {
-            CharSet::Unicode
-        } else {
-            CharSet::Ascii
-        });
+    let config = style.config();
     // Only the files a diagnostic points into: ariadne indexes the lines of each.
     let mut used: Vec<usize> = diagnostics
         .iter()

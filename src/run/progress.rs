@@ -2,7 +2,6 @@
 //! and the movements queued, redrawn at most ten times a second of wall time. Quiet
 //! when stderr is not a terminal, so logs and tests see only the summary.
 
-use std::io::{IsTerminal, Write};
 use std::time::{Duration, Instant};
 
 use ilmr_vm::{Clock, Vm};
@@ -10,44 +9,36 @@ use ilmr_vm::{Clock, Vm};
 use super::backend::{AnyRobot, Robot};
 use super::report::Report;
 use super::session::Session;
+use crate::status_line::StatusLine;
 
 const EVERY: Duration = Duration::from_millis(100);
 /// Characters kept of the line, so that it does not wrap on a common terminal.
 const WIDTH: usize = 118;
 
 pub struct Progress {
-    enabled: bool,
+    line: StatusLine,
     last: Option<Instant>,
-    shown: bool,
 }
 
 impl Progress {
     /// Shown when stderr is a terminal and the run may draw on it (`allowed`).
     pub fn on_terminal(allowed: bool) -> Progress {
         Progress {
-            enabled: allowed && std::io::stderr().is_terminal(),
+            line: StatusLine::on_terminal(allowed),
             last: None,
-            shown: false,
         }
     }
 
     pub fn show<C: Clock>(&mut self, vm: &Vm<AnyRobot, C>, session: &Session, report: &Report) {
-        if !self.enabled || self.last.is_some_and(|l| l.elapsed() < EVERY) {
+        if !self.line.enabled() || self.last.is_some_and(|l| l.elapsed() < EVERY) {
             return;
         }
         self.last = Some(Instant::now());
-        let line = render(vm, session, report);
-        let mut err = std::io::stderr().lock();
-        let _ = write!(err, "\r\x1b[2K{line}");
-        let _ = err.flush();
-        self.shown = true;
+        self.line.draw(&render(vm, session, report));
     }
 
     pub fn clear(&mut self) {
-        if self.shown {
-            let _ = write!(std::io::stderr().lock(), "\r\x1b[2K");
-            self.shown = false;
-        }
+        self.line.clear();
     }
 }
 

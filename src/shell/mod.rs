@@ -61,10 +61,7 @@ fn execute(args: &ShellArgs) -> Result<ExitCode, String> {
         return Ok(ExitCode::from(crate::EXIT_ERRORS));
     };
     let terminal = std::io::stdin().is_terminal() && std::io::stdout().is_terminal();
-    let style = Style {
-        color: terminal && std::env::var_os("NO_COLOR").is_none(),
-        unicode: terminal,
-    };
+    let style = Style::on_terminal(terminal);
     let words = Arc::new(Mutex::new(Words::new(&live.model)));
     let config = Config::builder()
         .auto_add_history(true)

@@ -73,7 +73,7 @@ pub struct TestArgs {
 
 pub fn run(args: TestArgs) -> ExitCode {
     let started = Instant::now();
-    let style = Style::for_stdout();
+    let style = Style::on_terminal(std::io::IsTerminal::is_terminal(&std::io::stdout()));
     let paths = match find(&args.paths) {
         Ok(p) => p,
         Err(e) => {

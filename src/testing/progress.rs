@@ -1,7 +1,7 @@
 //! The progress line on a terminal while tests run long: runs done of all, and the
 //! wall time. Quiet when stderr is not a terminal, and for the first second.
 
-use std::io::{IsTerminal, Write};
+use crate::status_line::StatusLine;
 use std::time::{Duration, Instant};
 
 /// Shown once the tests have run this long.
@@ -10,37 +10,28 @@ const AFTER: Duration = Duration::from_secs(1);
 pub const EVERY: Duration = Duration::from_millis(100);
 
 pub struct Progress {
-    enabled: bool,
+    line: StatusLine,
     started: Instant,
-    shown: bool,
 }
 
 impl Progress {
     pub fn on_terminal() -> Progress {
         Progress {
-            enabled: std::io::stderr().is_terminal(),
+            line: StatusLine::on_terminal(true),
             started: Instant::now(),
-            shown: false,
         }
     }
 
     pub fn show(&mut self, done: usize, total: usize) {
         let elapsed = self.started.elapsed();
-        if !self.enabled || elapsed < AFTER {
-            return;
+        if elapsed >= AFTER {
+            self.line.draw(&line(done, total, elapsed));
         }
-        let mut err = std::io::stderr().lock();
-        let _ = write!(err, "\r\x1b[2K{}", line(done, total, elapsed));
-        let _ = err.flush();
-        self.shown = true;
     }
 
     /// Takes the line away before other output.
     pub fn clear(&mut self) {
-        if self.shown {
-            let _ = write!(std::io::stderr().lock(), "\r\x1b[2K");
-            self.shown = false;
-        }
+        self.line.clear();
     }
 }
 

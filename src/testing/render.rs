@@ -1,39 +1,15 @@
 //! Problems and failures as people read them: ariadne reports against the test file.
 
-use ariadne::{CharSet, Color, Config, IndexType, Label, Report, ReportKind, Source};
-use std::io::IsTerminal;
+use ariadne::{Color, Label, Report, ReportKind, Source};
 
 use super::problem::Problem;
 
-#[derive(Debug, Clone, Copy)]
-pub struct Style {
-    pub color: bool,
-    pub unicode: bool,
-}
-
-impl Style {
-    /// Colour and box drawing on a terminal (colour unless `NO_COLOR`), plain ASCII
-    /// elsewhere, as `ilmrc check` does.
-    pub fn for_stdout() -> Style {
-        let terminal = std::io::stdout().is_terminal();
-        Style {
-            color: terminal && std::env::var_os("NO_COLOR").is_none(),
-            unicode: terminal,
-        }
-    }
-}
+pub use ilmr_compiler::render::Style;
 
 /// One report: the problem's code and `head` at its top, its message as the label at
 /// its span of the file, and its help.
 pub fn report(path: &str, text: &str, head: &str, p: &Problem, style: Style) -> String {
-    let config = Config::default()
-        .with_index_type(IndexType::Byte)
-        .with_color(style.color)
-        .with_char_set(if style.unicode {
-            CharSet::Unicode
-        } else {
-            CharSet::Ascii
-        });
+    let config = style.config();
     let span = p.span.start.min(text.len())..p.span.end.min(text.len());
     let path = path.to_string();
     let mut report = Report::build(ReportKind::Error, (path.clone(), span.clone()))
