@@ -2,6 +2,7 @@
 
 mod build;
 mod check;
+mod diff;
 mod fleet;
 mod fmt;
 mod inputs;
@@ -63,6 +64,9 @@ enum Cmd {
     Test(testing::TestArgs),
     /// Redraw a finished run from its trace, without running it.
     Replay(replay::ReplayArgs),
+    /// Where two traces of a task part ways: the first event that differs, the
+    /// commands whose end changed, the largest pose difference.
+    Diff(diff::DiffArgs),
     /// Print the syntax tree of a file, one node per line.
     Parse {
         /// The file to parse.
@@ -100,6 +104,7 @@ fn main() -> ExitCode {
         Cmd::Fleet(args) => fleet::run(args),
         Cmd::Test(args) => testing::run(args),
         Cmd::Replay(args) => replay::run(args),
+        Cmd::Diff(args) => diff::run(args),
         Cmd::Serve(args) => serve::run(args),
         Cmd::Shell(args) => shell::run(args),
         Cmd::Parse { file } => match inputs::read_source(&file) {
