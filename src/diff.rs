@@ -19,6 +19,9 @@ pub struct DiffArgs {
     pub a: PathBuf,
     /// The trace to compare it with.
     pub b: PathBuf,
+    /// Draw both trajectories over A's world, with speed and curvature below (SVG).
+    #[arg(long)]
+    pub plot: Option<PathBuf>,
 }
 
 pub fn run(args: DiffArgs) -> ExitCode {
@@ -43,11 +46,48 @@ pub fn run(args: DiffArgs) -> ExitCode {
     };
     let report = compare(&ra, &rb);
     print!("{}", report.render(&args.a, &args.b));
+    if let Some(out) = &args.plot {
+        if let Err(e) = plot_both([(&args.a, &a), (&args.b, &b)], out) {
+            eprintln!("error: {e}");
+            return ExitCode::from(crate::EXIT_USAGE);
+        }
+        println!("drew both runs: {}", out.display());
+    }
     if report.same() {
         ExitCode::SUCCESS
     } else {
         ExitCode::from(crate::EXIT_ERRORS)
     }
+}
+
+/// Both runs' trajectories, A's in the palette's first colour and B's in its second,
+/// over A's world, with both runs' speed and curvature below.
+fn plot_both(runs: [(&Path, &str); 2], out: &Path) -> Result<(), String> {
+    use ilmr_plot::{Colour, Corner, Figure, RunRecord, Scenery, Track};
+    let [(a, _), (b, _)] = runs;
+    let mut figure = Figure::new(format!("{} (A) and {} (B)", a.display(), b.display()));
+    for (i, (path, text)) in runs.into_iter().enumerate() {
+        let record = RunRecord::from_jsonl(text)
+            .map_err(|e| format!("`{}` is not a trace of ilmrc run: {e}", path.display()))?;
+        if i == 0 {
+            figure
+                .scenery
+                .extend(record.world()?.map(|world| Scenery { world, tint: None }));
+        }
+        figure.tracks.push(Track {
+            label: Some(format!("{} {}", ["A", "B"][i], path.display())),
+            colour: Colour::palette(i),
+            samples: record.poses,
+        });
+    }
+    if figure.tracks.iter().all(|t| t.samples.is_empty()) {
+        return Err(
+            "neither trace has pose samples to draw (a run with --robot none has none)".into(),
+        );
+    }
+    figure.time_series = true;
+    figure.legend = Corner::Quietest;
+    figure.write_svg(out)
 }
 
 fn read(path: &Path) -> Result<String, String> {

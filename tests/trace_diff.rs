@@ -84,6 +84,38 @@ fn a_changed_task_shows_where_it_parts_ways_and_which_ends_moved() {
 }
 
 #[test]
+fn plot_draws_both_trajectories_over_the_world() {
+    let a = traced("plot-a", "goahead(1)\nturn(left)\n", &[]);
+    let b = traced("plot-b", "goahead(1.5)\nturn(left)\n", &[]);
+    let svg = scratch("both.svg");
+    let (code, out, err) = ilmrc(&[
+        "diff",
+        a.to_str().unwrap(),
+        b.to_str().unwrap(),
+        "--plot",
+        svg.to_str().unwrap(),
+    ]);
+    for p in [&a, &b] {
+        let _ = std::fs::remove_file(p);
+    }
+    assert_eq!(code, 1, "{out}{err}");
+    assert!(
+        out.ends_with(&format!("drew both runs: {}\n", svg.display())),
+        "{out}"
+    );
+    let text = std::fs::read_to_string(&svg).expect("an SVG");
+    let _ = std::fs::remove_file(&svg);
+    assert!(text.starts_with("<svg") && text.trim_end().ends_with("</svg>"));
+    // Both tracks are named in the legend, each in its own colour of the palette.
+    for (side, trace) in [("A", &a), ("B", &b)] {
+        let label = format!("{side} {}", trace.display());
+        assert!(text.contains(&label), "{label} not in the legend");
+    }
+    assert!(text.contains(r##"stroke="#0072B2""##), "A's colour");
+    assert!(text.contains(r##"stroke="#D55E00""##), "B's colour");
+}
+
+#[test]
 fn two_seeds_differ_in_their_headers_and_their_noise() {
     let a = traced("seed-a", "examples/short_task.ilmr", &["--seed", "1"]);
     let b = traced("seed-b", "examples/short_task.ilmr", &["--seed", "2"]);
