@@ -218,17 +218,7 @@ fn the_limits_table_quotes_the_constants() {
         .filter(|l| l.starts_with('|'))
         .collect();
     let mib = |bytes: u64| format!("{} MiB", bytes >> 20);
-    let count = |n: usize| {
-        let digits = n.to_string();
-        let mut out = String::new();
-        for (i, c) in digits.chars().enumerate() {
-            if i > 0 && (digits.len() - i).is_multiple_of(3) {
-                out.push(',');
-            }
-            out.push(c);
-        }
-        out
-    };
+    let count = |n: usize| render::thousands(n as u64);
     let quoted = [
         (
             "MAX_BLOCK_DEPTH",

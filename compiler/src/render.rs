@@ -51,6 +51,19 @@ impl Style {
     }
 }
 
+/// `200000` as `200,000`: a count as messages and docs write it.
+pub fn thousands(n: impl Into<u64>) -> String {
+    let digits = n.into().to_string();
+    let mut out = String::new();
+    for (i, c) in digits.chars().enumerate() {
+        if i > 0 && (digits.len() - i).is_multiple_of(3) {
+            out.push(',');
+        }
+        out.push(c);
+    }
+    out
+}
+
 pub fn human(diagnostics: &[Diagnostic], files: &[RenderFile<'_>], style: Style) -> String {
     let mut out = String::new();
     if diagnostics.is_empty() {

@@ -338,7 +338,10 @@ mod tests {
             ),
             (
                 "MAX_LINE_STATEMENTS",
-                format!("{} statements", thousands(crate::live::MAX_LINE_STATEMENTS)),
+                format!(
+                    "{} statements",
+                    ilmr_compiler::render::thousands(crate::live::MAX_LINE_STATEMENTS)
+                ),
             ),
             (
                 "MAX_LINE_TEXT_BYTES",
@@ -355,18 +358,6 @@ mod tests {
                 "docs/serve.md does not say {value} ({name})"
             );
         }
-    }
-
-    fn thousands(n: u32) -> String {
-        let digits = n.to_string();
-        let mut out = String::new();
-        for (i, c) in digits.chars().enumerate() {
-            if i > 0 && (digits.len() - i).is_multiple_of(3) {
-                out.push(',');
-            }
-            out.push(c);
-        }
-        out
     }
 
     #[test]

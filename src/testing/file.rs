@@ -269,31 +269,29 @@ impl<'a> Reader<'a, '_> {
     /// A path from the test file's folder, which must exist.
     fn file(&mut self, key: &str) -> Option<(PathBuf, Range<usize>)> {
         let (name, span) = self.string(key)?;
-        let path = self.dir.join(&name);
+        let path = self.existing(&name, &span)?;
+        Some((path, span))
+    }
+
+    /// `name` from the test file's folder, when it exists; else a problem at `span`.
+    fn existing(&mut self, name: &str, span: &Range<usize>) -> Option<PathBuf> {
+        let path = self.dir.join(name);
         if !path.exists() {
             self.problems.push(Problem::new(
                 Code::MissingFile,
-                span,
+                span.clone(),
                 format!("no file `{}`", path.display()),
             ));
             return None;
         }
-        Some((path, span))
+        Some(path)
     }
 
     /// A name, or a path when it looks like one (taken from the test file's folder).
     fn name_or_path(&mut self, key: &str) -> Option<(String, Range<usize>)> {
         let (name, span) = self.string(key)?;
         if name.contains(['/', '\\', '.']) {
-            let path = self.dir.join(&name);
-            if !path.exists() {
-                self.problems.push(Problem::new(
-                    Code::MissingFile,
-                    span,
-                    format!("no file `{}`", path.display()),
-                ));
-                return None;
-            }
+            let path = self.existing(&name, &span)?;
             return Some((path.display().to_string(), span));
         }
         Some((name, span))

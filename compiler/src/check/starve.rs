@@ -19,6 +19,7 @@ use crate::ast::{Arg, Args, Block, Expr, ExprKind, Stmt, StmtKind};
 use crate::check::loops::names_in;
 use crate::check::skills::Skills;
 use crate::diagnostic::{Code, Diagnostic, FileId};
+use crate::render::thousands;
 
 /// What the W0902 check needs to know of the whole program.
 pub struct Program<'a> {
@@ -180,17 +181,4 @@ fn positional_names<'a>(args: Option<&'a Args<'a>>) -> impl Iterator<Item = &'a 
             }) => Some(n.text),
             _ => None,
         })
-}
-
-/// `200000` as `200,000`.
-fn thousands(n: u32) -> String {
-    let digits = n.to_string();
-    let mut out = String::new();
-    for (i, c) in digits.chars().enumerate() {
-        if i > 0 && (digits.len() - i).is_multiple_of(3) {
-            out.push(',');
-        }
-        out.push(c);
-    }
-    out
 }
