@@ -159,8 +159,13 @@ struct Apart {
     b: (f64, f64),
 }
 
+/// Lines that say how the run was set up or what it received rather than what the
+/// task did: the header, and the inputs of a run that recorded them.
 fn is_header(r: &Record<'_>) -> bool {
-    matches!(r.event, Event::Trace(_) | Event::Run(_))
+    matches!(
+        r.event,
+        Event::Trace(_) | Event::Run(_) | Event::Tape(_) | Event::Input(_)
+    )
 }
 
 fn stmt_of<'r>(e: &'r Event<'_>) -> Option<&'r Stmt<'r>> {

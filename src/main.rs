@@ -15,6 +15,7 @@ mod serve;
 mod shell;
 mod sim;
 mod status_line;
+mod tape;
 mod testing;
 mod view;
 

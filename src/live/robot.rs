@@ -65,7 +65,7 @@ pub fn open(args: &RobotArgs) -> Result<Opened, String> {
         ..vm_config(&setup.model, body.as_ref())
     };
     if setup.backend == Backend::Ros2 {
-        setup::ros2_scanner_offset(&robot, &mut config);
+        config.scanner_offset = setup::ros2_scanner_offset(&robot);
     }
     let scene = setup.world.map(|w| w.world);
     Ok(Opened {

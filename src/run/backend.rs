@@ -50,6 +50,17 @@ pub trait Robot: Hal {
     fn take_ros2_messages(&mut self) -> Vec<ilmr_ros2::robot::Recorded> {
         Vec::new()
     }
+
+    /// The run has written the tick's lines. A robot that records its inputs
+    /// (`crate::tape::Taping`) hands over the tick's as one `input` line.
+    fn end_tick(&mut self) -> Option<ilmr_trace::Input> {
+        None
+    }
+
+    /// A robot played from a recording has no more ticks to play.
+    fn inputs_exhausted(&self) -> bool {
+        false
+    }
 }
 
 /// A laser scan with its origin in the world frame (where the beams were cast from).
@@ -287,6 +298,12 @@ impl Robot for AnyRobot {
     }
     fn take_ros2_messages(&mut self) -> Vec<ilmr_ros2::robot::Recorded> {
         self.0.take_ros2_messages()
+    }
+    fn end_tick(&mut self) -> Option<ilmr_trace::Input> {
+        self.0.end_tick()
+    }
+    fn inputs_exhausted(&self) -> bool {
+        self.0.inputs_exhausted()
     }
 }
 

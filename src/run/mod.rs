@@ -9,7 +9,7 @@ pub(crate) mod backend;
 pub(crate) mod console;
 mod mcap;
 mod progress;
-mod record;
+pub(crate) mod record;
 mod report;
 pub(crate) mod scenario;
 mod session;
@@ -84,6 +84,10 @@ pub struct RunArgs {
     /// Write every event as JSON Lines here.
     #[arg(long)]
     pub trace: Option<PathBuf>,
+    /// Record in the trace everything the VM receives from the robot, tick by tick,
+    /// so that `ilmrc replay --inputs TRACE TASK` can run the task again without it.
+    #[arg(long, requires = "trace")]
+    pub record_inputs: bool,
     /// Write the run as an MCAP file (pose, scans, reference paths, command events).
     #[arg(long)]
     pub mcap: Option<PathBuf>,
@@ -214,7 +218,59 @@ pub(crate) fn execute(
     scenario.lines.sort_by(|a, b| a.t.total_cmp(&b.t));
     // Outputs are opened before the run, so that a path that cannot be written fails
     // at once rather than after minutes of simulation.
-    let mut sink = Sink::open(args.trace.as_deref(), args.plot.as_deref())?;
+    let sink = Sink::open(args.trace.as_deref(), args.plot.as_deref())?;
+    let prelude = reached.header.clone().into_iter().collect();
+    launch(
+        args,
+        Start {
+            setup: &setup,
+            scenario: &scenario,
+            sink,
+            robot: Source::Open,
+            prelude,
+        },
+        reached,
+        console,
+    )
+}
+
+/// Where the run's robot comes from.
+pub(crate) enum Source {
+    /// Opened from the setup (`setup::open`).
+    Open,
+    /// A recording's inputs, played back (`ilmrc replay --inputs`); the recording
+    /// says where the scanner is.
+    Played {
+        player: crate::tape::Player,
+        scanner_offset: Option<f64>,
+    },
+}
+
+/// What a run starts with once its options are read.
+pub(crate) struct Start<'a> {
+    pub setup: &'a Setup,
+    pub scenario: &'a Scenario,
+    pub sink: Sink,
+    pub robot: Source,
+    /// The trace's lines after its version line and before the run's events: the
+    /// `run` header (and a replay's recorded `tape` line).
+    pub prelude: Vec<ilmr_trace::Record<'a>>,
+}
+
+/// Compiles the task, opens the robot and the outputs and runs the task.
+pub(crate) fn launch(
+    args: &RunArgs,
+    start: Start<'_>,
+    reached: &mut Reached,
+    console: &mut Console,
+) -> Result<Ran, String> {
+    let Start {
+        setup,
+        scenario,
+        mut sink,
+        robot: source,
+        mut prelude,
+    } = start;
     let mcap = match &args.mcap {
         Some(p) => Some(mcap::McapOut::create(
             p,
@@ -250,9 +306,28 @@ pub(crate) fn execute(
         Compiled::Module(m) => *m,
         Compiled::Rejected => return Ok(Ran::Rejected),
     };
-    let mut robot = setup::open(&setup, &scenario, args.seed)?;
-    if mcap.is_some() {
-        robot.record_ros2_messages();
+    let played = matches!(source, Source::Played { .. });
+    let (mut robot, scanner_offset) = match source {
+        Source::Open => {
+            let mut robot = setup::open(setup, scenario, args.seed)?;
+            if mcap.is_some() {
+                robot.record_ros2_messages();
+            }
+            let offset =
+                (setup.backend == Backend::Ros2).then(|| setup::ros2_scanner_offset(&robot));
+            (robot, offset)
+        }
+        Source::Played {
+            player,
+            scanner_offset,
+        } => (AnyRobot::new(player), scanner_offset),
+    };
+    if args.record_inputs {
+        // A replay's prelude is the recording's, its `tape` line included.
+        if !played {
+            prelude.push(crate::tape::header(setup, scenario, args, scanner_offset));
+        }
+        robot = AnyRobot::new(crate::tape::Taping::new(robot));
     }
     let body = match setup.backend {
         Backend::Sim(kind) => Some(ilmr_sim::config_from_model(&setup.model, kind)),
@@ -273,21 +348,21 @@ pub(crate) fn execute(
         pose_every: args.pose_every,
         ..setup::vm_config(&setup.model, body.as_ref())
     };
-    if setup.backend == Backend::Ros2 {
-        setup::ros2_scanner_offset(&robot, &mut config);
+    if let Some(offset) = scanner_offset {
+        config.scanner_offset = offset;
     }
-    if let Some(line) = &reached.header {
+    for line in &prelude {
         sink.put(line)?;
     }
     let parts = Parts {
-        setup: &setup,
-        scenario: &scenario,
+        setup,
+        scenario,
         sink,
         mcap,
         live,
     };
-    // A real robot lives on the wall clock.
-    if args.realtime || setup.backend == Backend::Ros2 {
+    // A real robot lives on the wall clock; its recording does not.
+    if (args.realtime || setup.backend == Backend::Ros2) && !played {
         let vm = Vm::new(module, robot, RealClock::new(), config).map_err(|e| e.to_string())?;
         reached.running = true;
         drive(vm, parts, args, console)
@@ -337,6 +412,9 @@ fn drive<C: Clock>(
         if vm.ticks() >= max_ticks {
             break Outcome::MaxTime;
         }
+        if vm.hal().inputs_exhausted() {
+            break Outcome::RecordingEnded;
+        }
         vm.tick();
         let events = vm.take_events();
         let overran = session.absorb(&events, extra.movement());
@@ -363,6 +441,12 @@ fn drive<C: Clock>(
         }
         if let Some(l) = parts.live.as_mut() {
             l.tick(vm.module(), &events, scan.as_ref());
+        }
+        if let Some(input) = vm.hal_mut().end_tick() {
+            // At the time of the tick whose inputs they are, as its events are.
+            let t = vm.ticks().saturating_sub(1) as f64 * vm.config().period;
+            let line = ilmr_trace::Record::new(t, ilmr_trace::Event::Input(Box::new(input)));
+            parts.sink.put(&line)?;
         }
         progress.show(&vm, &session, &report);
         if report

@@ -20,6 +20,7 @@ use std::borrow::Cow;
 use std::fs::File;
 use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
+use std::sync::{Arc, Mutex, PoisonError};
 
 use ilmr_files::MAX_TRACE_BYTES;
 use ilmr_hal::Pose;
@@ -47,7 +48,7 @@ const TRUNCATED_ROOM: u64 = 256;
 
 struct TraceFile {
     path: PathBuf,
-    out: BufWriter<File>,
+    out: Box<dyn Write + Send>,
     written: u64,
     cap: u64,
     /// The cap was reached: nothing more is written.
@@ -122,13 +123,30 @@ impl Sink {
         let file = match trace {
             Some(p) => Some(TraceFile {
                 path: p.to_path_buf(),
-                out: BufWriter::new(create(p, "trace")?),
+                out: Box::new(BufWriter::new(create(p, "trace")?)),
                 written: 0,
                 cap,
                 full: false,
             }),
             None => None,
         };
+        Sink::with(file, plot)
+    }
+
+    /// A sink whose trace goes into `kept` rather than a file (a replay compares it
+    /// with the recording before it writes it anywhere).
+    pub fn in_memory(kept: Kept, plot: Option<&Path>) -> Result<Sink, String> {
+        let file = TraceFile {
+            path: PathBuf::from("(the replayed trace)"),
+            out: Box::new(kept),
+            written: 0,
+            cap: MAX_TRACE_BYTES,
+            full: false,
+        };
+        Sink::with(Some(file), plot)
+    }
+
+    fn with(file: Option<TraceFile>, plot: Option<&Path>) -> Result<Sink, String> {
         if let Some(p) = plot {
             create(p, "plot")?;
         }
@@ -175,6 +193,31 @@ impl Sink {
                 .map_err(|e| format!("cannot write trace `{}`: {e}", f.path.display()))?;
         }
         Ok(self.record)
+    }
+}
+
+/// A trace kept in memory, shared by the sink that writes it and whoever reads it
+/// once the run is over.
+#[derive(Clone, Default)]
+pub struct Kept(Arc<Mutex<Vec<u8>>>);
+
+impl Kept {
+    pub fn take(&self) -> Vec<u8> {
+        std::mem::take(&mut *self.0.lock().unwrap_or_else(PoisonError::into_inner))
+    }
+}
+
+impl Write for Kept {
+    fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
+        self.0
+            .lock()
+            .unwrap_or_else(PoisonError::into_inner)
+            .extend_from_slice(buf);
+        Ok(buf.len())
+    }
+
+    fn flush(&mut self) -> std::io::Result<()> {
+        Ok(())
     }
 }
 

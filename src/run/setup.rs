@@ -316,16 +316,16 @@ pub use ilmr_sim::vm_config;
 /// The VM's `scanner_offset` for a ROS 2 robot: where `tf` puts its scanner ahead of
 /// the body frame. Without a transform the scan is read as taken at the robot's origin,
 /// and the operator is told.
-pub fn ros2_scanner_offset(robot: &AnyRobot, config: &mut ilmr_vm::Config) {
+pub fn ros2_scanner_offset(robot: &AnyRobot) -> f64 {
     use super::backend::Robot;
     match robot.scanner_mount() {
-        Some(m) => config.scanner_offset = m.x,
+        Some(m) => m.x,
         None => {
-            config.scanner_offset = 0.0;
             eprintln!(
                 "warning: no transform places the robot's scanner on its body frame (tf, \
                  tf_static): its scans are read as taken at the robot's origin"
             );
+            0.0
         }
     }
 }

@@ -21,6 +21,8 @@ pub enum Outcome {
     /// A supervisor hold lasted `--hold-limit`.
     Held,
     MaxTime,
+    /// A replay ran out of recorded inputs before the task ended (its task changed).
+    RecordingEnded,
 }
 
 /// How a run ended and what it met on the way.
@@ -37,7 +39,7 @@ impl Ended<'_> {
         match self.outcome {
             Outcome::Held => EXIT_HELD,
             Outcome::MaxTime if !self.report.holds.is_empty() => EXIT_HELD,
-            Outcome::MaxTime => EXIT_MAX_TIME,
+            Outcome::MaxTime | Outcome::RecordingEnded => EXIT_MAX_TIME,
             Outcome::Finished | Outcome::Waiting if k.refused + k.errors > 0 => EXIT_TROUBLE,
             Outcome::Finished | Outcome::Waiting => 0,
         }
@@ -75,6 +77,11 @@ impl Ended<'_> {
                 };
                 format!("max-time: stopped at --max-time {}, {live}", args.max_time)
             }
+            Outcome::RecordingEnded => format!(
+                "recording ended: no recorded inputs after t={}, {} statement(s) live",
+                fmt_num(vm.time()),
+                vm.live_statements().len()
+            ),
         }
     }
 }

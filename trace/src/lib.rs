@@ -8,7 +8,7 @@
 //! schema version, `{"t":0,"event":"trace","version":1}`; a [`Reader`] refuses a trace
 //! without it or of another version, with a [`TraceError`] and its code.
 //!
-//! Numbers are [`Num`]s: at most four decimals, and the strings `"inf"`, `"-inf"`,
+//! Numbers are [`Num`]s: at most four decimals (exact in the recorded inputs, [`input`]), and the strings `"inf"`, `"-inf"`,
 //! `"nan"` for the values JSON has no number for. Strings are `Cow`s, so the VM writes
 //! its events without copying their texts (a reader gets owned ones: the tagged,
 //! flattened shape goes through serde's buffer).
@@ -19,6 +19,7 @@
 //! This crate sits below the VM: it knows the events' shapes, not what they mean
 //! (fault names and codes are the VM's, carried here as text).
 
+mod input;
 mod num;
 mod points;
 mod read;
@@ -29,6 +30,10 @@ use std::borrow::Cow;
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
+pub use input::{
+    Exchange, Failure, INPUT_FORMAT, Input, Map, OpState, Operation, PlacedScan, Ranges, Reading,
+    Seen, Sighting, Snapshot, Solid, Tape, TaughtPath,
+};
 pub use num::{INFINITY, NAN, NEG_INFINITY, Num, Short, fmt_num, write_short};
 pub use points::Points;
 pub use read::{Code, Reader, TraceError, records};
@@ -63,6 +68,14 @@ impl<'a> Record<'a> {
                 version: SCHEMA_VERSION,
             }),
         )
+    }
+}
+
+impl Event<'_> {
+    /// Whether the line's numbers are written exactly rather than to four decimals:
+    /// the recorded inputs, which a replay feeds back to the VM.
+    pub fn is_exact(&self) -> bool {
+        matches!(self, Event::Tape(_) | Event::Input(_))
     }
 }
 
@@ -108,6 +121,10 @@ pub enum Event<'a> {
     Mark(#[serde(borrow)] Mark<'a>),
     /// Scanner hits in the world frame.
     Scan(#[serde(borrow)] Scan<'a>),
+    /// How a run that records its inputs was set up (`ilmrc run --record-inputs`).
+    Tape(Tape),
+    /// One tick's inputs from the robot, written exactly (see [`input`]).
+    Input(Box<Input>),
 }
 
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]

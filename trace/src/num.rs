@@ -104,7 +104,7 @@ impl JsonSchema for Num {
 
     fn json_schema(_: &mut SchemaGenerator) -> Schema {
         json_schema!({
-            "description": "A number with at most four decimals; infinity, minus infinity and NaN, which JSON has no number for, are the strings \"inf\", \"-inf\" and \"nan\".",
+            "description": "A number: at most four decimals, except in the exact `tape` and `input` lines; infinity, minus infinity and NaN, which JSON has no number for, are the strings \"inf\", \"-inf\" and \"nan\".",
             "oneOf": [
                 { "type": "number" },
                 { "type": "string", "enum": [INFINITY, NEG_INFINITY, NAN] }

@@ -119,6 +119,8 @@ fn every_event() -> Vec<Record<'static>> {
             h: Num(0.0),
             hits: vec![(20.5, 4.08)].into(),
         }),
+        Event::Tape(tape()),
+        Event::Input(Box::new(input(&[0.1 + 0.2, f64::INFINITY]))),
     ];
     events
         .into_iter()
@@ -199,4 +201,209 @@ fn an_unknown_event_or_a_wrong_key_is_refused() {
             .unwrap_or_else(|| panic!("{bad} was read"));
         assert_eq!((err.code, err.line), (Code::NotALine, 2), "{bad}");
     }
+}
+
+fn tape() -> Tape {
+    Tape {
+        format: INPUT_FORMAT,
+        ilmrc: "0.1.0".into(),
+        backend: "sim".into(),
+        model: "moro".into(),
+        body: Some("moro".into()),
+        scanner_offset: None,
+        pose_every: 10,
+        scan_every: Num(1.0),
+        max_time: Num(600.0),
+        hold_limit: Num(f64::INFINITY),
+        paths: vec![TaughtPath {
+            name: "P".into(),
+            points: vec![(0.0, 0.0), (10.0, 0.0)].into(),
+        }],
+    }
+}
+
+/// One tick's inputs whose numbers are `xs`, with one of every kind of call.
+fn input(xs: &[f64]) -> Input {
+    let n = |i: usize| Num(xs[i % xs.len()]);
+    let at = |i: usize| At {
+        x: n(i),
+        y: n(i + 1),
+        h: n(i + 2),
+    };
+    let refused = Some(Failure::Refused {
+        message: "too fast".into(),
+    });
+    Input {
+        calls: vec![
+            Exchange::KnownMap {
+                map: Some(Map {
+                    bounds: Some((n(0), n(1), n(2), n(3))),
+                    solids: vec![Solid {
+                        a: (n(4), n(5)),
+                        b: (n(6), n(7)),
+                        radius: n(8),
+                        name: Some("w1".into()),
+                    }],
+                }),
+            },
+            Exchange::ActuatorRange {
+                id: "arm".into(),
+                range: Some((n(9), n(10))),
+            },
+            Exchange::Update {
+                t: n(11),
+                error: None,
+            },
+            Exchange::Snapshot {
+                snapshot: Box::new(Snapshot {
+                    t: n(12),
+                    pose: at(13),
+                    true_pose: Some(at(16)),
+                    speed: n(19),
+                    curvature: n(20),
+                    scan: Some(Ranges {
+                        device: "scanner".into(),
+                        t: n(21),
+                        angle_min: n(22),
+                        angle_step: n(23),
+                        ranges: (0..xs.len()).map(n).collect(),
+                    }),
+                    scan_kept: false,
+                    battery: Some(n(24)),
+                    devices: vec![Reading {
+                        name: "door".into(),
+                        value: None,
+                    }],
+                    detections: vec![Sighting {
+                        sensor: "camera".into(),
+                        object: "ball".into(),
+                        x: n(25),
+                        y: n(26),
+                        h: n(27),
+                        side: "left".into(),
+                    }],
+                    odometry_t: Some(n(28)),
+                    nav_t: None,
+                }),
+                error: None,
+            },
+            Exchange::SetMotion {
+                speed: n(29),
+                curvature: n(30),
+                error: refused.clone(),
+            },
+            Exchange::Actuator {
+                id: "arm".into(),
+                value: n(31),
+                error: None,
+            },
+            Exchange::Locmode {
+                mode: "gps".into(),
+                error: Some(Failure::Unsupported {
+                    message: "no gps".into(),
+                }),
+            },
+            Exchange::Bodypose {
+                roll: Some(n(32)),
+                pitch: None,
+                clearance: Some(n(33)),
+                error: None,
+            },
+            Exchange::Locate {
+                pose: at(34),
+                error: None,
+            },
+            Exchange::Start {
+                op: Operation::Manipulate("take".into()),
+                id: Some(3),
+                error: None,
+            },
+            Exchange::Start {
+                op: Operation::Init(vec!["a".into()]),
+                id: None,
+                error: Some(Failure::Timeout {
+                    message: "init".into(),
+                }),
+            },
+            Exchange::Poll {
+                id: 3,
+                status: Some(OpState::Failed("dropped".into())),
+                error: None,
+            },
+            Exchange::Poll {
+                id: 9,
+                status: None,
+                error: Some(Failure::UnknownOp { id: 9 }),
+            },
+            Exchange::Cancel {
+                id: 3,
+                error: Some(Failure::Link {
+                    message: "lost".into(),
+                }),
+            },
+        ],
+        robot: Seen {
+            at_rest: false,
+            true_pose: Some(at(37)),
+            motion: Some((n(40), n(41))),
+            contacts: 2,
+            scan: Some(PlacedScan {
+                t: n(42),
+                origin: at(43),
+                angle_min: n(46),
+                angle_step: n(47),
+                max_range: n(48),
+                ranges: None,
+            }),
+        },
+    }
+}
+
+/// Every number of the recorded inputs reads back as the very `f64` written, bit for
+/// bit: the replay feeds them to the VM.
+#[test]
+fn recorded_inputs_round_trip_exactly() {
+    let awkward = [
+        0.1 + 0.2,
+        1.0 / 3.0,
+        -0.0,
+        5e-324,
+        f64::MAX,
+        f64::MIN_POSITIVE,
+        19.512_345_678_901_234,
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+        f64::NAN,
+        -1e300,
+        std::f64::consts::PI,
+    ];
+    let written = input(&awkward);
+    let line = to_line(&Record::new(
+        0.1 + 0.2,
+        Event::Input(Box::new(written.clone())),
+    ));
+    let text = format!("{}\n{line}\n", to_line(&Record::header()));
+    let back: Vec<Record> = records(&text).collect::<Result<_, _>>().expect("reads");
+    let Event::Input(read) = &back[1].event else {
+        panic!("not an input: {line}");
+    };
+    assert_eq!(back[1].t.0.to_bits(), (0.1f64 + 0.2).to_bits());
+    let bits = |i: &Input| {
+        let json = serde_json::to_value(i).expect("serializes");
+        format!("{json}")
+    };
+    assert_eq!(bits(read), bits(&written));
+    let Exchange::Snapshot { snapshot, .. } = &read.calls[3] else {
+        panic!("the fourth call is the snapshot");
+    };
+    let ranges = &snapshot.scan.as_ref().expect("a scan").ranges;
+    for (got, want) in ranges.iter().zip(awkward) {
+        assert!(
+            got.0.to_bits() == want.to_bits() || (got.0.is_nan() && want.is_nan()),
+            "{want:e} read back as {:e}",
+            got.0
+        );
+    }
+    assert!(line.contains("0.30000000000000004"), "{line}");
+    assert!(line.contains("\"-inf\""), "{line}");
 }

@@ -1,5 +1,6 @@
 //! Writing lines: serde_json with the trace's numbers ([`Short`]), straight into the
-//! caller's buffer or file.
+//! caller's buffer or file; the recorded inputs with every digit (serde_json's own
+//! shortest round trip), since a replay feeds them back to the VM.
 
 use std::io;
 
@@ -10,6 +11,9 @@ use crate::{Record, Short};
 /// Writes `record` as one line of JSON, without the newline. Into memory it cannot
 /// fail: every key of the schema is a string.
 pub fn write_line<W: io::Write>(out: W, record: &Record<'_>) -> serde_json::Result<()> {
+    if record.event.is_exact() {
+        return record.serialize(&mut serde_json::Serializer::new(out));
+    }
     let mut ser = serde_json::Serializer::with_formatter(out, Short);
     record.serialize(&mut ser)
 }
