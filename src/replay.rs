@@ -17,6 +17,7 @@ use ilmr_plot::{self as plot, RunRecord};
 use ilmr_trace::{Event, Input, Record, Tape, fmt_num};
 
 use crate::run::console::Console;
+use crate::run::mcap::INPUTS_TOPIC;
 use crate::run::record::{Kept, Sink};
 use crate::run::scenario::{Line, Scenario};
 use crate::run::setup::{Backend, Setup};
@@ -204,9 +205,54 @@ fn setup(args: &ReplayArgs, tape: &Tape) -> Result<Setup, String> {
     })
 }
 
+/// A recording as trace lines: a trace file's own, or the lines an MCAP file holds on
+/// its inputs topic (which has no events to compare the replay's with).
+enum Lines {
+    Trace(String),
+    Mcap(String),
+}
+
+impl Lines {
+    fn read(path: &Path) -> Result<Lines, String> {
+        let is_mcap = path
+            .extension()
+            .is_some_and(|e| e.eq_ignore_ascii_case("mcap"));
+        if !is_mcap {
+            return read(path).map(Lines::Trace);
+        }
+        let bytes = ilmr_files::read(path, ilmr_files::Kind::Recording)
+            .map_err(|e| format!("cannot read MCAP recording `{}`: {e}", path.display()))?;
+        let bad = |e: &dyn std::fmt::Display| {
+            format!("`{}` is not an MCAP recording: {e}", path.display())
+        };
+        let mut text = ilmr_trace::to_line(&Record::header());
+        text.push('\n');
+        for message in mcap::MessageStream::new(&bytes).map_err(|e| bad(&e))? {
+            let message = message.map_err(|e| bad(&e))?;
+            if message.channel.topic != INPUTS_TOPIC {
+                continue;
+            }
+            let line = std::str::from_utf8(&message.data).map_err(|e| bad(&e))?;
+            if line.contains('\n') {
+                return Err(bad(&"a message on /ilmr/inputs holds more than one line"));
+            }
+            text.push_str(line);
+            text.push('\n');
+        }
+        Ok(Lines::Mcap(text))
+    }
+
+    fn text(&self) -> &str {
+        match self {
+            Lines::Trace(t) | Lines::Mcap(t) => t,
+        }
+    }
+}
+
 fn replay_inputs(args: &ReplayArgs, inputs: &Path) -> Result<u8, String> {
-    let text = read(inputs)?;
-    let records: Vec<Record<'_>> = ilmr_trace::records(&text)
+    let lines = Lines::read(inputs)?;
+    let text = lines.text();
+    let records: Vec<Record<'_>> = ilmr_trace::records(text)
         .collect::<Result<_, _>>()
         .map_err(|e| format!("`{}` is not a trace of ilmrc run: {e}", inputs.display()))?;
     let rec = recording(inputs, &records)?;
@@ -240,7 +286,7 @@ fn replay_inputs(args: &ReplayArgs, inputs: &Path) -> Result<u8, String> {
     let kept = Kept::default();
     let sink = Sink::in_memory(kept.clone(), args.plot.as_deref())?;
     let ticks = rec.ticks.len();
-    let (player, divergence) = Player::new(rec.ticks);
+    let (player, played) = Player::new(rec.ticks);
     let start = Start {
         setup: &setup,
         scenario: &scenario,
@@ -261,33 +307,50 @@ fn replay_inputs(args: &ReplayArgs, inputs: &Path) -> Result<u8, String> {
             .map_err(|e| format!("cannot write trace `{}`: {e}", out.display()))?;
     }
     let replayed = String::from_utf8(replayed).unwrap_or_default();
-    if replayed == text {
-        println!(
-            "{}: replayed {ticks} ticks of recorded inputs; the trace is the recording's, byte for byte",
-            args.file.display()
-        );
+    let task = args.file.display();
+    let same_calls = played.divergence().is_none() && played.ticks() == ticks && !played.ran_out();
+    let same = match &lines {
+        Lines::Trace(recorded) => replayed == *recorded,
+        Lines::Mcap(_) => same_calls,
+    };
+    if same {
+        let what = match lines {
+            Lines::Trace(_) => "the trace is the recording's, byte for byte",
+            Lines::Mcap(_) => {
+                "every call to the robot was the recording's (an MCAP recording holds no trace to compare events with)"
+            }
+        };
+        println!("{task}: replayed {ticks} ticks of recorded inputs; {what}");
         return Ok(0);
     }
     println!(
-        "{}: the replay parts from the recording `{}`",
-        args.file.display(),
+        "{task}: the replay parts from the recording `{}`",
         inputs.display()
     );
-    match divergence.get() {
+    match played.divergence() {
         Some(d) => println!("first call to the robot that differs: {}", d.describe()),
+        None if played.ran_out() => println!(
+            "every call to the robot was the recording's, but the task had not ended when the recording did (after {ticks} ticks)"
+        ),
+        None if played.ticks() < ticks => println!(
+            "every call to the robot was the recording's, but the task ended after {} of the recording's {ticks} ticks",
+            played.ticks()
+        ),
         None => println!("every call to the robot was the recording's"),
     }
-    let again: Vec<Record<'_>> = ilmr_trace::records(&replayed)
-        .collect::<Result<_, _>>()
-        .map_err(|e| format!("the replayed trace: {e}"))?;
-    let name = args
-        .trace
-        .clone()
-        .unwrap_or_else(|| PathBuf::from("the replay"));
-    print!(
-        "{}",
-        crate::diff::compare(&records, &again).render(inputs, &name)
-    );
+    if let Lines::Trace(_) = lines {
+        let again: Vec<Record<'_>> = ilmr_trace::records(&replayed)
+            .collect::<Result<_, _>>()
+            .map_err(|e| format!("the replayed trace: {e}"))?;
+        let name = args
+            .trace
+            .clone()
+            .unwrap_or_else(|| PathBuf::from("the replay"));
+        print!(
+            "{}",
+            crate::diff::compare(&records, &again).render(inputs, &name)
+        );
+    }
     println!(
         "(the replay drives no robot: its poses are the recorded robot's, so the task's \
          decisions differ on the same inputs, not where it would have taken the robot)"

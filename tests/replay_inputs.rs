@@ -242,3 +242,67 @@ fn recording_inputs_needs_a_trace_and_replay_options_need_inputs() {
     assert_eq!(code, 2, "{err}");
     assert!(err.contains("give --plot OUT.svg"), "{err}");
 }
+
+/// `--record-inputs --mcap` puts the same lines on `/ilmr/inputs` (JSON, with the
+/// trace's JSON Schema), which Foxglove's Python reader decodes; a replay from the MCAP
+/// file runs the task as the trace's replay does, and tells a changed task's first
+/// differing call (an MCAP file has no trace to compare events with).
+#[test]
+fn a_recording_in_mcap_replays_too() {
+    let mcap = scratch("run.mcap");
+    let trace = record(
+        "mcap",
+        &[
+            "--robot",
+            "none",
+            "--scenario",
+            "tests/run/counting.json",
+            "--mcap",
+            mcap.to_str().unwrap(),
+            "tests/run/counting.ilmr",
+        ]
+        .map(String::from),
+    );
+    let recorded = std::fs::read(&trace).unwrap();
+    let topics = support::foxglove_reads(&mcap);
+    let inputs = &topics["/ilmr/inputs"];
+    assert_eq!(inputs["schema"], "ilmr.trace.Line", "{topics}");
+    assert_eq!(inputs["message_encoding"], "json", "{topics}");
+    let events = &inputs["events"];
+    assert_eq!(events["tape"], 1, "{inputs}");
+    assert_eq!(events["line"], 3, "the scenario's three lines: {inputs}");
+    let ticks = events["input"].as_u64().unwrap_or(0);
+    assert!(ticks > 100, "{inputs}");
+
+    let (code, said, replayed) = replay(&mcap, "tests/run/counting.ilmr", &[]);
+    assert_eq!(code, 0, "{said}");
+    assert!(
+        said.contains(&format!(
+            "replayed {ticks} ticks of recorded inputs; every call to the robot was the recording's"
+        )),
+        "{said}"
+    );
+    assert!(
+        replayed == recorded,
+        "the replay from MCAP differs from the trace"
+    );
+
+    let changed = scratch("counting-changed.ilmr");
+    let text = std::fs::read_to_string(root().join("tests/run/counting.ilmr")).unwrap();
+    std::fs::write(&changed, text.replacen("wait(", "wait(0.5+", 1)).unwrap();
+    let (code, said, _) = replay(&mcap, changed.to_str().unwrap(), &[]);
+    for p in [&mcap, &trace, &changed] {
+        let _ = std::fs::remove_file(p);
+    }
+    assert_eq!(code, 1, "{said}");
+    assert!(
+        said.contains("the replay parts from the recording"),
+        "{said}"
+    );
+    // Without a robot every tick's calls are the same two; the slower count outlives
+    // the recording.
+    assert!(
+        said.contains("every call to the robot was the recording's, but the task had not ended when the recording did"),
+        "{said}"
+    );
+}

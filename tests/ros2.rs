@@ -241,6 +241,62 @@ fn a_task_drives_a_cyclone_dds_robot_to_its_goal() {
     recorded_as_a_bag(&mcap, (x, y));
 }
 
+/// A field run debugged offline: the run on the ROS 2 robot records what the VM
+/// received (`--record-inputs`, here into the MCAP file), and `ilmrc replay --inputs`
+/// runs the task again from it with no robot and no DDS, on logical time: every call
+/// as the recording has it, and the trace the run wrote, line for line.
+#[test]
+fn a_ros_2_run_replays_offline_from_its_recorded_inputs() {
+    let _serial = one_at_a_time();
+    let mcap = scratch("replayed.mcap");
+    let task = "speed(0.3)\nm=gotoxy(1.5,0.5)\nwait(m)\n";
+    let d = drive(
+        "replayed",
+        task,
+        &["--duration=60"],
+        &[
+            "--max-time",
+            "40",
+            "--record-inputs",
+            "--mcap",
+            mcap.to_str().unwrap(),
+        ],
+    );
+    assert_eq!(d.code, Some(0), "{}\n{}", d.summary, d.stderr);
+    let task_path = scratch("replayed-again.ilmr");
+    let again = scratch("replayed-again.jsonl");
+    std::fs::write(&task_path, task).unwrap();
+    let (code, out, err) = support::ilmrc(&[
+        "replay",
+        "--inputs",
+        mcap.to_str().unwrap(),
+        task_path.to_str().unwrap(),
+        "--trace",
+        again.to_str().unwrap(),
+    ]);
+    let replayed: Vec<Value> = std::fs::read_to_string(&again)
+        .unwrap_or_default()
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap())
+        .collect();
+    for p in [&mcap, &task_path, &again] {
+        let _ = std::fs::remove_file(p);
+    }
+    assert_eq!(code, 0, "{out}{err}");
+    assert!(
+        out.contains("every call to the robot was the recording's"),
+        "{out}"
+    );
+    assert!(
+        d.trace.iter().any(|e| e["event"] == "input"),
+        "the run recorded its inputs"
+    );
+    assert_eq!(replayed.len(), d.trace.len(), "{out}");
+    for (i, (a, b)) in d.trace.iter().zip(&replayed).enumerate() {
+        assert_eq!(a, b, "line {} of the trace", i + 1);
+    }
+}
+
 /// The MCAP file of the run, read by Foxglove's own libraries (`mcap`,
 /// `mcap-ros2-support`): the robot's topics with ROS 2's schemas, every message
 /// decoded, the last odometry where the robot ended.

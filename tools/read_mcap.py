@@ -1,7 +1,8 @@
 """Reads an MCAP file with Foxglove's own Python libraries (`pip install mcap
 mcap-protobuf-support mcap-ros2-support`), decoding every message with its channel's
 schema: protobuf (ILMR's topics, Foxglove's schemas) as Foxglove's protobuf decoder
-does, `ros2msg`/`cdr` (a ROS 2 robot's topics) as a rosbag2 reader does. Prints one
+does, `ros2msg`/`cdr` (a ROS 2 robot's topics) as a rosbag2 reader does, `json`
+(the recorded inputs, `/ilmr/inputs`, with their JSON Schema) as JSON. Prints one
 JSON object: per topic its schema, encodings, message count, how many messages
 decoded, and the essentials of its messages. Exits 1 when a message does not decode.
 
@@ -11,9 +12,19 @@ Usage: python3 tools/read_mcap.py FILE.mcap
 import json
 import sys
 
+from mcap.decoder import DecoderFactory
 from mcap.reader import make_reader
 from mcap_protobuf.decoder import DecoderFactory as ProtobufDecoders
 from mcap_ros2.decoder import DecoderFactory as Ros2Decoders
+
+
+class JsonDecoders(DecoderFactory):
+    """JSON messages whose schema is a JSON Schema, as Foxglove reads them."""
+
+    def decoder_for(self, message_encoding, schema):
+        if message_encoding == "json" and schema is not None and schema.encoding == "jsonschema":
+            return lambda data: json.loads(data)
+        return None
 
 
 def stamp(m):
@@ -51,12 +62,17 @@ def essentials(t, name, m, log_time):
         t["beams"] = len(m.ranges)
     elif name == "sensor_msgs/msg/BatteryState":
         t["voltage"] = m.voltage
+    elif name == "ilmr.trace.Line":
+        events = t.setdefault("events", {})
+        events[m["event"]] = events.get(m["event"], 0) + 1
+        if m["event"] == "input":
+            t["calls"] = t.get("calls", 0) + len(m["calls"])
 
 
 def main():
     topics = {}
     with open(sys.argv[1], "rb") as f:
-        reader = make_reader(f, decoder_factories=[ProtobufDecoders(), Ros2Decoders()])
+        reader = make_reader(f, decoder_factories=[ProtobufDecoders(), Ros2Decoders(), JsonDecoders()])
         summary = reader.get_summary()
         for channel in summary.channels.values():
             schema = summary.schemas.get(channel.schema_id)

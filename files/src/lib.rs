@@ -58,10 +58,12 @@ pub enum Kind {
     Scenario,
     History,
     Fleet,
+    /// An MCAP recording (`ilmrc replay --inputs RUN.mcap`).
+    Recording,
 }
 
 impl Kind {
-    pub const ALL: [Kind; 8] = [
+    pub const ALL: [Kind; 9] = [
         Kind::Source,
         Kind::RobotModel,
         Kind::World,
@@ -70,6 +72,7 @@ impl Kind {
         Kind::Scenario,
         Kind::History,
         Kind::Fleet,
+        Kind::Recording,
     ];
 
     /// The largest file of this kind, bytes.
@@ -83,6 +86,7 @@ impl Kind {
             Kind::Scenario => MAX_SCENARIO_BYTES,
             Kind::History => MAX_HISTORY_BYTES,
             Kind::Fleet => MAX_FLEET_BYTES,
+            Kind::Recording => MAX_MCAP_BYTES,
         }
     }
 
@@ -97,6 +101,7 @@ impl Kind {
             Kind::Scenario => "MAX_SCENARIO_BYTES",
             Kind::History => "MAX_HISTORY_BYTES",
             Kind::Fleet => "MAX_FLEET_BYTES",
+            Kind::Recording => "MAX_MCAP_BYTES",
         }
     }
 
@@ -111,6 +116,7 @@ impl Kind {
             Kind::Scenario => "scenario",
             Kind::History => "shell history",
             Kind::Fleet => "fleet file",
+            Kind::Recording => "MCAP recording",
         }
     }
 }

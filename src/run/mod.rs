@@ -7,7 +7,7 @@
 
 pub(crate) mod backend;
 pub(crate) mod console;
-mod mcap;
+pub(crate) mod mcap;
 mod progress;
 pub(crate) mod record;
 mod report;
@@ -86,7 +86,7 @@ pub struct RunArgs {
     pub trace: Option<PathBuf>,
     /// Record in the trace everything the VM receives from the robot, tick by tick,
     /// so that `ilmrc replay --inputs TRACE TASK` can run the task again without it.
-    #[arg(long, requires = "trace")]
+    #[arg(long)]
     pub record_inputs: bool,
     /// Write the run as an MCAP file (pose, scans, reference paths, command events).
     #[arg(long)]
@@ -190,6 +190,9 @@ pub(crate) fn execute(
     if !(args.scan_every.is_finite() && args.scan_every > 0.0) {
         return Err(format!("--scan-every {} is not a period", args.scan_every));
     }
+    if args.record_inputs && args.trace.is_none() && args.mcap.is_none() {
+        return Err("--record-inputs records into the trace or the MCAP file: give --trace OUT.jsonl or --mcap OUT.mcap".into());
+    }
     let mut setup = setup::choose(&Choice {
         robot: &args.robot,
         model: args.model.as_deref(),
@@ -271,7 +274,7 @@ pub(crate) fn launch(
         robot: source,
         mut prelude,
     } = start;
-    let mcap = match &args.mcap {
+    let mut mcap = match &args.mcap {
         Some(p) => Some(mcap::McapOut::create(
             p,
             setup.world.as_ref(),
@@ -353,6 +356,9 @@ pub(crate) fn launch(
     }
     for line in &prelude {
         sink.put(line)?;
+        if let (true, Some(m)) = (args.record_inputs, mcap.as_mut()) {
+            m.input(line)?;
+        }
     }
     let parts = Parts {
         setup,
@@ -408,6 +414,9 @@ fn drive<C: Clock>(
             let note = session.line(&mut vm, &parts.setup.model, &line.text, console);
             extra.learn(vm.module());
             parts.sink.put(&note)?;
+            if let (true, Some(m)) = (args.record_inputs, parts.mcap.as_mut()) {
+                m.input(&note)?;
+            }
         }
         if vm.ticks() >= max_ticks {
             break Outcome::MaxTime;
@@ -447,6 +456,9 @@ fn drive<C: Clock>(
             let t = vm.ticks().saturating_sub(1) as f64 * vm.config().period;
             let line = ilmr_trace::Record::new(t, ilmr_trace::Event::Input(Box::new(input)));
             parts.sink.put(&line)?;
+            if let Some(m) = parts.mcap.as_mut() {
+                m.input(&line)?;
+            }
         }
         progress.show(&vm, &session, &report);
         if report

@@ -1,5 +1,6 @@
 //! A robot made of recorded inputs.
 
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::sync::{Arc, OnceLock};
 
 use ilmr_hal::{AsyncOp, BodyPose, Hal, HalError, KnownMap, OpId, OpStatus, Pose, Scan, Snapshot};
@@ -7,6 +8,32 @@ use ilmr_trace::{Exchange, Input, Num, OpState, PlacedScan};
 
 use super::{at, describe, known_map, op_status, operation, play_snapshot, pose, result};
 use crate::run::backend::{Robot, WorldScan};
+
+/// How a replay went, read by whoever replays once the run is over (the player itself
+/// is then inside the VM).
+#[derive(Debug, Default)]
+pub struct Played {
+    /// The first point where the replay's calls differ from the recording's.
+    divergence: OnceLock<Divergence>,
+    /// Ticks the replay ran through.
+    ticks: AtomicUsize,
+    /// The replay wanted a tick past the last one recorded.
+    ran_out: AtomicBool,
+}
+
+impl Played {
+    pub fn divergence(&self) -> Option<&Divergence> {
+        self.divergence.get()
+    }
+
+    pub fn ticks(&self) -> usize {
+        self.ticks.load(Ordering::Relaxed)
+    }
+
+    pub fn ran_out(&self) -> bool {
+        self.ran_out.load(Ordering::Relaxed)
+    }
+}
 
 /// The first point where the replayed VM did not do what the recorded one did.
 #[derive(Debug, Clone, PartialEq)]
@@ -58,27 +85,25 @@ pub struct Player {
     /// The run ended the tick: the next call starts the next one.
     ended: bool,
     last_scan: Option<Scan>,
-    /// Shared with whoever replays, who reads it after the run (the player itself is
-    /// then inside the VM).
-    divergence: Arc<OnceLock<Divergence>>,
+    played: Arc<Played>,
     /// Time of the tick being answered, for the divergence.
     t: f64,
 }
 
 impl Player {
-    /// The player of `ticks`, and where it will note the first divergence.
-    pub fn new(ticks: Vec<Input>) -> (Player, Arc<OnceLock<Divergence>>) {
-        let divergence = Arc::new(OnceLock::new());
+    /// The player of `ticks`, and where it will say how the replay went.
+    pub fn new(ticks: Vec<Input>) -> (Player, Arc<Played>) {
+        let played = Arc::new(Played::default());
         let player = Player {
             ticks,
             tick: 0,
             cursor: 0,
             ended: false,
             last_scan: None,
-            divergence: Arc::clone(&divergence),
+            played: Arc::clone(&played),
             t: 0.0,
         };
-        (player, divergence)
+        (player, played)
     }
 
     fn calls(&self) -> &[Exchange] {
@@ -86,7 +111,7 @@ impl Player {
     }
 
     fn diverge(&mut self, recorded: Option<Exchange>, replayed: Option<Exchange>) {
-        let _ = self.divergence.set(Divergence {
+        let _ = self.played.divergence.set(Divergence {
             tick: self.tick,
             t: self.t,
             recorded,
@@ -366,10 +391,15 @@ impl Robot for Player {
 
     fn end_tick(&mut self) -> Option<Input> {
         self.ended = true;
+        self.played.ticks.store(self.tick + 1, Ordering::Relaxed);
         None
     }
 
     fn inputs_exhausted(&self) -> bool {
-        self.ended && self.tick + 1 >= self.ticks.len()
+        let out = self.ended && self.tick + 1 >= self.ticks.len();
+        if out {
+            self.played.ran_out.store(true, Ordering::Relaxed);
+        }
+        out
     }
 }

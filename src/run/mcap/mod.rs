@@ -25,6 +25,10 @@ use super::backend::WorldScan;
 use super::setup::LoadedWorld;
 use crate::view::{Messages, Outgoing, Topic, nanos};
 
+/// The topic of the recorded inputs, and the name of its schema (a trace line's).
+pub const INPUTS_TOPIC: &str = "/ilmr/inputs";
+const INPUTS_SCHEMA: &str = "ilmr.trace.Line";
+
 pub struct McapOut {
     path: PathBuf,
     writer: mcap::Writer<BufWriter<File>>,
@@ -35,6 +39,8 @@ pub struct McapOut {
     /// comes; and their schemas, by type.
     ros2_channels: BTreeMap<String, u16>,
     ros2_schemas: BTreeMap<&'static str, u16>,
+    /// The channel of the recorded inputs ([`INPUTS_TOPIC`]), made with its first line.
+    inputs: Option<u16>,
     sequence: u32,
     messages: Messages,
     /// The tick's messages, and one message's bytes: kept to spare an allocation per
@@ -111,6 +117,7 @@ impl McapOut {
             channels,
             ros2_channels: BTreeMap::new(),
             ros2_schemas: BTreeMap::new(),
+            inputs: None,
             sequence: 0,
             messages: Messages::new(&task.display().to_string()),
             outgoing: Vec::new(),
@@ -242,6 +249,36 @@ impl McapOut {
             self.put_bytes(channel, r.t, &r.sample)?;
         }
         Ok(())
+    }
+
+    /// A line of the recorded inputs (`--record-inputs`): the `run` and `tape` lines,
+    /// interactive `line`s and each tick's `input`, as the trace has them (JSON, every
+    /// digit), on [`INPUTS_TOPIC`], so that `ilmrc replay --inputs RUN.mcap` reads them.
+    pub fn input(&mut self, line: &ilmr_trace::Record<'_>) -> Result<(), String> {
+        let data = ilmr_trace::to_line(line);
+        if !self.fits(line.t.0, data.len())? {
+            return Ok(());
+        }
+        let channel = match self.inputs {
+            Some(c) => c,
+            None => {
+                let schema = self
+                    .writer
+                    .add_schema(
+                        INPUTS_SCHEMA,
+                        "jsonschema",
+                        ilmr_trace::json_schema().as_bytes(),
+                    )
+                    .map_err(|e| e.to_string())?;
+                let c = self
+                    .writer
+                    .add_channel(schema, INPUTS_TOPIC, "json", &BTreeMap::new())
+                    .map_err(|e| e.to_string())?;
+                self.inputs = Some(c);
+                c
+            }
+        };
+        self.put_bytes(channel, line.t.0, data.as_bytes())
     }
 
     pub fn finish(mut self) -> Result<(), String> {
