@@ -175,6 +175,7 @@ fn run_args(args: &ReplayArgs, rec: &Recording) -> Result<RunArgs, String> {
         .map_err(|e| format!("the recording's options: {e}"))?
         .run;
     run.record_inputs = true;
+    crate::run::check_times(&run).map_err(|e| format!("the recording's `tape` line: {e}"))?;
     Ok(run)
 }
 

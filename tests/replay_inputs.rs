@@ -198,7 +198,19 @@ fn a_trace_without_inputs_or_with_broken_ones_is_refused() {
         said.contains("records its inputs in form 99; this ilmrc replays form 1"),
         "{said}"
     );
-    for p in [&plain, &recording, &broken, &future] {
+    let endless = scratch("endless.jsonl");
+    std::fs::write(
+        &endless,
+        text.replacen(r#""max_time":600.0"#, r#""max_time":"nan""#, 1),
+    )
+    .unwrap();
+    let (code, said, _) = replay(&endless, "tests/run/counting.ilmr", &[]);
+    assert_eq!(code, 2, "{said}");
+    assert!(
+        said.contains("the recording's `tape` line: --max-time NaN is not a time"),
+        "{said}"
+    );
+    for p in [&plain, &recording, &broken, &future, &endless] {
         let _ = std::fs::remove_file(p);
     }
 }

@@ -181,15 +181,7 @@ pub(crate) fn execute(
     reached: &mut Reached,
     console: &mut Console,
 ) -> Result<Ran, String> {
-    if !(args.max_time.is_finite() && args.max_time >= 0.0) {
-        return Err(format!("--max-time {} is not a time", args.max_time));
-    }
-    if args.hold_limit.is_nan() || args.hold_limit < 0.0 {
-        return Err(format!("--hold-limit {} is not a time", args.hold_limit));
-    }
-    if !(args.scan_every.is_finite() && args.scan_every > 0.0) {
-        return Err(format!("--scan-every {} is not a period", args.scan_every));
-    }
+    check_times(args)?;
     if args.record_inputs && args.trace.is_none() && args.mcap.is_none() {
         return Err("--record-inputs records into the trace or the MCAP file: give --trace OUT.jsonl or --mcap OUT.mcap".into());
     }
@@ -235,6 +227,21 @@ pub(crate) fn execute(
         reached,
         console,
     )
+}
+
+/// The run's times are times: `--max-time`, `--hold-limit`, `--scan-every` (a replay
+/// reads them from its recording).
+pub(crate) fn check_times(args: &RunArgs) -> Result<(), String> {
+    if !(args.max_time.is_finite() && args.max_time >= 0.0) {
+        return Err(format!("--max-time {} is not a time", args.max_time));
+    }
+    if args.hold_limit.is_nan() || args.hold_limit < 0.0 {
+        return Err(format!("--hold-limit {} is not a time", args.hold_limit));
+    }
+    if !(args.scan_every.is_finite() && args.scan_every > 0.0) {
+        return Err(format!("--scan-every {} is not a period", args.scan_every));
+    }
+    Ok(())
 }
 
 /// Where the run's robot comes from.
