@@ -75,6 +75,36 @@ enum Cmd {
     },
 }
 
+impl Cmd {
+    /// Whether the command does its job and ends, writing what it found to stdout:
+    /// unlike the robots that run until stopped (`serve`, `shell`, `sim`, `fleet`) and a
+    /// run with a live view, which talk to clients and children over pipes and sockets
+    /// (a vectored write to a closed socket raises SIGPIPE too).
+    fn ends_by_itself(&self) -> bool {
+        match self {
+            Cmd::Serve(_) | Cmd::Shell(_) | Cmd::Sim(_) | Cmd::Fleet(_) => false,
+            Cmd::Run(args) => args.view.foxglove.is_none(),
+            _ => true,
+        }
+    }
+}
+
+/// Lets a closed stdout end the process as it ends `cat` or `grep` (`ilmrc parse BIG |
+/// head`), by the signal, silently. Rust ignores SIGPIPE, so a write to a closed pipe is
+/// an error, and `print!` panics on it (exit 101).
+#[cfg(unix)]
+fn default_sigpipe() {
+    // SAFETY: sets the process's disposition of one signal before any thread is
+    // started; no pointer is passed. std's sockets send with MSG_NOSIGNAL, so they
+    // still get EPIPE as an error rather than the signal.
+    unsafe {
+        libc::signal(libc::SIGPIPE, libc::SIG_DFL);
+    }
+}
+
+#[cfg(not(unix))]
+fn default_sigpipe() {}
+
 /// Exit codes: 0 clean (warnings allowed), 1 errors in the input, 2 usage or I/O errors;
 /// a run also 3, 4 or 5 (docs/run.md).
 pub const EXIT_ERRORS: u8 = 1;
@@ -95,6 +125,9 @@ fn main() -> ExitCode {
             return ExitCode::from(code);
         }
     };
+    if cli.command.ends_by_itself() {
+        default_sigpipe();
+    }
     match cli.command {
         Cmd::Check(args) => check::run(args),
         Cmd::Fmt(args) => fmt::run(args),

@@ -263,3 +263,29 @@ fn a_scenario_path_is_known_to_the_check_of_a_run() {
     ]);
     assert!(out.contains("W0903"), "{out}");
 }
+
+/// `ilmrc parse BIG | head -1`: when the reader goes away the command ends as `cat`
+/// does, by SIGPIPE, without a panic (it was exit 101 with a backtrace).
+#[cfg(unix)]
+#[test]
+fn a_closed_stdout_ends_a_command_quietly() {
+    use std::io::Read;
+    use std::os::unix::process::ExitStatusExt;
+    use std::process::{Command, Stdio};
+
+    let big = std::env::temp_dir().join(format!("ilmr-cli-{}-big.ilmr", std::process::id()));
+    std::fs::write(&big, "speed(0.4)\n".repeat(20_000)).unwrap();
+    let mut child = Command::new(env!("CARGO_BIN_EXE_ilmrc"))
+        .args(["parse", big.to_str().unwrap()])
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut first = [0u8; 16];
+    child.stdout.take().unwrap().read_exact(&mut first).unwrap();
+    let out = child.wait_with_output().unwrap();
+    let _ = std::fs::remove_file(&big);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(!stderr.contains("panicked"), "{stderr}");
+    assert_eq!(out.status.signal(), Some(libc::SIGPIPE), "{stderr}");
+}
