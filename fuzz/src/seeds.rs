@@ -7,7 +7,7 @@ use std::path::Path;
 
 use crate::engine;
 use crate::mutate;
-use crate::targets::{corpus, modules, requests};
+use crate::targets::{corpus, modules, requests, traces};
 
 /// One target: its name (the binary's, and its directory under
 /// `tests/fuzz/regressions/`), its seeds and its dictionary's tokens.
@@ -47,6 +47,11 @@ pub fn all() -> Vec<Seeds> {
             name: "request",
             corpus: requests::seeds(),
             dictionary: request_words(),
+        },
+        Seeds {
+            name: "trace",
+            corpus: traces::seeds(),
+            dictionary: json_words(traces::seeds()),
         },
     ]
 }
@@ -93,6 +98,11 @@ fn as_bytes(words: Vec<String>) -> Vec<Vec<u8>> {
 
 /// The request seeds' keys and JSON's own words.
 fn request_words() -> Vec<Vec<u8>> {
+    json_words(requests::seeds())
+}
+
+/// The keys of the JSON in `seeds` (one document, or one a line) and JSON's own words.
+fn json_words(seeds: Vec<Vec<u8>>) -> Vec<Vec<u8>> {
     fn keys(value: &serde_json::Value, out: &mut Vec<String>) {
         match value {
             serde_json::Value::Object(map) => {
@@ -106,9 +116,11 @@ fn request_words() -> Vec<Vec<u8>> {
         }
     }
     let mut words = Vec::new();
-    for seed in requests::seeds() {
-        if let Ok(value) = serde_json::from_slice(&seed) {
-            keys(&value, &mut words);
+    for seed in seeds {
+        for doc in std::iter::once(&seed[..]).chain(seed.split(|&b| b == b'\n')) {
+            if let Ok(value) = serde_json::from_slice(doc) {
+                keys(&value, &mut words);
+            }
         }
     }
     words.extend(

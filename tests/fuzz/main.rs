@@ -1,5 +1,6 @@
 //! Fuzzing of everything `ilmrc` reads from outside: task and skill files, ROBO.INI
-//! robot models, `.ilmb` modules and `serve` request lines. Each target must never
+//! robot models, `.ilmb` modules, `serve` request lines and traces (with recorded
+//! inputs). Each target must never
 //! panic and must answer bad input with an error value.
 //!
 //! `cargo test --test fuzz` runs a fixed, seeded number of inputs per target (CI).
@@ -50,6 +51,12 @@ fn bytecode_modules_are_checked_before_they_run() {
 fn serve_requests_are_answered() {
     let stats = on_compiler_stack(|| targets::requests::fuzz(Budget::from_env(5000)));
     assert!(stats.corpus >= 5, "{stats:?}");
+}
+
+#[test]
+fn traces_and_recorded_inputs_are_read_or_refused() {
+    let stats = on_compiler_stack(|| targets::traces::fuzz(Budget::from_env(20_000)));
+    assert!(stats.corpus >= 10, "{stats:?}");
 }
 
 #[test]

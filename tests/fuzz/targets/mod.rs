@@ -7,3 +7,4 @@ pub mod modules;
 pub mod requests;
 pub mod skills;
 pub mod tasks;
+pub mod traces;
