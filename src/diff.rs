@@ -185,20 +185,31 @@ fn stmt_of<'r>(e: &'r Event<'_>) -> Option<&'r Stmt<'r>> {
 }
 
 fn describe(s: &Stmt<'_>) -> String {
-    format!("line {} `{}`", s.line, s.text)
+    match &s.file {
+        Some(file) => format!("line {} of {file} `{}`", s.line, s.text),
+        None => format!("line {} `{}`", s.line, s.text),
+    }
 }
 
-/// Each command's ends in order: the statement and its n-th end, to how and when.
-fn ends(records: &[Record<'_>]) -> BTreeMap<(u32, String, usize), (How, f64)> {
-    let mut seen: BTreeMap<(u32, String), usize> = BTreeMap::new();
+/// A command: its file (none for the task's), line and text.
+type Command = (Option<String>, u32, String);
+
+/// Each command's ends in order: the command and its n-th end, to how and when. The
+/// task's commands sort first, by line.
+fn ends(records: &[Record<'_>]) -> BTreeMap<(Command, usize), (How, f64)> {
+    let mut seen: BTreeMap<Command, usize> = BTreeMap::new();
     let mut out = BTreeMap::new();
     for r in records {
         if let Event::End(e) = &r.event
             && let Some(s) = &e.stmt
         {
-            let key = (s.line, s.text.to_string());
+            let key = (
+                s.file.as_ref().map(|f| f.to_string()),
+                s.line,
+                s.text.to_string(),
+            );
             let n = seen.entry(key.clone()).or_default();
-            out.insert((key.0, key.1, *n), (e.how, r.t.0));
+            out.insert((key, *n), (e.how, r.t.0));
             *n += 1;
         }
     }
@@ -257,9 +268,14 @@ pub fn compare(a: &[Record<'_>], b: &[Record<'_>]) -> Report {
             _ => true,
         };
         if moved {
-            let what = format!("line {} `{}`", key.0, key.1);
-            let what = if key.2 > 0 {
-                format!("{what} (end {})", key.2 + 1)
+            let ((file, line, text), n) = key;
+            let what = describe(&Stmt {
+                line,
+                text: text.into(),
+                file: file.map(Into::into),
+            });
+            let what = if n > 0 {
+                format!("{what} (end {})", n + 1)
             } else {
                 what
             };

@@ -380,6 +380,7 @@ mod tests {
                 stmt: Some(ilmr_trace::Stmt {
                     line: i,
                     text: "x=1".into(),
+                    file: None,
                 }),
                 count: 1,
             });

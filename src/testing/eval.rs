@@ -109,14 +109,14 @@ impl<'r> Run<'r> {
                 Event::Issue(i) => (i.stmt.as_ref(), &mut issued),
                 Event::Start(s) => (s.stmt.as_ref(), &mut started),
                 Event::End(e) => {
-                    if e.stmt.as_ref().is_some_and(|s| c.is(s.line, &s.text)) {
+                    if e.stmt.as_ref().is_some_and(|s| c.is(s)) {
                         ends.push((r.t.0, e.how));
                     }
                     continue;
                 }
                 _ => continue,
             };
-            if stmt.is_some_and(|s| c.is(s.line, &s.text)) {
+            if stmt.is_some_and(|s| c.is(s)) {
                 first.get_or_insert(r.t.0);
             }
         }

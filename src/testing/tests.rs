@@ -65,14 +65,27 @@ fn a_command_is_found_by_line_or_by_text_with_or_without_its_variable() {
     let Kind::Before(a, b) = by_text else {
         panic!("{by_text:?}")
     };
-    assert!(a.is(6, "m=goahead(0.7)") && b.is(6, "m = goahead(0.7)"));
-    assert!(!a.is(4, "goahead(1.2)"));
-    // A line reference is its line and its text: a skill's statement on line 4 is
-    // another statement.
+    let task = |line, text| stmt(line, text, None);
+    assert!(a.is(&task(6, "m=goahead(0.7)")) && b.is(&task(6, "m = goahead(0.7)")));
+    assert!(!a.is(&task(4, "goahead(1.2)")));
+    // A reference by text finds the statement in a skill too.
+    assert!(a.is(&stmt(2, "m=goahead(0.7)", Some("skills/s.ilms"))));
+    // A line reference is the task's line and its text: a skill's statement on line 4
+    // is another statement, even of the same text.
     let Kind::During(l, _) = ok("during(line 4, line 5)") else {
         panic!()
     };
-    assert!(l.is(4, "goahead(1.2)") && !l.is(4, "near_box = approach(box_at,4.5)"));
+    assert!(l.is(&task(4, "goahead(1.2)")));
+    assert!(!l.is(&task(4, "near_box = approach(box_at,4.5)")));
+    assert!(!l.is(&stmt(4, "goahead(1.2)", Some("skills/s.ilms"))));
+}
+
+fn stmt<'a>(line: u32, text: &'a str, file: Option<&'a str>) -> ilmr_trace::Stmt<'a> {
+    ilmr_trace::Stmt {
+        line,
+        text: text.into(),
+        file: file.map(Into::into),
+    }
 }
 
 #[test]

@@ -133,12 +133,19 @@ pub struct Version {
     pub version: u32,
 }
 
-/// The statement an event belongs to: its source line and text.
+/// The statement an event belongs to: its source line and text, and its file when
+/// that is not the task's.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 pub struct Stmt<'a> {
     pub line: u32,
     #[serde(borrow)]
     pub text: Text<'a>,
+    /// The file of a statement outside the task: a skill file
+    /// (`examples/skills/gestures.ilms`, `<stdlib>/charging.ilms`) or an interactive
+    /// line (`<typed 3>`); absent for the task's own statements, so that `line` alone
+    /// names a line of the task.
+    #[serde(borrow, default, skip_serializing_if = "Option::is_none")]
+    pub file: Option<Text<'a>>,
 }
 
 /// A pose in the world frame; `h` is the heading in radians.

@@ -4,6 +4,7 @@ fn stmt(line: u32, text: &str) -> Option<Stmt<'_>> {
     Some(Stmt {
         line,
         text: text.into(),
+        file: None,
     })
 }
 

@@ -127,9 +127,11 @@ pub struct Command {
 }
 
 impl Command {
-    /// Whether a trace event's statement is this one.
-    pub fn is(&self, line: u32, text: &str) -> bool {
-        self.line.is_none_or(|l| l == line) && same_statement(&self.text, text)
+    /// Whether a trace event's statement is this one. A line is the task file's: a
+    /// skill's statement on the same line is another.
+    pub fn is(&self, s: &ilmr_trace::Stmt<'_>) -> bool {
+        self.line.is_none_or(|l| l == s.line && s.file.is_none())
+            && same_statement(&self.text, &s.text)
     }
 }
 

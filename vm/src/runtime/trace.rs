@@ -230,6 +230,11 @@ pub fn record<'a>(m: &'a Module, e: &'a Event) -> Record<'a> {
     let stmt = e.stmt.and_then(|s| m.stmt(s)).map(|s| Stmt {
         line: s.line,
         text: Cow::Borrowed(&s.text),
+        // The task is the module's first file: its statements go without a name.
+        file: (s.file.0 != 0)
+            .then(|| m.files.get(s.file.0 as usize))
+            .flatten()
+            .map(|f| Cow::Borrowed(f.as_str())),
     });
     let event = match &e.kind {
         EventKind::Issue => schema::Event::Issue(schema::Issue {
