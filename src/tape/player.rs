@@ -124,10 +124,6 @@ impl Player {
     fn answer(&mut self, made: Exchange) -> Option<Exchange> {
         if self.ended {
             self.ended = false;
-            if self.cursor < self.calls().len() {
-                let missed = self.calls()[self.cursor].clone();
-                self.diverge(Some(missed), None);
-            }
             self.tick += 1;
             self.cursor = 0;
         }
@@ -390,6 +386,9 @@ impl Robot for Player {
     }
 
     fn end_tick(&mut self) -> Option<Input> {
+        if let Some(missed) = self.calls().get(self.cursor).cloned() {
+            self.diverge(Some(missed), None);
+        }
         self.ended = true;
         self.played.ticks.store(self.tick + 1, Ordering::Relaxed);
         None
@@ -401,5 +400,81 @@ impl Robot for Player {
             self.played.ran_out.store(true, Ordering::Relaxed);
         }
         out
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::run::backend::NoRobot;
+    use crate::tape::Taping;
+
+    /// One tick of a robot without a world that the VM asked to move: `update`,
+    /// `snapshot`, `set_motion` (refused) and the run's look at it.
+    fn recorded() -> Vec<Input> {
+        let mut taping = Taping::new(NoRobot);
+        let mut snap = Snapshot::default();
+        taping.update(0.0).ok();
+        taping.snapshot(&mut snap).ok();
+        assert!(taping.set_motion(0.3, 0.0).is_err());
+        vec![
+            taping
+                .end_tick()
+                .expect("a taping robot hands its tick over"),
+        ]
+    }
+
+    #[test]
+    fn the_same_calls_get_the_recorded_answers() {
+        let (mut player, played) = Player::new(recorded());
+        let mut snap = Snapshot::default();
+        assert_eq!(player.update(0.0), Ok(()));
+        assert_eq!(player.snapshot(&mut snap), Ok(()));
+        let refused = player.set_motion(0.3, 0.0).unwrap_err();
+        assert!(refused.to_string().contains("--robot none"), "{refused}");
+        player.end_tick();
+        assert!(played.divergence().is_none());
+        assert_eq!(played.ticks(), 1);
+        assert!(player.inputs_exhausted() && played.ran_out());
+    }
+
+    #[test]
+    fn a_call_with_other_arguments_is_the_divergence_and_gets_its_kinds_answer() {
+        let (mut player, played) = Player::new(recorded());
+        player.update(0.0).ok();
+        player.snapshot(&mut Snapshot::default()).ok();
+        assert!(player.set_motion(0.2, 0.0).is_err(), "the recorded answer");
+        let d = played.divergence().expect("a divergence");
+        assert_eq!((d.tick, d.t), (0, 0.0));
+        let said = d.describe();
+        assert!(
+            said.contains("the recorded run called set_motion(speed 0.3, curvature 0), the replay calls set_motion(speed 0.2, curvature 0)"),
+            "{said}"
+        );
+    }
+
+    /// A replay that makes fewer calls than the recording in the last tick still
+    /// parts from it: nothing comes after to notice.
+    #[test]
+    fn a_call_left_out_of_the_last_tick_is_a_divergence() {
+        let (mut player, played) = Player::new(recorded());
+        player.update(0.0).ok();
+        player.snapshot(&mut Snapshot::default()).ok();
+        player.end_tick();
+        let d = played.divergence().expect("a divergence");
+        assert!(
+            d.describe()
+                .contains("the replay makes no more calls in that tick"),
+            "{}",
+            d.describe()
+        );
+    }
+
+    #[test]
+    fn an_operation_the_recording_never_started_fails() {
+        let (mut player, _) = Player::new(recorded());
+        player.update(0.0).ok();
+        let e = player.start(&AsyncOp::MoveMode("crab".into())).unwrap_err();
+        assert!(e.to_string().contains("not in the recording"), "{e}");
     }
 }
