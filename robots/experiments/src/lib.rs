@@ -13,6 +13,7 @@ pub mod fig20_fetch_boxes;
 pub mod harness;
 pub mod picture;
 pub mod settings;
+pub mod stats;
 pub mod test1_turn;
 pub mod test2_turn_left;
 pub mod test3_followwall;

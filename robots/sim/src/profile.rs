@@ -136,6 +136,26 @@ pub fn set(cfg: &mut RobotConfig, name: &str, value: f64) -> Result<(), String> 
     Ok(())
 }
 
+/// [`CALIBRATED`] as the Markdown table `docs/robot-model.md` shows (a test
+/// keeps the two in step).
+pub fn markdown_table() -> String {
+    let mut s = String::from(
+        "| parameter | MoRo | Workpartner | unit | source |\n| --- | --- | --- | --- | --- |\n",
+    );
+    let v = |x: Option<f64>| x.map_or("-".to_string(), |x| format!("{x}"));
+    for p in CALIBRATED {
+        s.push_str(&format!(
+            "| `{}` | {} | {} | {} | {} |\n",
+            p.name,
+            v(p.moro),
+            v(p.workpartner),
+            p.unit,
+            p.source
+        ));
+    }
+    s
+}
+
 /// The calibrated profile, one row per parameter; `docs/robot-model.md` lists
 /// it (kept in step by a test). "Fitted" rows were fitted to Table 10 as
 /// `docs/experiments.md` describes; the others are fixed before the fit.
@@ -143,25 +163,25 @@ pub const CALIBRATED: &[Parameter] = &[
     Parameter {
         name: "actuator.speed_dead_time",
         unit: "s",
-        moro: Some(0.1),
+        moro: Some(0.06),
         workpartner: Some(0.2),
-        source: "typical: a speed setpoint crosses the serial link or CAN bus and the motor controller's own loop (Figures 37, 41) before the drive responds; 0.1-0.2 s",
+        source: "MoRo: fitted to Table 10 (its deviations grow with speed: the robot stops late at the arc's end); Workpartner: typical of a setpoint crossing the CAN bus to the micro-controllers of the legs and the joint (section 5.1.1), 0.1-0.2 s",
         set: |c, v| c.actuator.speed_dead_time = v,
     },
     Parameter {
         name: "actuator.steering_dead_time",
         unit: "s",
-        moro: Some(0.15),
-        workpartner: Some(0.4),
-        source: "fitted to Table 10 (Workpartner's deviation grows with speed, section 5.6.1: a lag of distance)",
+        moro: Some(0.06),
+        workpartner: Some(0.2),
+        source: "MoRo: as its speed's and fitted with it (its front wheel both steers and drives, section 5.2); Workpartner: as its speed's, typical",
         set: |c, v| c.actuator.steering_dead_time = v,
     },
     Parameter {
         name: "actuator.steering_play_deg",
         unit: "deg",
         moro: Some(0.5),
-        workpartner: Some(1.0),
-        source: "typical backlash of a geared steering motor (MoRo's front wheel) and of an articulation joint's linkage, 0.5-1 degree",
+        workpartner: Some(0.75),
+        source: "MoRo: typical backlash of a geared steering motor, 0.5-1 degree; Workpartner: fitted to Table 10 (at full lock the play leaves the joint short of 0.25 1/m, the clipping of section 5.6.1 and Figure 48)",
         set: |c, v| c.actuator.steering_play_deg = v,
     },
     Parameter {
@@ -265,23 +285,23 @@ pub const CALIBRATED: &[Parameter] = &[
         unit: "1",
         moro: Some(0.5),
         workpartner: Some(0.5),
-        source: "Ye and Borenstein 2002 (characterisation of the SICK LMS 200): a beam whose spot falls on an edge reads between the two surfaces; about every other edge beam",
+        source: "Ye and Borenstein 2002 (characterisation of the SICK LMS 200): a beam whose spot falls on an edge reads between the two surfaces; taken as every other edge beam",
         set: |c, v| c.scanner.mixed_pixel = v,
     },
     Parameter {
         name: "scanner.sweep_time",
         unit: "s",
-        moro: Some(0.053),
-        workpartner: Some(0.053),
-        source: "SICK LMS 2xx manual: 75 Hz mirror, 0.5 degree resolution interlaced over four turns, 53 ms per 180 degree scan",
+        moro: Some(0.0266),
+        workpartner: Some(0.0266),
+        source: "SICK LMS 2xx manual: a 75 Hz mirror; 0.5 degree resolution (361 readings) interlaces two turns, 26.6 ms per 180 degree scan",
         set: |c, v| c.scanner.sweep_time = v,
     },
     Parameter {
         name: "nav.sigma_xy",
         unit: "m",
         moro: None,
-        workpartner: Some(0.1),
-        source: "dissertation, section 5.1.2: 0.1 m with vertical cylinders as landmarks",
+        workpartner: Some(0.05),
+        source: "dissertation, section 5.1.2: an accuracy of 0.1 m with vertical cylinders as landmarks, read as a 95 % bound (2 sigma); read as 1 sigma, the fixes alone put Workpartner 0.21 m (mean) off Table 10's arc, more than the table's 0.183 with every other error",
         set: |c, v| {
             if let Some(n) = &mut c.nav {
                 n.sigma_xy = v;
@@ -290,13 +310,13 @@ pub const CALIBRATED: &[Parameter] = &[
     },
     Parameter {
         name: "nav.sigma_h",
-        unit: "rad",
+        unit: "deg (set in rad)",
         moro: None,
-        workpartner: Some(0.5 * std::f64::consts::PI / 180.0),
-        source: "dissertation, section 5.1.2: 0.5 degrees with vertical cylinders",
+        workpartner: Some(0.25),
+        source: "dissertation, section 5.1.2: 0.5 degrees with vertical cylinders, read as 2 sigma as the position is",
         set: |c, v| {
             if let Some(n) = &mut c.nav {
-                n.sigma_h = v;
+                n.sigma_h = v.to_radians();
             }
         },
     },

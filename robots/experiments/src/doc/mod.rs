@@ -36,7 +36,7 @@ pub const COMMAND: &str = "cargo run --release -p ilmr-experiments";
 /// that are not generated.
 pub fn render(results: &Experiments, existing: &str) -> String {
     let sections = [
-        test1::section(&results.test1, &results.settings),
+        test1::section(&results.test1),
         test2::section(&results.test2),
         test3::section(&results.test3),
         test4::section(&results.test4),
