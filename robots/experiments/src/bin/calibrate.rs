@@ -24,6 +24,44 @@ struct Args {
     /// `ilmr_sim::profile::CALIBRATED`.
     #[arg(long)]
     set: Vec<String>,
+    /// Print the calibrated model's predictions of Tables 11 and 12 and Test 5 instead.
+    #[arg(long)]
+    predictions: bool,
+}
+
+fn print_predictions() -> Result<(), String> {
+    use ilmr_experiments::predictions as p;
+    use ilmr_experiments::{test2_turn_left as t2, test5_short_task as t5};
+    let line = |what: &str, s: &ilmr_experiments::stats::Spread, table: f64| {
+        println!(
+            "{what:<28} {:.4} [{:.4}, {:.4}] range {:.4}-{:.4}  dissertation {table}",
+            s.mean, s.lo, s.hi, s.min, s.max
+        )
+    };
+    let t = p::test2()?;
+    line("Table 11 x", &t.x, t2::TABLE_11_X);
+    line("Table 11 y", &t.y, t2::TABLE_11_Y);
+    println!("Table 11 clean turns          {} of {}", t.clean, t.runs);
+    for f in p::test3()? {
+        line(
+            &format!("Table 12 from {} m, excess", f.off),
+            &f.overshoot,
+            f.table,
+        );
+        println!(
+            "{:<28} at the end {:.4}, contacts {}",
+            "", f.at_end.mean, f.contacts
+        );
+    }
+    let s = p::test5()?;
+    line("Test 5 max error", &s.max_error, t5::FIGURE_53);
+    line("Test 5 home", &s.home, t5::FIGURE_53);
+    println!(
+        "Test 5 finished               {} of {}",
+        s.finished,
+        p::SEEDS
+    );
+    Ok(())
 }
 
 fn parse_set(s: &str) -> Result<(Robot, String, f64), String> {
@@ -75,6 +113,9 @@ fn print(s: &Sweep) {
 fn main() -> ExitCode {
     let args = Args::parse();
     let run = || -> Result<(), String> {
+        if args.predictions {
+            return print_predictions();
+        }
         let profile = SimProfile::parse(&args.profile)
             .ok_or_else(|| format!("--profile {}: ideal, basic or calibrated", args.profile))?;
         let overrides = args
