@@ -112,6 +112,17 @@ pub fn moro(world: World, seed: u64) -> Result<SimRobot, String> {
     SimRobot::moro(world, seed).map_err(|e| format!("MoRo does not start: {e}"))
 }
 
+/// MoRo with its shipped model and `profile`'s errors.
+pub fn moro_with(
+    world: World,
+    seed: u64,
+    profile: ilmr_sim::SimProfile,
+) -> Result<SimRobot, String> {
+    let model = RobotModel::builtin("moro").ok_or("no built-in model moro")?;
+    SimRobot::with_profile(model, ilmr_sim::RobotKind::Moro, profile, world, seed)
+        .map_err(|e| format!("MoRo does not start: {e}"))
+}
+
 pub fn workpartner(world: World, seed: u64) -> Result<SimRobot, String> {
     SimRobot::workpartner(world, seed).map_err(|e| format!("Workpartner does not start: {e}"))
 }

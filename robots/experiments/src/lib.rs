@@ -12,7 +12,9 @@ pub mod doc;
 pub mod fig20_fetch_boxes;
 pub mod harness;
 pub mod picture;
+pub mod predictions;
 pub mod settings;
+pub mod stats;
 pub mod test1_turn;
 pub mod test2_turn_left;
 pub mod test3_followwall;
@@ -28,6 +30,7 @@ use ilmr_plot::Figure;
 pub struct Experiments {
     pub settings: settings::Settings,
     pub test1: test1_turn::Test1,
+    pub predictions: predictions::Predictions,
     pub test2: test2_turn_left::Test2,
     pub test3: test3_followwall::Test3,
     pub test4: test4_obstacle::Test4,
@@ -83,6 +86,7 @@ pub fn run_all_costed() -> Result<(Experiments, Vec<Costed>), String> {
     use fig20_fetch_boxes as f20;
     std::thread::scope(|s| {
         let t1 = spawn(s, test1_turn::run);
+        let pr = spawn(s, predictions::run);
         let t2 = spawn(s, test2_turn_left::run);
         let t3 = spawn(s, test3_followwall::run);
         let t4 = spawn(s, test4_obstacle::run);
@@ -99,6 +103,7 @@ pub fn run_all_costed() -> Result<(Experiments, Vec<Costed>), String> {
         let experiments = Experiments {
             settings: settings::Settings::of_both()?,
             test1: joined(t1, "test 1", c)?,
+            predictions: joined(pr, "predictions (tests 2, 3, 5 calibrated)", c)?,
             test2: joined(t2, "test 2", c)?,
             test3: joined(t3, "test 3", c)?,
             test4: joined(t4, "test 4", c)?,

@@ -7,7 +7,7 @@ use ilmr_plot::{Colour, Corner, Figure, Mark, Sample, Scenery, Track};
 use ilmr_sim::World;
 use ilmr_stdlib::Command;
 
-use crate::harness::{self, A, Task, moro, speed, world};
+use crate::harness::{self, A, Task, speed, world};
 use crate::picture::{self, Marks};
 
 pub const SEED: u64 = 2;
@@ -53,12 +53,17 @@ pub struct Test2 {
 }
 
 pub fn run() -> Result<Test2, String> {
+    run_with(ilmr_sim::SimProfile::Basic, SEED)
+}
+
+/// Test 2 on a robot with `profile`'s errors and `seed`.
+pub fn run_with(profile: ilmr_sim::SimProfile, seed: u64) -> Result<Test2, String> {
     let task = speed(Task::new(), 0.3)
         .cmd("t=turn(left)", Command::Turn, &[A::W("left")], Some("t"))
         .cmd("goahead(1.5)", Command::Goahead, &[A::N(1.5)], None)
         .finish();
     let w = world(WORLD)?;
-    let mut vm = harness::vm(task, moro(w.clone(), SEED)?)?;
+    let mut vm = harness::vm(task, harness::moro_with(w.clone(), seed, profile)?)?;
     let mut marks = Marks::new(&vm);
     let out = harness::run_watched(&mut vm, 80.0, |vm| marks.watch(vm));
     let y0 = out.trace.first().ok_or("the robot did not move")?.y;

@@ -6,7 +6,7 @@ use ilmr_plot::{Colour, Corner, Figure, Reference, Sample, Scenery, Track};
 use ilmr_sim::World;
 use ilmr_stdlib::Command;
 
-use crate::harness::{self, A, Task, moro, speed, world};
+use crate::harness::{self, A, Task, speed, world};
 use crate::picture;
 
 pub const SEED: u64 = 3;
@@ -41,7 +41,12 @@ pub struct Follow {
     pub track: Vec<Sample>,
 }
 
-fn follow(off: f64, table: f64) -> Result<Follow, String> {
+fn follow(
+    off: f64,
+    table: f64,
+    profile: ilmr_sim::SimProfile,
+    seed: u64,
+) -> Result<Follow, String> {
     // The distance is to the wall's face: its line is 0.15 m thick.
     let wall_y = GOAL + off - WALL_HALF_THICKNESS;
     let task = speed(Task::new(), 0.3)
@@ -53,7 +58,7 @@ fn follow(off: f64, table: f64) -> Result<Follow, String> {
         )
         .finish();
     let w = world(&format!("wall_{off:.1}.toml"))?;
-    let mut vm = harness::vm(task, moro(w.clone(), SEED)?)?;
+    let mut vm = harness::vm(task, harness::moro_with(w.clone(), seed, profile)?)?;
     let mut travelled = 0.0;
     let mut last = vm.hal().true_pose();
     let (mut overshoot, mut at_3m) = (0.0f64, f64::NAN);
@@ -91,9 +96,14 @@ pub struct Test3 {
 }
 
 pub fn run() -> Result<Test3, String> {
+    run_with(ilmr_sim::SimProfile::Basic, SEED)
+}
+
+/// Test 3 on robots with `profile`'s errors and `seed`.
+pub fn run_with(profile: ilmr_sim::SimProfile, seed: u64) -> Result<Test3, String> {
     let follows = OFFSETS
         .iter()
-        .map(|&(off, table)| follow(off, table))
+        .map(|&(off, table)| follow(off, table, profile, seed))
         .collect::<Result<_, _>>()?;
     Ok(Test3 { follows })
 }

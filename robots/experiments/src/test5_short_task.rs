@@ -7,7 +7,7 @@ use ilmr_motion::{Direction, Path, Pose};
 use ilmr_plot::{Colour, Corner, Figure, Mark, Reference, Sample, Track};
 use ilmr_stdlib::Command;
 
-use crate::harness::{self, A, SimVm, Task, moro, shipped, speed};
+use crate::harness::{self, A, SimVm, Task, shipped, speed};
 use crate::picture::{self, Marks};
 
 pub const SEED: u64 = 5;
@@ -83,7 +83,15 @@ pub struct Test5 {
 }
 
 pub fn run() -> Result<Test5, String> {
-    let mut vm = harness::vm(figure_52(), moro(shipped("empty")?, SEED)?)?;
+    run_with(ilmr_sim::SimProfile::Basic, SEED)
+}
+
+/// Test 5 on a robot with `profile`'s errors and `seed`.
+pub fn run_with(profile: ilmr_sim::SimProfile, seed: u64) -> Result<Test5, String> {
+    let mut vm = harness::vm(
+        figure_52(),
+        harness::moro_with(shipped("empty")?, seed, profile)?,
+    )?;
     let mut marks = Marks::new(&vm);
     let out = harness::run_watched(&mut vm, 60.0, |vm| marks.watch(vm));
     let ideal = route()?;

@@ -42,6 +42,38 @@ fn step_10ms_with_scan_office(b: divan::Bencher) {
     .bench_local_refs(|s| s.step(0.01));
 }
 
+/// A 10 ms step with a scan, half a second into a 0.3 m/s turn, with `profile`'s
+/// errors: `calibrated` casts the scan swept while moving (in `SKEW_PARTS` parts,
+/// each through a fan of its own) and adds dropouts and mixed pixels.
+fn moving_step(b: divan::Bencher, profile: ilmr_sim::SimProfile) {
+    let mut cfg = profile.apply(RobotConfig::moro());
+    // A scan every step; a sweep cannot outlast the 10 ms between scans.
+    cfg.scanner.rate_hz = 100.0;
+    cfg.scanner.sweep_time = cfg.scanner.sweep_time.min(0.01);
+    b.with_inputs(|| {
+        let mut s = match Simulator::new(cfg.clone(), office(), 1) {
+            Ok(s) => s,
+            Err(e) => panic!("{e}"),
+        };
+        let _ = s.set_setpoints(0.3, 0.2);
+        for _ in 0..50 {
+            let _ = s.step(0.01);
+        }
+        s
+    })
+    .bench_local_refs(|s| s.step(0.01));
+}
+
+#[divan::bench]
+fn step_10ms_moving_with_scan_office_basic(b: divan::Bencher) {
+    moving_step(b, ilmr_sim::SimProfile::Basic);
+}
+
+#[divan::bench]
+fn step_10ms_moving_with_scan_office_calibrated(b: divan::Bencher) {
+    moving_step(b, ilmr_sim::SimProfile::Calibrated);
+}
+
 /// The most walls a world file admits (`MAX_WALLS`), 0.8 m each, spread over
 /// a 1 km site round a clear patch where the robot stands: what a tick costs
 /// when the world is huge but the robot's surroundings are ordinary.

@@ -48,13 +48,41 @@ pub enum Steering {
 }
 
 /// Wheel slip: the ground moves `1 - s` of what the wheels roll, with
-/// `s ~ N(mean, sigma)` drawn each step and kept in [0, 0.9]; the turn rate is
-/// off by a factor `1 + N(0, yaw_sigma)`.
+/// `s = mean + e` kept in [0, 0.9]; the turn rate is off by a factor `1 + e_yaw`.
+/// `e` and `e_yaw` are first-order Gauss-Markov processes of standard deviation
+/// `sigma` and `yaw_sigma` and correlation time `correlation_time` (0: drawn
+/// afresh every step, white).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct SlipConfig {
     pub mean: f64,
     pub sigma: f64,
     pub yaw_sigma: f64,
+    /// s; a patch of floor or grass slips alike for about this long.
+    #[serde(default)]
+    pub correlation_time: f64,
+    /// Side-slip angle per lateral acceleration, rad per m/s^2: on a turn the
+    /// robot drifts outward by `lateral * v^2 * |c|` of each metre driven,
+    /// which the wheels never count.
+    #[serde(default)]
+    pub lateral: f64,
+}
+
+/// What the drive does between a setpoint and the wheels, beyond its rate limits.
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+pub struct ActuatorConfig {
+    /// s from a speed setpoint to the drive starting to follow it.
+    pub speed_dead_time: f64,
+    /// s from a curvature setpoint to the steering starting to follow it.
+    pub steering_dead_time: f64,
+    /// Backlash of the steering linkage, degrees of MoRo's front-wheel angle or
+    /// Workpartner's articulation angle: the steering stands still until the
+    /// command has moved this far from where it last pushed.
+    pub steering_play_deg: f64,
+    /// Relative error of the wheelbase (MoRo) or joint-to-axle length
+    /// (Workpartner) the steering is calibrated with, drawn once per run from
+    /// N(0, sigma): the curvature achieved is `c / (1 + e)` of the `c` the
+    /// steering set and reports.
+    pub wheelbase_sigma: f64,
 }
 
 /// Workpartner's rolking mode (legs sliding along the ground).
@@ -79,7 +107,28 @@ pub struct ScannerConfig {
     pub noise_sigma: f64,
     /// Scanner origin in the robot frame (x forward, y left).
     pub mount: Vec2,
+    /// Probability that a beam which meets something returns nothing (reads
+    /// `max_range`): dark, glossy or grazing surfaces.
+    #[serde(default)]
+    pub dropout: f64,
+    /// Probability that a beam at an edge (a neighbour's range differs by more
+    /// than [`MIXED_PIXEL_JUMP`]) reads a range between the near and the far
+    /// surface: its spot fell on both.
+    #[serde(default)]
+    pub mixed_pixel: f64,
+    /// s from the first reading of a scan to the last: a scan taken while
+    /// moving is cast from the poses the robot passed through, and stamped with
+    /// the pose at its end.
+    #[serde(default)]
+    pub sweep_time: f64,
 }
+
+/// The range difference between neighbouring beams that makes an edge whose
+/// beams may be mixed pixels, m.
+pub const MIXED_PIXEL_JUMP: f64 = 0.1;
+
+/// The longest dead time the actuators accept, s: it bounds the setpoints kept.
+pub const MAX_DEAD_TIME: f64 = 1.0;
 
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct OdometryConfig {
@@ -88,6 +137,15 @@ pub struct OdometryConfig {
     /// Relative scale error of the left and right wheels' pulse counts.
     pub left_scale_error: f64,
     pub right_scale_error: f64,
+    /// Relative error of the wheels' size, both sides alike, drawn once per
+    /// run from N(0, sigma): every count is `1 + e` of the true travel.
+    #[serde(default)]
+    pub scale_sigma: f64,
+    /// Relative error of the track (the distance between the left and right
+    /// wheels) the odometry assumes, drawn once per run from N(0, sigma): the
+    /// wheels' difference then gives the turn `1 + e` too large.
+    #[serde(default)]
+    pub track_sigma: f64,
 }
 
 /// MoRo's fibre-optic gyro.
@@ -99,6 +157,10 @@ pub struct GyroConfig {
     pub bias_walk: f64,
     /// Angle random walk, rad per sqrt(s).
     pub noise: f64,
+    /// Turn-on to turn-on bias repeatability, rad/s: a bias drawn once per run
+    /// from N(0, sigma) is added to `bias`.
+    #[serde(default)]
+    pub bias_sigma: f64,
 }
 
 /// MoRo's inductive floor-plate sensor array: a line across the body.
@@ -118,8 +180,14 @@ pub struct PlateSensorConfig {
 pub struct NavConfig {
     pub fix_rate_hz: f64,
     pub dead_reckoning_hz: f64,
+    /// Standard deviation of a fix's position error, m, each axis.
     pub sigma_xy: f64,
+    /// Standard deviation of a fix's heading error, rad.
     pub sigma_h: f64,
+    /// s; successive fixes matched against the same landmarks err alike: the
+    /// error is a first-order Gauss-Markov process (0: independent fixes).
+    #[serde(default)]
+    pub correlation_time: f64,
 }
 
 /// Workpartner's four rear ultrasonic sensors, facing backwards from the rear edge.
@@ -176,6 +244,8 @@ pub struct RobotConfig {
     pub body: BodyConfig,
     pub steering: Steering,
     pub limits: DriveLimits,
+    #[serde(default)]
+    pub actuator: ActuatorConfig,
     pub slip: SlipConfig,
     pub scanner: ScannerConfig,
     pub odometry: OdometryConfig,
@@ -218,10 +288,13 @@ impl RobotConfig {
                 max_curvature: 1.0 / 0.75,
                 curinc: 1.0,
             },
+            actuator: ActuatorConfig::default(),
             slip: SlipConfig {
                 mean: 0.0,
                 sigma: 0.002,
                 yaw_sigma: 0.002,
+                correlation_time: 0.0,
+                lateral: 0.0,
             },
             scanner: ScannerConfig {
                 rate_hz: 4.0,
@@ -230,11 +303,16 @@ impl RobotConfig {
                 max_range: 30.0,
                 noise_sigma: 0.01,
                 mount: Vec2::new(0.85, 0.0),
+                dropout: 0.0,
+                mixed_pixel: 0.0,
+                sweep_time: 0.0,
             },
             odometry: OdometryConfig {
                 metres_per_pulse: 0.0005,
                 left_scale_error: 0.0,
                 right_scale_error: 0.0,
+                scale_sigma: 0.0,
+                track_sigma: 0.0,
             },
             battery: BatteryConfig {
                 capacity_wh: 960.0,
@@ -248,6 +326,7 @@ impl RobotConfig {
                 bias: 2.0e-5,
                 bias_walk: 1.0e-6,
                 noise: 1.0e-4,
+                bias_sigma: 0.0,
             }),
             plates: Some(PlateSensorConfig {
                 offset: 0.45,
@@ -284,10 +363,13 @@ impl RobotConfig {
                 max_curvature: 0.25,
                 curinc: 0.8,
             },
+            actuator: ActuatorConfig::default(),
             slip: SlipConfig {
                 mean: 0.01,
                 sigma: 0.005,
                 yaw_sigma: 0.01,
+                correlation_time: 0.0,
+                lateral: 0.0,
             },
             scanner: ScannerConfig {
                 rate_hz: 2.0,
@@ -296,11 +378,16 @@ impl RobotConfig {
                 max_range: 30.0,
                 noise_sigma: 0.01,
                 mount: Vec2::new(1.0, 0.0),
+                dropout: 0.0,
+                mixed_pixel: 0.0,
+                sweep_time: 0.0,
             },
             odometry: OdometryConfig {
                 metres_per_pulse: 0.002,
                 left_scale_error: 0.0,
                 right_scale_error: 0.0,
+                scale_sigma: 0.0,
+                track_sigma: 0.0,
             },
             battery: BatteryConfig {
                 capacity_wh: 2000.0,
@@ -317,6 +404,7 @@ impl RobotConfig {
                 dead_reckoning_hz: 10.0,
                 sigma_xy: 0.02,
                 sigma_h: 0.3_f64.to_radians(),
+                correlation_time: 0.0,
             }),
             ultrasonic: Some(UltrasonicConfig {
                 rate_hz: 10.0,
@@ -349,6 +437,8 @@ impl RobotConfig {
                     mean: 0.08,
                     sigma: 0.03,
                     yaw_sigma: 0.05,
+                    correlation_time: 0.0,
+                    lateral: 0.0,
                 },
                 power_factor: 2.5,
             }),
@@ -408,11 +498,20 @@ impl RobotConfig {
         if let Some((name, v)) = checks.iter().find(|(_, v)| !(v.is_finite() && *v > 0.0)) {
             return Err(format!("{name} must be a positive number, got {v}"));
         }
-        let non_negative = [
+        let mut non_negative = vec![
             ("body.rear_overhang", self.body.rear_overhang),
             ("slip.mean", self.slip.mean),
             ("slip.sigma", self.slip.sigma),
             ("slip.yaw_sigma", self.slip.yaw_sigma),
+            ("slip.correlation_time", self.slip.correlation_time),
+            ("slip.lateral", self.slip.lateral),
+            (
+                "actuator.steering_play_deg",
+                self.actuator.steering_play_deg,
+            ),
+            ("actuator.wheelbase_sigma", self.actuator.wheelbase_sigma),
+            ("odometry.scale_sigma", self.odometry.scale_sigma),
+            ("odometry.track_sigma", self.odometry.track_sigma),
             ("scanner.noise_sigma", self.scanner.noise_sigma),
             ("battery.idle_w", self.battery.idle_w),
             (
@@ -421,11 +520,42 @@ impl RobotConfig {
             ),
             ("battery.charge_w", self.battery.charge_w),
         ];
+        if let Some(g) = &self.gyro {
+            non_negative.push(("gyro.bias_sigma", g.bias_sigma));
+        }
+        if let Some(n) = &self.nav {
+            non_negative.push(("nav.correlation_time", n.correlation_time));
+        }
         if let Some((name, v)) = non_negative
             .iter()
             .find(|(_, v)| !(v.is_finite() && *v >= 0.0))
         {
             return Err(format!("{name} must be zero or positive, got {v}"));
+        }
+        let bounded = [
+            (
+                "actuator.speed_dead_time",
+                self.actuator.speed_dead_time,
+                MAX_DEAD_TIME,
+            ),
+            (
+                "actuator.steering_dead_time",
+                self.actuator.steering_dead_time,
+                MAX_DEAD_TIME,
+            ),
+            ("scanner.dropout", self.scanner.dropout, 1.0),
+            ("scanner.mixed_pixel", self.scanner.mixed_pixel, 1.0),
+            (
+                "scanner.sweep_time",
+                self.scanner.sweep_time,
+                1.0 / self.scanner.rate_hz,
+            ),
+        ];
+        if let Some((name, v, most)) = bounded
+            .iter()
+            .find(|(_, v, most)| !(v.is_finite() && (0.0..=*most).contains(v)))
+        {
+            return Err(format!("{name} must be 0 to {most}, got {v}"));
         }
         let most = ilmr_model::MAX_READINGS as usize;
         if !(2..=most).contains(&self.scanner.readings) {

@@ -18,6 +18,7 @@ pub mod config;
 pub mod faults;
 pub mod geometry;
 pub mod kinematics;
+pub mod profile;
 pub mod rng;
 mod robot;
 pub mod sensors;
@@ -29,6 +30,7 @@ pub use config::{RobotConfig, RobotKind};
 pub use faults::{FaultKind, FaultPlan, FaultSpec};
 pub use geometry::{Pose, Vec2};
 pub use kinematics::{BodyPose, MovementMode};
+pub use profile::SimProfile;
 pub use robot::{
     BALL_SECONDS, INIT_SECONDS, LEAVE_SECONDS, MOVEMODE_SECONDS, STEP, SimRobot, TAKE_SECONDS,
     config_from_model,

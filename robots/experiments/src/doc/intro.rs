@@ -34,6 +34,12 @@ configured from the shipped ROBO.INI model), and the true pose is compared with 
 reference. Everything is deterministic: the seed and world below reproduce each number
 exactly.
 
+The simulated robots' errors are a profile of `ilmr-sim` ([docs/robot-model.md](robot-model.md#the-simulated-robots-errors)).
+Test 1 runs with the `calibrated` profile, fitted to Table 10, over 20 replicas of
+each row; the other experiments still run once, on one seed, with the `basic` profile
+(the light noise every trace before issue 15 was recorded with): their figures show
+the simulator more than the robots until they move to the calibrated model.
+
 This page and one picture per experiment (`docs/experiments/*.svg`, drawn by
 `ilmr-plot` as `ilmrc run --plot` draws a run) are written by
 

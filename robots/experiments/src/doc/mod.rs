@@ -6,6 +6,7 @@ mod fig20;
 mod fmt;
 mod intro;
 pub mod merge;
+mod predictions;
 mod test1;
 mod test2;
 mod test3;
@@ -17,9 +18,10 @@ mod test7;
 use crate::{Experiments, PICTURES};
 use merge::Generated;
 
-/// How each generated section's heading starts, in the order of [`PICTURES`].
-const KEYS: [&str; 8] = [
+/// How each generated section's heading starts, in the order of the report.
+const KEYS: [&str; 9] = [
     "## Test 1:",
+    "## Predictions of the calibrated model",
     "## Test 2:",
     "## Test 3:",
     "## Test 4:",
@@ -36,7 +38,8 @@ pub const COMMAND: &str = "cargo run --release -p ilmr-experiments";
 /// that are not generated.
 pub fn render(results: &Experiments, existing: &str) -> String {
     let sections = [
-        test1::section(&results.test1, &results.settings),
+        test1::section(&results.test1),
+        predictions::section(&results.predictions),
         test2::section(&results.test2),
         test3::section(&results.test3),
         test4::section(&results.test4),

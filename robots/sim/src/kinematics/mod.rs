@@ -2,10 +2,12 @@
 //! within the limits), exact arc integration, and per-robot steering geometry.
 
 mod body_pose;
+mod delay;
 mod steering;
 
 pub use body_pose::BodyPose;
-pub use steering::{MovementMode, WheelTravel, steering_angle, wheel_travel};
+pub use delay::{SetpointHistory, backlash};
+pub use steering::{MovementMode, WheelTravel, curvature_for_angle, steering_angle, wheel_travel};
 
 use crate::config::DriveLimits;
 use crate::geometry::Pose;
@@ -67,6 +69,20 @@ pub fn advance(p: Pose, ds: f64, dh: f64) -> Pose {
     let chord = ds * sinc(dh / 2.0);
     let mid = p.h + dh / 2.0;
     Pose::new(p.x + chord * mid.cos(), p.y + chord * mid.sin(), p.h + dh)
+}
+
+/// `p` moved `lateral` metres to its left (negative: right), the side slip of a
+/// step whose heading changed by `dh`, taken across the step's mean heading.
+pub fn slide(p: Pose, lateral: f64, dh: f64) -> Pose {
+    if lateral == 0.0 {
+        return p;
+    }
+    let across = p.h - dh / 2.0 + std::f64::consts::FRAC_PI_2;
+    Pose::new(
+        p.x + lateral * across.cos(),
+        p.y + lateral * across.sin(),
+        p.h,
+    )
 }
 
 #[cfg(test)]

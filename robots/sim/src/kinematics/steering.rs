@@ -44,6 +44,15 @@ pub fn steering_angle(steering: &Steering, c: f64) -> f64 {
     }
 }
 
+/// The curvature of the reference point behind a steer (articulation) angle:
+/// the inverse of [`steering_angle`].
+pub fn curvature_for_angle(steering: &Steering, angle: f64) -> f64 {
+    match *steering {
+        Steering::FrontWheel { wheelbase, .. } => angle.tan() / wheelbase,
+        Steering::Articulated { half_length, .. } => (angle / 2.0).tan() / half_length,
+    }
+}
+
 /// Distances rolled by each wheel when the reference point rolls `ds` on
 /// curvature `c`.
 pub fn wheel_travel(steering: &Steering, ds: f64, c: f64) -> WheelTravel {
@@ -107,5 +116,24 @@ mod tests {
         assert!((w.wheels[1] - w.wheels[0] - 2.0 * 0.25).abs() < 1e-12);
         assert_eq!(w.wheels[0], w.wheels[2]);
         assert!((steering_angle(&s, 0.25).to_degrees() - 17.06).abs() < 0.01);
+    }
+
+    #[test]
+    fn curvature_for_angle_inverts_steering_angle() {
+        for s in [
+            Steering::FrontWheel {
+                wheelbase: 0.8,
+                rear_track: 0.5,
+            },
+            Steering::Articulated {
+                half_length: 0.6,
+                track: 1.0,
+            },
+        ] {
+            for c in [-1.2, -0.25, 0.0, 0.4, 1.0] {
+                let back = curvature_for_angle(&s, steering_angle(&s, c));
+                assert!((back - c).abs() < 1e-12, "{s:?} {c} {back}");
+            }
+        }
     }
 }

@@ -62,7 +62,31 @@ impl SimRobot {
         world: World,
         seed: u64,
     ) -> Result<SimRobot, SimError> {
-        let sim = Simulator::new(config_from_model(&model, kind), world, seed)?;
+        let cfg = config_from_model(&model, kind);
+        SimRobot::from_config(model, cfg, world, seed)
+    }
+
+    /// As [`SimRobot::new`], with `profile`'s errors (`basic` is what `new` builds).
+    pub fn with_profile(
+        model: RobotModel,
+        kind: RobotKind,
+        profile: crate::SimProfile,
+        world: World,
+        seed: u64,
+    ) -> Result<SimRobot, SimError> {
+        let cfg = profile.apply(config_from_model(&model, kind));
+        SimRobot::from_config(model, cfg, world, seed)
+    }
+
+    /// A robot with a simulator configuration of its own (for fitting the
+    /// error model); `model` is what its software is told.
+    pub fn from_config(
+        model: RobotModel,
+        cfg: crate::RobotConfig,
+        world: World,
+        seed: u64,
+    ) -> Result<SimRobot, SimError> {
+        let sim = Simulator::new(cfg, world, seed)?;
         Ok(SimRobot {
             sim,
             model,

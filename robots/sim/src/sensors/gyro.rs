@@ -23,9 +23,10 @@ pub struct GyroReading {
 }
 
 impl Gyro {
-    pub fn new(cfg: &GyroConfig) -> Self {
+    /// A gyro switched on with `turn_on_bias` added to its configured bias.
+    pub fn new(cfg: &GyroConfig, turn_on_bias: f64) -> Self {
         Gyro {
-            bias: cfg.bias,
+            bias: cfg.bias + turn_on_bias,
             angle: 0.0,
             rate: 0.0,
         }

@@ -16,7 +16,7 @@ pub use gyro::{Gyro, GyroReading};
 pub use nav::{DeadReckoning, NavFix};
 pub use odometry::{Odometry, OdometryReading};
 pub use plates::{PlateEvent, crossings, quantise};
-pub use scanner::{Scan, cast_scan};
+pub use scanner::{SKEW_PARTS, Scan, ScanNoise, ScanPose, add_artefacts, cast_scan, cast_skewed};
 pub use ultrasonic::{UltrasonicReading, measure_ultrasonic};
 
 /// Fires every `period_us` of simulated time, first at time 0.

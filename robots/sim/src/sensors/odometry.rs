@@ -83,6 +83,8 @@ mod tests {
             metres_per_pulse: 0.001,
             left_scale_error: 0.02,
             right_scale_error: 0.0,
+            scale_sigma: 0.0,
+            track_sigma: 0.0,
         };
         let s = Steering::Articulated {
             half_length: 0.6,

@@ -4,6 +4,7 @@
 //! so equal inputs give bit-identical runs.
 
 mod error;
+mod errors;
 mod estimate;
 mod faulting;
 mod manipulate;
@@ -19,7 +20,8 @@ use crate::config::{RobotConfig, SlipConfig};
 use crate::faults::FaultPlan;
 use crate::geometry::{Obb, Pose, Scene, SolidRef, Vec2};
 use crate::kinematics::{
-    BodyPose, MovementMode, advance, next_curvature, next_speed, steering_angle, wheel_travel,
+    BodyPose, MovementMode, advance, next_curvature, next_speed, slide, steering_angle,
+    wheel_travel,
 };
 use crate::rng::Rng;
 use crate::sensors::{
@@ -27,6 +29,7 @@ use crate::sensors::{
     UltrasonicReading,
 };
 use crate::world::World;
+use errors::{ActuatorState, NavError, SlipProcess, Systematic};
 use estimate::Estimator;
 use std::sync::Arc;
 use targets::Walker;
@@ -42,6 +45,8 @@ struct Streams {
     nav: Rng,
     ultrasonic: Rng,
     camera: Rng,
+    /// The scanner's dropouts and mixed pixels, apart from its range noise.
+    scanner_faults: Rng,
 }
 
 impl Streams {
@@ -54,6 +59,8 @@ impl Streams {
             nav: Rng::fork(seed, 5),
             ultrasonic: Rng::fork(seed, 6),
             camera: Rng::fork(seed, 7),
+            // 8 is the fault plan's slip, 9 the per-run errors.
+            scanner_faults: Rng::fork(seed, 10),
         }
     }
 }
@@ -79,6 +86,11 @@ pub struct Simulator {
     /// The odometry reading the robot last received and when (a dropout
     /// holds it; `None` while the counters report).
     odometry_held: Option<(crate::sensors::OdometryReading, u64)>,
+    /// Errors fixed for this run, drawn from the seed.
+    systematic: Systematic,
+    slip: SlipProcess,
+    actuator: ActuatorState,
+    nav_error: NavError,
 
     time_us: u64,
     pose: Pose,
@@ -137,8 +149,16 @@ impl Simulator {
             pitch: 0.0,
             clearance,
         };
+        let systematic = Systematic::draw(&cfg, seed);
         let mut sim = Simulator {
-            gyro: cfg.gyro.as_ref().map(Gyro::new),
+            gyro: cfg
+                .gyro
+                .as_ref()
+                .map(|g| Gyro::new(g, systematic.gyro_bias)),
+            systematic,
+            slip: SlipProcess::default(),
+            actuator: ActuatorState::default(),
+            nav_error: NavError::default(),
             estimator: Estimator::new(&cfg, start),
             cfg,
             world,
@@ -184,7 +204,7 @@ impl Simulator {
         sim.install_fault_plan(seed)?;
         // Pulse counters start at zero with the wheel count set.
         sim.odometry.update(
-            &wheel_travel(&sim.cfg.steering, 0.0, 0.0),
+            &wheel_travel(&sim.systematic.wheels, 0.0, 0.0),
             &sim.cfg.odometry,
             0.0,
         );
@@ -371,13 +391,17 @@ impl Simulator {
 
         let v0 = self.v;
         let (v1, c1) = self.drive(dt);
-        let slip = self.draw_slip();
+        let slip = self.draw_slip(dt);
         let ds_wheels = (v0 + v1) / 2.0 * dt;
         let fault_slip = self.plan.draw_slip(self.faults.odometry_slip);
         let ds = ds_wheels * (1.0 - slip.0) * (1.0 - fault_slip);
-        let dh = ds * c1 * slip.1;
+        let turn = c1 * self.systematic.curvature_gain;
+        let dh = ds * turn * slip.1;
+        // Side slip outward of the turn, from the lateral acceleration v^2 c.
+        let lateral = -self.cfg.slip.lateral * v1 * v1 * turn * ds.abs();
         let before = self.pose;
-        let candidate = advance(before, ds, dh);
+        let moved = |f: f64| slide(advance(before, ds * f, dh * f), lateral * f, dh * f);
+        let candidate = moved(1.0);
 
         let (rolled, turned) = match self.contact_at(candidate) {
             Some(contact) => {
@@ -389,8 +413,8 @@ impl Simulator {
                 self.v = 0.0;
                 // Move up to the obstacle, so that the next push meets it at
                 // once instead of creeping through a gap and re-touching.
-                let f = self.free_fraction(before, ds, dh);
-                self.pose = advance(before, ds * f, dh * f);
+                let f = self.free_fraction(&moved);
+                self.pose = moved(f);
                 (ds_wheels * f, dh * f)
             }
             None => {
@@ -407,9 +431,9 @@ impl Simulator {
         self.time_us += dt_us;
 
         self.odometry.update(
-            &wheel_travel(&self.cfg.steering, rolled, c1),
+            &wheel_travel(&self.systematic.wheels, rolled, turn),
             &self.cfg.odometry,
-            self.faults.odometry_scale_error,
+            self.faults.odometry_scale_error + self.systematic.odometry_scale,
         );
         let gyro_dh = match (&mut self.gyro, &self.cfg.gyro) {
             (Some(g), Some(gc)) => Some(g.update(gc, turned, dt, &mut self.rng.gyro)),
@@ -432,12 +456,12 @@ impl Simulator {
         Ok(())
     }
 
-    /// The largest fraction of a step's arc (to 2^-20 of it) that stays free.
-    fn free_fraction(&self, from: Pose, ds: f64, dh: f64) -> f64 {
+    /// The largest fraction of a step's motion (to 2^-20 of it) that stays free.
+    fn free_fraction(&self, moved: &impl Fn(f64) -> Pose) -> f64 {
         let (mut free, mut hit) = (0.0, 1.0);
         for _ in 0..20 {
             let mid = (free + hit) / 2.0;
-            if self.contact_at(advance(from, ds * mid, dh * mid)).is_some() {
+            if self.contact_at(moved(mid)).is_some() {
                 hit = mid;
             } else {
                 free = mid;
@@ -446,8 +470,12 @@ impl Simulator {
         free
     }
 
-    /// The actuators' response to the setpoints over one step.
-    fn drive(&self, dt: f64) -> (f64, f64) {
+    /// The actuators' response to the setpoints over one step: they follow what
+    /// was set a dead time ago, the steering through its play.
+    fn drive(&mut self, dt: f64) -> (f64, f64) {
+        let (v_set, c_set) =
+            self.actuator
+                .follow(&self.cfg, self.time_us, self.v_set, self.curvature_target());
         let powered = !self.faults.dead_battery
             && !self.faults.drive_unresponsive
             && self.battery.charge > 0.0;
@@ -458,24 +486,21 @@ impl Simulator {
         let v_target = if self.mode == MovementMode::Parking || !powered {
             0.0
         } else {
-            self.v_set.clamp(-top, top)
+            v_set.clamp(-top, top)
         };
         (
             next_speed(self.v, v_target, &self.cfg.limits, dt),
-            next_curvature(self.c, self.curvature_target(), &self.cfg.limits, dt),
+            next_curvature(self.c, c_set, &self.cfg.limits, dt),
         )
     }
 
     /// (longitudinal slip, yaw factor) for this step.
-    fn draw_slip(&mut self) -> (f64, f64) {
+    fn draw_slip(&mut self, dt: f64) -> (f64, f64) {
         let s: &SlipConfig = match (self.mode, &self.cfg.rolking) {
             (MovementMode::Rolking, Some(r)) => &r.slip,
             _ => &self.cfg.slip,
         };
-        let rng = &mut self.rng.slip;
-        let long = (s.mean + rng.gauss(s.sigma)).clamp(0.0, 0.9);
-        let yaw = 1.0 + rng.gauss(s.yaw_sigma);
-        (long, yaw)
+        self.slip.step(s, dt, &mut self.rng.slip)
     }
 
     fn push(&mut self, kind: EventKind) {

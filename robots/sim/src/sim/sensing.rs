@@ -7,8 +7,8 @@ use super::{EventKind, Simulator};
 use crate::geometry::{Pose, Shape, SolidRef};
 use crate::kinematics::MovementMode;
 use crate::sensors::{
-    CameraFrame, Head, Load, NavFix, PlateEvent, Scan, UltrasonicReading, Visible, crossings,
-    measure_ultrasonic, observe, quantise,
+    CameraFrame, Head, Load, NavFix, PlateEvent, Scan, ScanNoise, ScanPose, UltrasonicReading,
+    Visible, crossings, measure_ultrasonic, observe, quantise,
 };
 use std::sync::Arc;
 
@@ -84,12 +84,8 @@ impl Simulator {
                 let pose = match (&self.nav_fix, self.faults.nav_fix_frozen) {
                     (Some(old), true) => old.pose,
                     _ => {
-                        let n = &mut self.rng.nav;
-                        Pose::new(
-                            self.pose.x + n.gauss(nc.sigma_xy),
-                            self.pose.y + n.gauss(nc.sigma_xy),
-                            self.pose.h + n.gauss(nc.sigma_h),
-                        )
+                        let [ex, ey, eh] = self.nav_error.next(nc, &mut self.rng.nav);
+                        Pose::new(self.pose.x + ex, self.pose.y + ey, self.pose.h + eh)
                     }
                 };
                 dr.reset(pose);
@@ -102,15 +98,23 @@ impl Simulator {
             }
         }
         if self.timers.scanner.due(now) && !self.faults.scanner_dropout {
-            let est = self.estimated_pose();
+            let at = ScanPose {
+                truth: self.pose,
+                estimate: self.estimated_pose(),
+                speed: self.v,
+                turn_rate: self.v * self.c * self.systematic.curvature_gain,
+            };
+            let noise = ScanNoise {
+                range: &mut self.rng.scanner,
+                artefacts: &mut self.rng.scanner_faults,
+            };
             let scan = Scan::take(
                 &self.scene,
                 &self.cfg.scanner,
-                self.pose,
-                est,
+                at,
                 time,
                 self.scan_seq,
-                &mut self.rng.scanner,
+                noise,
             );
             self.scan_seq += 1;
             self.scan = Some(Arc::new(scan));

@@ -39,6 +39,11 @@ pub fn moro(world: World, seed: u64) -> SimRobot {
     ok(h::moro(world, seed))
 }
 
+/// MoRo with `profile`'s errors.
+pub fn moro_with(world: World, seed: u64, profile: ilmr_sim::SimProfile) -> SimRobot {
+    ok(h::moro_with(world, seed, profile))
+}
+
 pub fn workpartner(world: World, seed: u64) -> SimRobot {
     ok(h::workpartner(world, seed))
 }
