@@ -199,6 +199,8 @@ fn setup(args: &ReplayArgs, tape: &Tape) -> Result<Setup, String> {
     };
     Ok(Setup {
         backend,
+        // The recorded inputs are what the robot sensed, whatever its errors.
+        profile: ilmr_sim::SimProfile::Basic,
         model_spec: spec,
         model,
         world: None,

@@ -42,6 +42,10 @@ pub struct SimArgs {
     /// Seed of the simulated robot's noise.
     #[arg(long, default_value_t = 0)]
     pub seed: u64,
+    /// The simulated robot's errors: `ideal`, `basic` (the default) or `calibrated`
+    /// (as `ilmrc run --sim-profile`).
+    #[arg(long, value_name = "PROFILE", value_parser = crate::run::parse_profile)]
+    pub sim_profile: Option<ilmr_sim::SimProfile>,
     /// Publish `/clock` and stamp every message with simulated time (for nodes with
     /// `use_sim_time`); otherwise messages carry the wall clock.
     #[arg(long)]
@@ -88,6 +92,7 @@ fn execute(args: &SimArgs) -> Result<(), String> {
     }
     let setup = setup::choose(&Choice {
         robot: &args.robot,
+        profile: args.sim_profile,
         model: None,
         world: args.world.as_deref(),
         start: args.start.as_deref(),
@@ -102,8 +107,14 @@ fn execute(args: &SimArgs) -> Result<(), String> {
     setup::check_faults(world, &setup.model, kind, None, 0)?;
     let ros = args.ros.config(&setup.model)?;
     let start = world.world.start;
-    let mut robot = SimRobot::new(setup.model.clone(), kind, world.world.clone(), args.seed)
-        .map_err(|e| format!("the robot cannot start in `{}`: {e}", world.name))?;
+    let mut robot = SimRobot::with_profile(
+        setup.model.clone(),
+        kind,
+        setup.profile,
+        world.world.clone(),
+        args.seed,
+    )
+    .map_err(|e| format!("the robot cannot start in `{}`: {e}", world.name))?;
     let mut base = Base::open(BaseConfig {
         domain_id: ros.domain_id,
         namespace: ros.namespace.clone(),

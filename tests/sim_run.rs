@@ -485,3 +485,66 @@ fn every_failure_a_user_can_cause_has_a_message_and_an_exit_code() {
         std::fs::remove_file(&newer),
     );
 }
+
+/// `--sim-profile` chooses the simulated robot's errors: the run says which in its
+/// summary and its trace's `run` line (left out for `basic`, the default, so earlier
+/// traces stay as they were); `ideal` and `calibrated` runs of one seed differ, each is
+/// the same run again; a robot that is not simulated refuses the flag.
+#[test]
+fn the_simulated_robots_errors_are_chosen_by_profile() {
+    let run = |profile: &str| {
+        let trace = scratch(&format!("profile-{profile}.jsonl"));
+        let (code, out, err) = ilmrc(&[
+            "run",
+            "--sim-profile",
+            profile,
+            "--seed",
+            "3",
+            "--trace",
+            trace.to_str().unwrap(),
+            "examples/short_task.ilmr",
+        ]);
+        assert_eq!(code, 0, "{out}{err}");
+        let text = std::fs::read_to_string(&trace).unwrap();
+        let _ = std::fs::remove_file(&trace);
+        (text, out)
+    };
+    let (ideal, said) = run("ideal");
+    assert!(
+        said.contains("robot           moro (ideal errors) in office, seed 3"),
+        "{said}"
+    );
+    assert!(
+        ideal.contains(r#""seed":3,"profile":"ideal","start""#),
+        "{ideal}"
+    );
+    let (calibrated, said) = run("calibrated");
+    assert!(said.contains("(calibrated errors)"), "{said}");
+    assert_ne!(ideal, calibrated, "the errors change the run");
+    assert_eq!(run("calibrated").0, calibrated, "one seed, one run");
+    let (basic, said) = run("basic");
+    assert!(!basic.contains("\"profile\""), "{basic}");
+    assert!(said.contains("robot           moro in office"), "{said}");
+
+    let (code, _, err) = ilmrc(&[
+        "run",
+        "--robot",
+        "none",
+        "--sim-profile",
+        "ideal",
+        "tests/run/counting.ilmr",
+    ]);
+    assert_eq!(code, 2, "{err}");
+    assert!(
+        err.contains(
+            "--sim-profile ideal sets a simulated robot's errors; --robot none is not simulated"
+        ),
+        "{err}"
+    );
+    let (code, _, err) = ilmrc(&["run", "--sim-profile", "rough", "examples/short_task.ilmr"]);
+    assert_eq!(code, 2, "{err}");
+    assert!(
+        err.contains("no profile `rough`: use ideal, basic, calibrated"),
+        "{err}"
+    );
+}

@@ -38,6 +38,7 @@ pub fn open(args: &RobotArgs) -> Result<Opened, String> {
     }
     let setup = setup::choose(&Choice {
         robot: spec,
+        profile: None,
         model: args.model.as_deref(),
         world: args.world.as_deref(),
         start: args.start.as_deref(),

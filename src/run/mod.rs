@@ -64,6 +64,11 @@ pub struct RunArgs {
     /// Seed of the simulated robot's noise.
     #[arg(long, default_value_t = 0)]
     pub seed: u64,
+    /// The simulated robot's errors: `ideal` (exact kinematics, noise-free sensors),
+    /// `basic` (light noise; the default) or `calibrated` (the errors of the
+    /// dissertation's robots, fitted to its Table 10; docs/robot-model.md).
+    #[arg(long, value_name = "PROFILE", value_parser = parse_profile)]
+    pub sim_profile: Option<ilmr_sim::SimProfile>,
     /// Injects a fault into the simulated robot, besides the world's `[[fault]]`
     /// entries: `KIND[@START[+DURATION]][:PARAM]`, such as `scanner_dropout@5+3` or
     /// `obstacle_appears@6:1.2`. Repeatable. Kinds and parameters: robots/worlds/README.md.
@@ -109,6 +114,13 @@ pub struct RunArgs {
     pub lines: Vec<scenario::Line>,
     /// The task file.
     pub task: PathBuf,
+}
+
+pub(crate) fn parse_profile(name: &str) -> Result<ilmr_sim::SimProfile, String> {
+    ilmr_sim::SimProfile::parse(name).ok_or_else(|| {
+        let names: Vec<&str> = ilmr_sim::SimProfile::ALL.iter().map(|p| p.name()).collect();
+        format!("no profile `{name}`: use {}", names.join(", "))
+    })
 }
 
 pub fn run(args: RunArgs) -> ExitCode {
@@ -187,6 +199,7 @@ pub(crate) fn execute(
     }
     let mut setup = setup::choose(&Choice {
         robot: &args.robot,
+        profile: args.sim_profile,
         model: args.model.as_deref(),
         world: args.world.as_deref(),
         start: args.start.as_deref(),

@@ -238,6 +238,8 @@ pub fn header(setup: &Setup, args: &RunArgs) -> Option<Record<'static>> {
             robot: setup.model_spec.clone().into(),
             world: world.name.clone().into(),
             seed: args.seed,
+            profile: (setup.profile != ilmr_sim::SimProfile::Basic)
+                .then(|| setup.profile.name().into()),
             start: At {
                 x: Num(world.world.start.x),
                 y: Num(world.world.start.y),

@@ -3,7 +3,7 @@
 
 use ilmr_hal::Limits;
 use ilmr_model::RobotModel;
-use ilmr_sim::{RobotKind, SimRobot, World};
+use ilmr_sim::{RobotKind, SimProfile, SimRobot, World};
 
 use super::backend::{AnyRobot, NoRobot, Ros2, Simulated};
 use super::scenario::Scenario;
@@ -33,6 +33,8 @@ pub struct LoadedWorld {
 
 pub struct Setup {
     pub backend: Backend,
+    /// A simulated robot's errors (`--sim-profile`); `basic` for the others.
+    pub profile: SimProfile,
     /// What `check` is given: `moro`, `workpartner` or a ROBO.INI path.
     pub model_spec: String,
     pub model: RobotModel,
@@ -53,6 +55,8 @@ pub const ROBOT_NAMES: &str = "moro, workpartner, ros2, none, scripted";
 
 pub struct Choice<'a> {
     pub robot: &'a str,
+    /// `--sim-profile`, when given.
+    pub profile: Option<SimProfile>,
     pub model: Option<&'a str>,
     pub world: Option<&'a str>,
     pub start: Option<&'a str>,
@@ -112,11 +116,18 @@ pub fn choose(c: &Choice<'_>) -> Result<Setup, String> {
         }
         return Ok(Setup {
             backend: Backend::Sim(kind),
+            profile: c.profile.unwrap_or_default(),
             model_spec: c.robot.to_string(),
             model: loaded.model,
             world: Some(world),
             ros2: None,
         });
+    }
+    if let Some(p) = c.profile {
+        return Err(format!(
+            "--sim-profile {p} sets a simulated robot's errors; --robot {} is not simulated",
+            c.robot
+        ));
     }
     for (flag, given) in [("--world", c.world), ("--start", c.start)] {
         if given.is_some() {
@@ -134,6 +145,7 @@ pub fn choose(c: &Choice<'_>) -> Result<Setup, String> {
     };
     Ok(Setup {
         backend,
+        profile: SimProfile::Basic,
         model_spec,
         model,
         world: None,
@@ -283,16 +295,22 @@ pub fn open(setup: &Setup, scenario: &Scenario, seed: u64) -> Result<AnyRobot, S
                 return Err("a simulated robot needs a world".into());
             };
             let start = world.world.start;
-            let robot = SimRobot::new(setup.model.clone(), kind, world.world.clone(), seed)
-                .map_err(|e| {
-                    format!(
-                        "the robot cannot start at ({:.2}, {:.2}, {:.0} deg) in `{}`: {e}",
-                        start.x,
-                        start.y,
-                        start.h.to_degrees(),
-                        world.name
-                    )
-                })?;
+            let robot = SimRobot::with_profile(
+                setup.model.clone(),
+                kind,
+                setup.profile,
+                world.world.clone(),
+                seed,
+            )
+            .map_err(|e| {
+                format!(
+                    "the robot cannot start at ({:.2}, {:.2}, {:.0} deg) in `{}`: {e}",
+                    start.x,
+                    start.y,
+                    start.h.to_degrees(),
+                    world.name
+                )
+            })?;
             Ok(AnyRobot::new(Simulated::new(robot)))
         }
     }

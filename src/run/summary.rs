@@ -103,8 +103,12 @@ pub fn render<C: Clock>(
         .filter(|_| matches!(setup.backend, Backend::Sim(_)));
     if let Some(w) = world {
         let p = w.world.start;
+        let errors = match setup.profile {
+            ilmr_sim::SimProfile::Basic => String::new(),
+            other => format!(" ({other} errors)"),
+        };
         s.push_str(&format!(
-            "  robot           {} in {}, seed {}, from ({}, {}, {} deg)\n",
+            "  robot           {}{errors} in {}, seed {}, from ({}, {}, {} deg)\n",
             setup.model_spec,
             w.name,
             args.seed,

@@ -15,7 +15,7 @@ use super::snapshot::{self, Snapshot};
 use crate::run::scenario::{Line, Scenario};
 
 /// Every key of a test and what it takes (docs/testing.md lists them from here).
-pub const KEYS: [(&str, &str); 14] = [
+pub const KEYS: [(&str, &str); 15] = [
     ("name", "the test's name (required in each `[[test]]`)"),
     (
         "task",
@@ -37,6 +37,10 @@ pub const KEYS: [(&str, &str); 14] = [
     (
         "start",
         "where the robot starts: `\"X,Y,HEADING\"` or `[X, Y, HEADING]`, metres and degrees",
+    ),
+    (
+        "profile",
+        "a simulated robot's errors: `ideal`, `basic` (default) or `calibrated` (`--sim-profile`)",
     ),
     (
         "seeds",
@@ -255,6 +259,23 @@ impl<'a> Reader<'a, '_> {
         }
     }
 
+    /// `profile`: one of the simulator's error profiles, by name.
+    fn profile(&mut self) -> Option<(ilmr_sim::SimProfile, Range<usize>)> {
+        let (name, span) = self.string("profile")?;
+        match ilmr_sim::SimProfile::parse(&name) {
+            Some(p) => Some((p, span)),
+            None => {
+                let names: Vec<&str> = ilmr_sim::SimProfile::ALL.iter().map(|p| p.name()).collect();
+                self.problems.push(Problem::new(
+                    Code::BadValue,
+                    span,
+                    format!("no profile `{name}`: use {}", names.join(", ")),
+                ));
+                None
+            }
+        }
+    }
+
     fn number(&mut self, key: &str) -> Option<(f64, Range<usize>)> {
         let value = self.get(key)?;
         match number(value.get_ref()) {
@@ -330,6 +351,7 @@ impl<'a> Reader<'a, '_> {
         let model = self.name_or_path("model");
         let world = self.name_or_path("world");
         let start = self.start();
+        let profile = self.profile();
         let placed = self.problems.len() == unplaced;
         for (flag, v) in [
             ("--robot", &robot),
@@ -342,6 +364,9 @@ impl<'a> Reader<'a, '_> {
         }
         if let Some((s, _)) = &start {
             argv.extend(["--start".to_string(), s.clone()]);
+        }
+        if let Some((p, _)) = &profile {
+            argv.extend(["--sim-profile".to_string(), p.name().to_string()]);
         }
         let mut skills = None;
         for key in ["skills", "scenario"] {
@@ -383,6 +408,7 @@ impl<'a> Reader<'a, '_> {
         let ros2 = crate::ros2::Ros2Args::default();
         let choice = crate::run::setup::Choice {
             robot: robot.as_ref().map_or("moro", |r| r.0.as_str()),
+            profile: profile.as_ref().map(|p| p.0),
             model: model.as_ref().map(|m| m.0.as_str()),
             world: world.as_ref().map(|w| w.0.as_str()),
             start: start.as_ref().map(|s| s.0.as_str()),
@@ -392,12 +418,20 @@ impl<'a> Reader<'a, '_> {
             match crate::run::setup::choose(&choice) {
                 Ok(setup) => Some(setup),
                 Err(e) => {
-                    let span = [("start", &start), ("world", &world), ("model", &model)]
-                        .into_iter()
-                        .find(|(k, v)| e.contains(k) && v.is_some())
-                        .and_then(|(_, v)| v.as_ref().map(|v| v.1.clone()))
-                        .or_else(|| robot.as_ref().map(|r| r.1.clone()))
-                        .unwrap_or(self.header.clone());
+                    let profile = profile
+                        .as_ref()
+                        .map(|(p, span)| (p.name().to_string(), span.clone()));
+                    let span = [
+                        ("start", &start),
+                        ("world", &world),
+                        ("model", &model),
+                        ("profile", &profile),
+                    ]
+                    .into_iter()
+                    .find(|(k, v)| e.contains(k) && v.is_some())
+                    .and_then(|(_, v)| v.as_ref().map(|v| v.1.clone()))
+                    .or_else(|| robot.as_ref().map(|r| r.1.clone()))
+                    .unwrap_or(self.header.clone());
                     self.problems.push(Problem::new(Code::BadValue, span, e));
                     None
                 }

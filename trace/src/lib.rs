@@ -167,6 +167,9 @@ pub struct Run<'a> {
     #[serde(borrow)]
     pub world: Text<'a>,
     pub seed: u64,
+    /// The simulated robot's error profile (`--sim-profile`) when it is not `basic`.
+    #[serde(borrow, default, skip_serializing_if = "Option::is_none")]
+    pub profile: Option<Text<'a>>,
     pub start: At,
     /// A world file's text (a shipped world is known by its name).
     #[serde(borrow, default, skip_serializing_if = "Option::is_none")]

@@ -19,6 +19,7 @@ fn every_event() -> Vec<Record<'static>> {
             robot: "moro".into(),
             world: "w.toml".into(),
             seed: 7,
+            profile: Some("calibrated".into()),
             start: At {
                 x: Num(1.5),
                 y: Num(-2.0),
