@@ -46,6 +46,7 @@ fn setup() -> Setup {
         Settings {
             robot: Some("moro".into()),
             snippets: true,
+            ilmrc: None,
         },
     );
     let task: Uri = "file:///bench/task.ilmr".parse().expect("a URI");

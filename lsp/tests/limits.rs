@@ -22,6 +22,7 @@ fn engine_with(text: String) -> (Engine, Uri) {
         Settings {
             robot: Some("moro".into()),
             snippets: true,
+            ilmrc: None,
         },
     );
     let uri: Uri = TASK.parse().expect("a URI");
