@@ -62,7 +62,10 @@ impl Times {
         let start = secs(self.start());
         let mut s = match self.end {
             Some(end) => format!("ran t={start}–{} s", secs(end)),
-            None => format!("ran from t={start} s, did not end"),
+            // Ended at issue (a setting), or still live when the run stopped: the
+            // trace tells only when it began.
+            None if self.started.is_some() => format!("started t={start} s"),
+            None => format!("issued t={start} s"),
         };
         let times = if self.started.is_some() {
             self.starts
@@ -172,9 +175,7 @@ pub fn run(inv: &Invocation, text: &str) -> LastRun {
         }
     };
     last.exit = output.status.code();
-    last.summary = String::from_utf8_lossy(&output.stdout)
-        .trim_end()
-        .to_string();
+    last.summary = summary(&String::from_utf8_lossy(&output.stdout), &inv.task);
     if last.summary.is_empty() {
         // A task that fails its check prints its diagnostics on stderr and no summary.
         let stderr = String::from_utf8_lossy(&output.stderr);
@@ -195,6 +196,18 @@ pub fn run(inv: &Invocation, text: &str) -> LastRun {
     }
     let _ = std::fs::remove_file(&trace);
     last
+}
+
+/// `ilmrc run`'s stdout from its summary's first line (`TASK: finished: ...`) on: the
+/// check's diagnostics printed before it are the editor's diagnostics already.
+fn summary(stdout: &str, task: &Path) -> String {
+    let head = format!("{}: ", task.display());
+    let from = stdout
+        .match_indices(&head)
+        .map(|(i, _)| i)
+        .find(|&i| i == 0 || stdout.as_bytes()[i - 1] == b'\n')
+        .unwrap_or(0);
+    stdout[from..].trim_end().to_string()
 }
 
 /// The process's output, or an error when it cannot start or outlives
@@ -303,6 +316,14 @@ mod tests {
         assert_eq!(times[&1].label(), "ran t=0.00–2.50 s");
         // Issued at 0, started at 2.5 when the reservation came.
         assert_eq!(times[&2].label(), "ran t=2.50–6.25 s");
+    }
+
+    #[test]
+    fn the_summary_starts_at_its_first_line_after_the_checks_diagnostics() {
+        let out = "[W0502] Warning: `f` is bound but never used\n/w/t.ilmr:6:1\n1 file(s) checked\n/w/t.ilmr: finished: no command left\n  exit            0\n";
+        let s = summary(out, Path::new("/w/t.ilmr"));
+        assert_eq!(s, "/w/t.ilmr: finished: no command left\n  exit            0");
+        assert_eq!(summary("no summary\n", Path::new("/w/t.ilmr")), "no summary");
     }
 
     #[test]

@@ -29,7 +29,7 @@ pub fn matches(statement: &str, needle: &str) -> bool {
 
 /// The statements a `break(pattern)` may end, with their text: every statement but
 /// breaks, of task files and of the library files a task calls into, leaving out what
-/// stands between `check` and `checkend` (which never runs). The checker's W0501/W0502
+/// stands between `check` and `checkend` (which never runs). The checker's W0701/W0702
 /// and the language server's lens both match patterns against this list.
 pub fn breakable<'s>(files: &[FileEntry<'s>], skills: &Skills) -> Vec<(FileId, Span, &'s str)> {
     let mut statements: Vec<(FileId, Span, &'s str)> = Vec::new();
