@@ -304,22 +304,41 @@ pub fn ended_by(program: &Program, needle: &str) -> Vec<(FileId, Span, bool)> {
             matched.push((file, span));
         }
     }
-    // The bodies of matched `if`s and `while`s.
-    for (file, head) in matched {
+    // The bodies of matched `if`s and `while`s: one walk of each file that has one,
+    // not one per match (`break(while)` can match every loop of a long file).
+    let heads: std::collections::HashSet<(FileId, Span)> = matched.iter().copied().collect();
+    let mut files: Vec<FileId> = matched.iter().map(|(f, _)| *f).collect();
+    files.dedup();
+    for file in files {
         let tree = program.tree(file);
         let mut inside = Vec::new();
-        tree.for_each_stmt(&mut |stmt: &Stmt<'_>| {
-            if stmt.span == head
-                && let StmtKind::If(c) | StmtKind::While { body: c, .. } = &stmt.kind
-            {
-                collect(&c.body, &mut inside);
-            }
-        });
+        let mut heads_in = |blocks: &[Block<'_>]| {
+            within(blocks, &|span| heads.contains(&(file, span)), &mut inside)
+        };
+        heads_in(&tree.blocks);
+        for skill in &tree.skills {
+            heads_in(&skill.blocks);
+        }
         out.extend(inside.into_iter().map(|s| (file, s, true)));
     }
     out.sort_by_key(|&(f, s, _)| (f, s.start));
     out.dedup_by_key(|&mut (f, s, _)| (f, s));
     out
+}
+
+/// The statements inside the `if`s and `while`s that `head` names.
+fn within(blocks: &[Block<'_>], head: &dyn Fn(Span) -> bool, out: &mut Vec<Span>) {
+    for block in blocks {
+        for stmt in &block.stmts {
+            if let StmtKind::If(c) | StmtKind::While { body: c, .. } = &stmt.kind {
+                if head(stmt.span) {
+                    collect(&c.body, out);
+                } else {
+                    within(&c.body, head, out);
+                }
+            }
+        }
+    }
 }
 
 fn collect(blocks: &[Block<'_>], out: &mut Vec<Span>) {

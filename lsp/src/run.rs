@@ -322,8 +322,14 @@ mod tests {
     fn the_summary_starts_at_its_first_line_after_the_checks_diagnostics() {
         let out = "[W0502] Warning: `f` is bound but never used\n/w/t.ilmr:6:1\n1 file(s) checked\n/w/t.ilmr: finished: no command left\n  exit            0\n";
         let s = summary(out, Path::new("/w/t.ilmr"));
-        assert_eq!(s, "/w/t.ilmr: finished: no command left\n  exit            0");
-        assert_eq!(summary("no summary\n", Path::new("/w/t.ilmr")), "no summary");
+        assert_eq!(
+            s,
+            "/w/t.ilmr: finished: no command left\n  exit            0"
+        );
+        assert_eq!(
+            summary("no summary\n", Path::new("/w/t.ilmr")),
+            "no summary"
+        );
     }
 
     #[test]
