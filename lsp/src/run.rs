@@ -7,6 +7,7 @@ use std::collections::BTreeMap;
 use std::hash::{Hash, Hasher};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
+use std::sync::atomic::{AtomicU64, Ordering};
 use std::time::{Duration, Instant};
 
 use ilmr_trace::{Event, records};
@@ -142,10 +143,12 @@ pub struct Invocation {
 /// Runs `ilmrc run` with a trace into a file of its own; the last run's summary and
 /// times. Never fails: a run that cannot start says why in its summary.
 pub fn run(inv: &Invocation, text: &str) -> LastRun {
+    // Runs may overlap (the lens clicked twice): each writes a trace of its own.
+    static RUNS: AtomicU64 = AtomicU64::new(0);
     let trace = std::env::temp_dir().join(format!(
-        "ilmr-lsp-{}-{:x}.jsonl",
+        "ilmr-lsp-{}-{}.jsonl",
         std::process::id(),
-        fingerprint(&inv.task.to_string_lossy())
+        RUNS.fetch_add(1, Ordering::Relaxed)
     ));
     let mut last = LastRun {
         text: fingerprint(text),
@@ -330,6 +333,20 @@ mod tests {
             summary("no summary\n", Path::new("/w/t.ilmr")),
             "no summary"
         );
+    }
+
+    #[test]
+    fn an_ilmrc_that_cannot_start_is_said_in_the_summary() {
+        let inv = Invocation {
+            ilmrc: PathBuf::from("/nonexistent/ilmrc"),
+            task: PathBuf::from("/nonexistent/task.ilmr"),
+            robot: "moro".into(),
+            skills: None,
+        };
+        let last = run(&inv, "goahead(1)\n");
+        assert!(last.summary.starts_with("cannot run `/nonexistent/ilmrc`: "), "{}", last.summary);
+        assert_eq!(last.exit, None);
+        assert!(last.times.is_empty());
     }
 
     #[test]
