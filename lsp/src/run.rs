@@ -344,7 +344,12 @@ mod tests {
             skills: None,
         };
         let last = run(&inv, "goahead(1)\n");
-        assert!(last.summary.starts_with("cannot run `/nonexistent/ilmrc`: "), "{}", last.summary);
+        assert!(
+            last.summary
+                .starts_with("cannot run `/nonexistent/ilmrc`: "),
+            "{}",
+            last.summary
+        );
         assert_eq!(last.exit, None);
         assert!(last.times.is_empty());
     }

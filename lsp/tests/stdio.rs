@@ -451,17 +451,30 @@ fn the_run_command_says_what_it_cannot_run() {
         json!({"command": "ilmr.run", "arguments": [task]}),
     );
     let summary = run["result"]["summary"].as_str().expect("a summary");
-    assert!(summary.starts_with("cannot run `/nonexistent/ilmrc`"), "{run}");
+    assert!(
+        summary.starts_with("cannot run `/nonexistent/ilmrc`"),
+        "{run}"
+    );
     assert_eq!(run["result"]["exit"], Value::Null, "{run}");
     let told = |s: &Server, method: &str| s.notifications.iter().any(|n| n["method"] == method);
     assert!(told(&s, "window/showMessage"), "{:?}", s.notifications);
-    assert!(told(&s, "workspace/inlayHint/refresh"), "{:?}", s.notifications);
-    assert!(told(&s, "workspace/codeLens/refresh"), "{:?}", s.notifications);
+    assert!(
+        told(&s, "workspace/inlayHint/refresh"),
+        "{:?}",
+        s.notifications
+    );
+    assert!(
+        told(&s, "workspace/codeLens/refresh"),
+        "{:?}",
+        s.notifications
+    );
     let lenses = s.request(
         "textDocument/codeLens",
         json!({"textDocument": {"uri": task}}),
     );
-    let title = lenses["result"][0]["command"]["title"].as_str().unwrap_or("");
+    let title = lenses["result"][0]["command"]["title"]
+        .as_str()
+        .unwrap_or("");
     assert!(title.contains("last run: cannot run"), "{lenses}");
     still_serves(&mut s, "the run command");
     s.shut_down();
