@@ -64,3 +64,24 @@ fn lex_100k_lines(bencher: Bencher) {
             .len()
     });
 }
+
+/// Each statement's moment (`check::schedule`, the language server's concurrency
+/// lens), read from an analysis already made, at 10,000 and 100,000 lines: linear.
+#[divan::bench(sample_count = 10, args = [10_000, 100_000, 400_000])]
+fn schedule_of_the_task(bencher: Bencher, lines: usize) {
+    let corpus = corpus::generate(lines);
+    let sources = [
+        Source::new("task.ilmr", corpus.task.clone()),
+        Source::new("skills.ilms", corpus.skills.clone()),
+    ];
+    let model = RobotModel::builtin("moro").unwrap();
+    let analysis = analyze_with(&sources, &model, Detail::Full);
+    let task = ilmr_compiler::FileId(0);
+    assert!(!ilmr_compiler::check::schedule::schedule(&analysis, &model, task).is_empty());
+    // The analysis holds `Rc`s: measured on this thread.
+    bencher
+        .counter(ItemsCount::new(corpus.lines))
+        .bench_local(|| {
+            ilmr_compiler::check::schedule::schedule(black_box(&analysis), &model, task).len()
+        });
+}

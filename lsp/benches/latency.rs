@@ -1,6 +1,7 @@
 //! Latency of the engine on a 10,000-line task with a skill file: a full re-check after a
-//! one-character edit (what every keystroke costs), completion and hover. Figures in
-//! `lsp/PERFORMANCE.md`. Run with `cargo bench -p ilmr-lsp`.
+//! one-character edit (what every keystroke costs), completion, hover and the concurrency
+//! lens's inlay hints, workspace symbols and highlights. Figures in
+//! docs/performance.md ("Language server"). Run with `cargo bench -p ilmr-lsp`.
 
 use divan::{Bencher, black_box};
 use ilmr_lsp::{Engine, Settings};
@@ -46,6 +47,7 @@ fn setup() -> Setup {
         Settings {
             robot: Some("moro".into()),
             snippets: true,
+            ilmrc: None,
         },
     );
     let task: Uri = "file:///bench/task.ilmr".parse().expect("a URI");
@@ -131,4 +133,62 @@ fn hover_on_a_command(bencher: Bencher) {
 fn semantic_tokens(bencher: Bencher) {
     let s = setup();
     bencher.bench_local(|| black_box(s.engine.semantic_tokens(&s.task)));
+}
+
+/// The 60 lines round the middle: what a screen shows.
+fn screen(s: &Setup) -> Range {
+    Range::new(
+        Position::new(s.middle - 30, 0),
+        Position::new(s.middle + 30, 0),
+    )
+}
+
+#[divan::bench(sample_count = 100)]
+fn inlay_hints_of_a_screen(bencher: Bencher) {
+    let s = setup();
+    let range = screen(&s);
+    assert!(!s.engine.inlay_hints(&s.task, range).is_empty());
+    bencher.bench_local(|| black_box(s.engine.inlay_hints(&s.task, range)));
+}
+
+/// An edit's re-check and then a screen's hints, which compute the file's schedule
+/// again: less `recheck_after_an_edit` is what the lens adds to a keystroke.
+#[divan::bench(sample_count = 20)]
+fn recheck_then_inlay_hints(bencher: Bencher) {
+    let mut s = setup();
+    let range = screen(&s);
+    let mut version = 1;
+    let at = Range::new(Position::new(s.middle, 4), Position::new(s.middle, 5));
+    bencher.bench_local(|| {
+        version += 1;
+        let change = TextDocumentContentChangeEvent {
+            range: Some(at),
+            range_length: None,
+            text: "g".into(),
+        };
+        black_box(s.engine.change(&s.task, version, vec![change]));
+        black_box(s.engine.inlay_hints(&s.task, range))
+    });
+}
+
+#[divan::bench(sample_count = 20)]
+fn inlay_hints_of_the_whole_file(bencher: Bencher) {
+    let s = setup();
+    let whole = Range::new(Position::new(0, 0), Position::new(u32::MAX, 0));
+    bencher.bench_local(|| black_box(s.engine.inlay_hints(&s.task, whole)));
+}
+
+#[divan::bench(sample_count = 100)]
+fn workspace_symbols(bencher: Bencher) {
+    let s = setup();
+    assert!(!s.engine.workspace_symbols("käännös4").is_empty());
+    bencher.bench_local(|| black_box(s.engine.workspace_symbols("käännös4")));
+}
+
+#[divan::bench(sample_count = 100)]
+fn document_highlights(bencher: Bencher) {
+    let s = setup();
+    let at = Position::new(s.middle, 20);
+    assert!(!s.engine.document_highlights(&s.task, at).is_empty());
+    bencher.bench_local(|| black_box(s.engine.document_highlights(&s.task, at)));
 }

@@ -3,24 +3,30 @@
 //! task re-checks in a few milliseconds), with one method per LSP feature taking and
 //! returning LSP values. Tests drive it directly; `server.rs` only carries messages.
 
-use std::collections::BTreeSet;
+use std::cell::RefCell;
+use std::collections::{BTreeSet, HashMap};
 use std::path::PathBuf;
+use std::rc::Rc;
 
 use ilmr_compiler::Span;
+use ilmr_compiler::check::schedule::{Moment, schedule};
 use ilmr_compiler::diagnostic::FileId;
 use tower_lsp_server::ls_types::{
-    CodeAction, CodeActionKind, CodeActionOrCommand, CompletionItem, CompletionList, Diagnostic,
-    DocumentSymbol, FoldingRange, Hover, HoverContents, Location, MarkupContent, MarkupKind,
-    Position, PrepareRenameResponse, Range, SemanticToken, SignatureHelp,
-    TextDocumentContentChangeEvent, TextEdit, Uri, WorkspaceEdit,
+    CodeAction, CodeActionKind, CodeActionOrCommand, CodeLens, Command, CompletionItem,
+    CompletionList, Diagnostic, DocumentHighlight, DocumentHighlightKind, DocumentSymbol,
+    FoldingRange, Hover, HoverContents, InlayHint, InlayHintKind, InlayHintLabel, InlayHintTooltip,
+    Location, MarkupContent, MarkupKind, Position, PrepareRenameResponse, Range, SemanticToken,
+    SignatureHelp, SymbolInformation, TextDocumentContentChangeEvent, TextEdit, Uri, WorkspaceEdit,
 };
 
 use crate::analysis::{Analyzer, Program};
 use crate::diagnostics::{self, Locate};
+use crate::lens::{self, BreakAt, FileLens};
 use crate::navigation::{self, RenameError};
 use crate::robot::{self, Robot};
+use crate::run::{self, Invocation, LastRun};
 use crate::workspace::{Document, FileKind, Workspace};
-use crate::{completion, hover, outline, semantic, signature};
+use crate::{completion, hover, outline, semantic, signature, symbols, units};
 
 /// Diagnostics to send for one document, with the version they were computed for.
 #[derive(Debug, Clone, PartialEq)]
@@ -36,6 +42,17 @@ pub struct Settings {
     pub robot: Option<String>,
     /// Whether the client inserts snippets (`turn(d=${1:d},c=${2:c})`).
     pub snippets: bool,
+    /// The `ilmrc` the "run in simulator" lens runs (`initializationOptions.ilmrc`);
+    /// `None`: beside the server, else on `PATH` ([`run::find_ilmrc`]).
+    pub ilmrc: Option<String>,
+}
+
+/// What the concurrency lens computed from the current analysis, kept until the next
+/// check: inlay hints are asked on every scroll.
+#[derive(Default)]
+struct LensCache {
+    schedules: HashMap<FileId, Rc<Vec<Moment>>>,
+    breaks: Option<Rc<Vec<BreakAt>>>,
 }
 
 pub struct Engine {
@@ -51,6 +68,9 @@ pub struct Engine {
     /// Edits applied since the last check (and whether one was to the robot model):
     /// a burst of edits is checked once, after its last ([`Engine::apply_change`]).
     stale: Option<bool>,
+    lens: RefCell<LensCache>,
+    /// Each task's last run (the "run in simulator" lens), by URI.
+    runs: HashMap<String, LastRun>,
 }
 
 impl Default for Engine {
@@ -79,6 +99,8 @@ impl Engine {
             analyzer,
             log,
             stale: None,
+            lens: RefCell::default(),
+            runs: HashMap::new(),
         }
     }
 
@@ -177,6 +199,7 @@ impl Engine {
             self.robot = robot::choose(&self.workspace, self.settings.robot.as_deref());
         }
         self.program = check(&self.workspace, &self.robot, self.analyzer, &mut self.log);
+        self.lens = RefCell::default();
         self.publish()
     }
 
@@ -424,6 +447,215 @@ impl Engine {
             }));
         }
         out
+    }
+
+    // ------------------------------------------------------------ the lens
+
+    /// The concurrency lens, the units of arguments and the last run's times, for the
+    /// statements inside `range`.
+    pub fn inlay_hints(&self, uri: &Uri, range: Range) -> Vec<InlayHint> {
+        let (Some(doc), Some(file)) = (self.workspace.get(uri), self.program.file_id(uri.as_str()))
+        else {
+            return Vec::new();
+        };
+        let wanted = doc.index.span(&doc.text, range);
+        let (moments, breaks) = self.lens_facts(file);
+        let lens = FileLens {
+            program: &self.program,
+            file,
+            text: &doc.text,
+            index: &doc.index,
+            moments: &moments,
+            breaks: &breaks,
+        };
+        let mut out: Vec<(usize, u8, InlayHint)> = Vec::new();
+        let position = |at: usize| doc.index.position(&doc.text, at);
+        for u in units::hints(&self.program, file, wanted) {
+            let hint = InlayHint {
+                position: position(u.at),
+                label: InlayHintLabel::String(u.symbol.to_string()),
+                kind: Some(InlayHintKind::TYPE),
+                text_edits: None,
+                tooltip: Some(InlayHintTooltip::String(format!("{}: {}", u.param, u.doc))),
+                padding_left: Some(true),
+                padding_right: None,
+                data: None,
+            };
+            out.push((u.at, 0, hint));
+        }
+        for l in lens.labels(wanted) {
+            let hint = InlayHint {
+                position: position(l.at),
+                label: InlayHintLabel::String(l.text),
+                kind: None,
+                text_edits: None,
+                tooltip: Some(InlayHintTooltip::String(l.tooltip)),
+                padding_left: Some(true),
+                padding_right: None,
+                data: None,
+            };
+            out.push((l.at, 1, hint));
+        }
+        if let Some(last) = self.runs.get(uri.as_str())
+            && last.text == run::fingerprint(&doc.text)
+        {
+            let first = doc.index.line_of(wanted.start as usize) as u32 + 1;
+            let last_line = doc.index.line_of(wanted.end as usize) as u32 + 1;
+            for (&line, times) in last.times.range(first..=last_line) {
+                let at = doc.index.line_span(&doc.text, line as usize - 1).end as usize;
+                let hint = InlayHint {
+                    position: position(at),
+                    label: InlayHintLabel::String(times.label()),
+                    kind: None,
+                    text_edits: None,
+                    tooltip: Some(InlayHintTooltip::String(format!(
+                        "From the last run in the simulator: {}",
+                        last.headline()
+                    ))),
+                    padding_left: Some(true),
+                    padding_right: None,
+                    data: None,
+                };
+                out.push((at, 2, hint));
+            }
+        }
+        out.sort_by_key(|(at, order, _)| (*at, *order));
+        out.into_iter().map(|(_, _, h)| h).collect()
+    }
+
+    /// The file's schedule and the program's breaks, computed once per check.
+    fn lens_facts(&self, file: FileId) -> (Rc<Vec<Moment>>, Rc<Vec<BreakAt>>) {
+        let mut cache = self.lens.borrow_mut();
+        let moments = cache
+            .schedules
+            .entry(file)
+            .or_insert_with(|| Rc::new(schedule(self.program.analysis(), &self.robot.model, file)))
+            .clone();
+        let breaks = cache
+            .breaks
+            .get_or_insert_with(|| Rc::new(lens::breaks(&self.program)))
+            .clone();
+        (moments, breaks)
+    }
+
+    /// "Run in simulator" on a task file, with how its last run ended.
+    pub fn code_lenses(&self, uri: &Uri) -> Vec<CodeLens> {
+        let Some(doc) = self.workspace.get(uri) else {
+            return Vec::new();
+        };
+        let task = uri.as_str().to_ascii_lowercase().ends_with(".ilmr");
+        if doc.kind != FileKind::Program || !task {
+            return Vec::new();
+        }
+        let mut title = "▶ run in simulator".to_string();
+        if let Some(last) = self.runs.get(uri.as_str()) {
+            title.push_str(&format!(" · last run: {}", last.headline()));
+            if last.text != run::fingerprint(&doc.text) {
+                title.push_str(" (an earlier text)");
+            }
+        }
+        vec![CodeLens {
+            range: Range::new(Position::new(0, 0), Position::new(0, 0)),
+            command: Some(Command {
+                title,
+                command: run::RUN_COMMAND.to_string(),
+                arguments: Some(vec![serde_json::Value::String(uri.as_str().to_string())]),
+            }),
+            data: None,
+        }]
+    }
+
+    /// How to run a task file as it is saved, that text, and a note on what the run
+    /// leaves out; why it cannot run, else.
+    pub fn run_invocation(
+        &self,
+        uri: &Uri,
+    ) -> Result<(Invocation, String, Option<String>), String> {
+        let doc = self.workspace.get(uri).ok_or("the document is not known")?;
+        let task = doc
+            .uri
+            .to_file_path()
+            .map(|p| p.into_owned())
+            .filter(|p| {
+                p.extension()
+                    .is_some_and(|e| e.eq_ignore_ascii_case("ilmr"))
+            })
+            .ok_or("only a task file (.ilmr) on disk can run")?;
+        let saved = std::fs::read_to_string(&task)
+            .map_err(|e| format!("cannot read {}: {e}", task.display()))?;
+        let robot = match &self.robot.file {
+            Some(model) => model
+                .to_file_path()
+                .map(|p| p.to_string_lossy().into_owned())
+                .unwrap_or_else(|| robot::DEFAULT_ROBOT.to_string()),
+            None => self
+                .settings
+                .robot
+                .clone()
+                .unwrap_or_else(|| robot::DEFAULT_ROBOT.to_string()),
+        };
+        let paths = |ext: &str| -> Vec<PathBuf> {
+            self.workspace
+                .programs()
+                .filter_map(|d| d.uri.to_file_path().map(|p| p.into_owned()))
+                .filter(|p| p.extension().is_some_and(|e| e.eq_ignore_ascii_case(ext)))
+                .collect()
+        };
+        let skills = run::skills_argument(&paths("ilms"), &paths("ilmr"));
+        let invocation = Invocation {
+            ilmrc: run::find_ilmrc(self.settings.ilmrc.as_deref()),
+            task,
+            robot,
+            skills: skills.clone().unwrap_or(None),
+        };
+        Ok((invocation, saved, skills.err()))
+    }
+
+    /// Keeps a run's outcome for the task's hints and lens.
+    pub fn set_run(&mut self, uri: &Uri, last: LastRun) {
+        self.runs.insert(uri.as_str().to_string(), last);
+    }
+
+    pub fn last_run(&self, uri: &Uri) -> Option<&LastRun> {
+        self.runs.get(uri.as_str())
+    }
+
+    /// Skills, variables and paths of the whole program whose names hold the query.
+    pub fn workspace_symbols(&self, query: &str) -> Vec<SymbolInformation> {
+        let (found, _) = symbols::workspace(&self.program, query);
+        found
+            .into_iter()
+            .filter_map(|f| {
+                let (uri, range) = self.locate(f.file, f.span)?;
+                #[allow(deprecated)]
+                Some(SymbolInformation {
+                    name: f.name,
+                    kind: f.kind,
+                    tags: None,
+                    deprecated: None,
+                    location: Location::new(uri, range),
+                    container_name: Some(f.detail.to_string()),
+                })
+            })
+            .collect()
+    }
+
+    /// The occurrences in this document of the name under the cursor.
+    pub fn document_highlights(&self, uri: &Uri, position: Position) -> Vec<DocumentHighlight> {
+        let Some((doc, file, offset)) = self.at(uri, position) else {
+            return Vec::new();
+        };
+        symbols::highlights(&self.program, file, offset)
+            .into_iter()
+            .map(|(span, binds)| DocumentHighlight {
+                range: doc.index.range(&doc.text, span),
+                kind: Some(if binds {
+                    DocumentHighlightKind::WRITE
+                } else {
+                    DocumentHighlightKind::READ
+                }),
+            })
+            .collect()
     }
 
     fn locations(&self, spans: Vec<(FileId, Span)>) -> Vec<Location> {

@@ -10,7 +10,7 @@ use ilmr_model::RobotModel;
 use ilmr_stdlib::{Command, CommandSpec, ParamKind};
 
 use crate::analysis::{Program, Symbol, stmt_containing};
-use crate::docs;
+use crate::{docs, lens};
 
 /// Markdown and the span it describes.
 pub fn hover(
@@ -206,6 +206,13 @@ fn structural(
     offset: usize,
 ) -> Option<(String, Span)> {
     let stmt = program.stmt_at(file, offset);
+    // Anywhere on `break(pattern)`, the pattern's words included: what it ends.
+    if let Some(s) = stmt
+        && matches!(s.kind, StmtKind::Break { pattern: Some(_) })
+    {
+        let doc = docs::command(Command::Break.spec(), model) + &ends(program, stmt)?;
+        return Some((doc, s.span));
+    }
     let text = program.text(file);
     let line_start = text[..offset].rfind('\n').map_or(0, |i| i + 1);
     let line_end = text[offset..].find('\n').map_or(text.len(), |i| offset + i);
@@ -256,23 +263,52 @@ fn number(
         return None;
     };
     let form = &command.spec().forms[form];
-    let mut positional = form
-        .params
-        .iter()
-        .filter(|p| !matches!(p.kind, ParamKind::Setting { .. }));
-    for arg in &args.items {
-        let param = match arg {
-            Arg::Setting { key, .. } => form
-                .params
-                .iter()
-                .find(|p| matches!(p.kind, ParamKind::Setting { key: k, .. } if key.is(k))),
-            Arg::Positional(_) => positional.next(),
-        };
+    for (arg, param) in crate::units::params(form, args) {
         if arg.span().contains(span.start as usize) {
             return Some((docs::param(param?, model), span));
         }
     }
     None
+}
+
+/// What a `break(pattern)` ends: every statement whose text contains its needle, and
+/// what stands inside a matched `if` or `while`.
+fn ends(program: &Program, stmt: Option<&ilmr_compiler::ast::Stmt<'_>>) -> Option<String> {
+    let StmtKind::Break { pattern: Some(p) } = &stmt?.kind else {
+        return None;
+    };
+    let needle = ilmr_compiler::check::needle(p);
+    let ended = lens::ended_by(program, needle);
+    if ended.is_empty() {
+        return Some(format!(
+            "\n\n---\n\nEnds nothing: no statement contains `{needle}`."
+        ));
+    }
+    let mut out = format!(
+        "\n\n---\n\nEnds, if they are running when it is issued ({} statement{}):\n",
+        ended.len(),
+        if ended.len() == 1 { "" } else { "s" }
+    );
+    for &(file, span, inside) in ended.iter().take(lens::ENDED_LISTED) {
+        let text = program.text(file);
+        let line = text[..span.start as usize].matches('\n').count() + 1;
+        let uri = program.uri(file).unwrap_or("");
+        let name = uri.rsplit('/').next().unwrap_or(uri);
+        let quoted = span.slice(text).trim();
+        let through = if inside {
+            " (inside a matched block)"
+        } else {
+            ""
+        };
+        out.push_str(&format!("\n- {name}:{line} `{quoted}`{through}"));
+    }
+    if ended.len() > lens::ENDED_LISTED {
+        out.push_str(&format!(
+            "\n- and {} more",
+            ended.len() - lens::ENDED_LISTED
+        ));
+    }
+    Some(out)
 }
 
 fn shift(span: Span, by: usize) -> Span {

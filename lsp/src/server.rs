@@ -19,6 +19,7 @@ use tower_lsp_server::{Client, LanguageServer, LspService, Server};
 
 use crate::analysis::panic_message;
 use crate::engine::{Engine, Publish, Settings};
+use crate::run::{self, RUN_COMMAND};
 use crate::semantic;
 use crate::transport::{self, Outgoing, Output};
 
@@ -102,6 +103,15 @@ struct Backend {
     edits: Arc<AtomicU64>,
     /// Diagnostics from edits' jobs, published in the order the jobs ran.
     publishes: tokio::sync::mpsc::UnboundedSender<Vec<Publish>>,
+    /// Which refresh requests the client takes, from `initialize`.
+    refresh: std::sync::OnceLock<Refresh>,
+}
+
+/// The client asks again for inlay hints / code lenses when told to (after a run).
+#[derive(Debug, Clone, Copy, Default)]
+struct Refresh {
+    inlay_hints: bool,
+    code_lenses: bool,
 }
 
 impl Backend {
@@ -183,6 +193,7 @@ pub fn run_stdio() -> ExitCode {
                 engine: EngineHandle::spawn(),
                 edits: Arc::default(),
                 publishes,
+                refresh: std::sync::OnceLock::new(),
             }
         });
         let output = Output::new(std::io::stdout());
@@ -249,7 +260,25 @@ impl LanguageServer for Backend {
                 .and_then(|c| c.completion_item.as_ref())
                 .and_then(|i| i.snippet_support)
                 .unwrap_or(false),
+            ilmrc: params
+                .initialization_options
+                .as_ref()
+                .and_then(|o| o.get("ilmrc"))
+                .and_then(Value::as_str)
+                .map(str::to_string),
         };
+        let workspace = params.capabilities.workspace.as_ref();
+        let refresh = Refresh {
+            inlay_hints: workspace
+                .and_then(|w| w.inlay_hint.as_ref())
+                .and_then(|c| c.refresh_support)
+                .unwrap_or(false),
+            code_lenses: workspace
+                .and_then(|w| w.code_lens.as_ref())
+                .and_then(|c| c.refresh_support)
+                .unwrap_or(false),
+        };
+        let _ = self.refresh.set(refresh);
         let roots = roots(&params);
         let note = self
             .ask(move |e| {
@@ -458,6 +487,90 @@ impl LanguageServer for Backend {
         Ok(self.query(move |e| e.formatting(&uri)).await.flatten())
     }
 
+    async fn inlay_hint(&self, params: InlayHintParams) -> Result<Option<Vec<InlayHint>>> {
+        let uri = params.text_document.uri;
+        let range = params.range;
+        Ok(self.query(move |e| e.inlay_hints(&uri, range)).await)
+    }
+
+    async fn code_lens(&self, params: CodeLensParams) -> Result<Option<Vec<CodeLens>>> {
+        let uri = params.text_document.uri;
+        Ok(self.query(move |e| e.code_lenses(&uri)).await)
+    }
+
+    async fn symbol(
+        &self,
+        params: WorkspaceSymbolParams,
+    ) -> Result<Option<WorkspaceSymbolResponse>> {
+        let query = params.query;
+        let found = self.query(move |e| e.workspace_symbols(&query)).await;
+        Ok(found.map(WorkspaceSymbolResponse::Flat))
+    }
+
+    async fn document_highlight(
+        &self,
+        params: DocumentHighlightParams,
+    ) -> Result<Option<Vec<DocumentHighlight>>> {
+        let highlights = self
+            .position_query(params.text_document_position_params, |e, u, p| {
+                e.document_highlights(u, p)
+            })
+            .await;
+        Ok(highlights)
+    }
+
+    /// `ilmr.run`: runs the task in the simulator off the engine's thread, shows the
+    /// summary, keeps the trace's times, and has the client ask for hints and lenses
+    /// again. Answers `{"summary", "exit", "lines"}`.
+    async fn execute_command(&self, params: ExecuteCommandParams) -> Result<Option<Value>> {
+        if params.command != RUN_COMMAND {
+            return Err(Error::invalid_params(format!(
+                "unknown command `{}`; this server runs `{RUN_COMMAND}`",
+                params.command
+            )));
+        }
+        let uri: Uri = params
+            .arguments
+            .first()
+            .and_then(Value::as_str)
+            .and_then(|u| u.parse().ok())
+            .ok_or_else(|| {
+                Error::invalid_params(format!("`{RUN_COMMAND}` takes a document's URI"))
+            })?;
+        let asked = uri.clone();
+        let plan = self
+            .query(move |e| e.run_invocation(&asked))
+            .await
+            .ok_or_else(Error::internal_error)?;
+        let (invocation, text, note) = plan.map_err(Error::invalid_params)?;
+        let mut last = tokio::task::spawn_blocking(move || run::run(&invocation, &text))
+            .await
+            .map_err(|_| Error::internal_error())?;
+        if let Some(note) = note {
+            last.summary.push_str(&format!("\n({note})"));
+        }
+        let answer = serde_json::json!({
+            "summary": last.summary,
+            "exit": last.exit,
+            "lines": last.times.len(),
+        });
+        let kind = if last.exit == Some(0) {
+            MessageType::INFO
+        } else {
+            MessageType::WARNING
+        };
+        self.client.show_message(kind, last.summary.clone()).await;
+        self.ask(move |e| e.set_run(&uri, last)).await;
+        let refresh = self.refresh.get().copied().unwrap_or_default();
+        if refresh.inlay_hints {
+            let _ = self.client.inlay_hint_refresh().await;
+        }
+        if refresh.code_lenses {
+            let _ = self.client.code_lens_refresh().await;
+        }
+        Ok(Some(answer))
+    }
+
     async fn code_action(&self, params: CodeActionParams) -> Result<Option<CodeActionResponse>> {
         let uri = params.text_document.uri;
         let range = params.range;
@@ -499,6 +612,16 @@ fn capabilities() -> ServerCapabilities {
             },
         )),
         document_formatting_provider: Some(OneOf::Left(true)),
+        inlay_hint_provider: Some(OneOf::Left(true)),
+        code_lens_provider: Some(CodeLensOptions {
+            resolve_provider: Some(false),
+        }),
+        workspace_symbol_provider: Some(OneOf::Left(true)),
+        document_highlight_provider: Some(OneOf::Left(true)),
+        execute_command_provider: Some(ExecuteCommandOptions {
+            commands: vec![RUN_COMMAND.to_string()],
+            work_done_progress_options: Default::default(),
+        }),
         code_action_provider: Some(CodeActionProviderCapability::Options(CodeActionOptions {
             code_action_kinds: Some(vec![CodeActionKind::QUICKFIX]),
             ..Default::default()

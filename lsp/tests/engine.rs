@@ -20,6 +20,7 @@ fn setup(files: &[(&str, &str)]) -> (Engine, Uri, Position) {
         Settings {
             robot: Some("moro".into()),
             snippets: true,
+            ilmrc: None,
         },
     );
     let mut cursor = None;
@@ -456,6 +457,7 @@ fn a_panic_in_the_analysis_costs_its_file_only() {
         Settings {
             robot: Some("moro".into()),
             snippets: false,
+            ilmrc: None,
         },
         fragile,
     );

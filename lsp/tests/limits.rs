@@ -22,6 +22,7 @@ fn engine_with(text: String) -> (Engine, Uri) {
         Settings {
             robot: Some("moro".into()),
             snippets: true,
+            ilmrc: None,
         },
     );
     let uri: Uri = TASK.parse().expect("a URI");
@@ -46,6 +47,16 @@ fn every_feature(engine: &Engine, uri: &Uri, at: Position) -> Vec<&'static str> 
         ("tokens", !engine.semantic_tokens(uri).is_empty()),
         ("formatting", engine.formatting(uri).is_some()),
         ("code_actions", !engine.code_actions(uri, whole).is_empty()),
+        ("inlay_hints", !engine.inlay_hints(uri, whole).is_empty()),
+        ("code_lenses", !engine.code_lenses(uri).is_empty()),
+        (
+            "highlights",
+            !engine.document_highlights(uri, at).is_empty(),
+        ),
+        (
+            "workspace_symbols",
+            !engine.workspace_symbols("").is_empty(),
+        ),
     ]
     .into_iter()
     .filter_map(|(name, answered)| answered.then_some(name))
@@ -84,6 +95,10 @@ fn a_100000_line_file_gets_every_answer_in_linear_time() {
         "folding",
         "tokens",
         "formatting",
+        "inlay_hints",
+        "code_lenses",
+        "highlights",
+        "workspace_symbols",
     ];
     assert_eq!(answered, [&all_but[..], &rest[..]].concat());
     let references = engine.references(&uri, Position::new(2, 2), true);
@@ -113,7 +128,16 @@ fn a_megabyte_line_gets_every_answer_in_linear_time() {
         "definition",
         "references",
     ];
-    let rest = ["prepare_rename", "rename", "tokens", "formatting"];
+    let rest = [
+        "prepare_rename",
+        "rename",
+        "tokens",
+        "formatting",
+        "inlay_hints",
+        "code_lenses",
+        "highlights",
+        "workspace_symbols",
+    ];
     assert_eq!(answered, [&names[..], &rest[..]].concat());
     // In the middle of the arguments: the line before the cursor is read whole.
     let inside = Position::new(1, 500_000);
@@ -174,6 +198,17 @@ fn the_readme_quotes_every_limit() {
         (
             "completion::MAX_VARIABLE_ITEMS",
             ilmr_lsp::completion::MAX_VARIABLE_ITEMS,
+            false,
+        ),
+        (
+            "symbols::MAX_WORKSPACE_SYMBOLS",
+            ilmr_lsp::symbols::MAX_WORKSPACE_SYMBOLS,
+            false,
+        ),
+        ("lens::ENDED_LISTED", ilmr_lsp::lens::ENDED_LISTED, false),
+        (
+            "run::RUN_TIMEOUT (seconds)",
+            ilmr_lsp::run::RUN_TIMEOUT.as_secs() as usize,
             false,
         ),
     ];

@@ -148,9 +148,10 @@ impl Server {
             .recv_timeout(TIMEOUT)
             .expect("the server answers in time");
         if m.get("method").is_some() && m.get("id").is_some() {
-            // A request from the server: accept it.
+            // A request from the server: accept it, and keep it to be looked at.
             let id = m["id"].clone();
             self.send(json!({"jsonrpc": "2.0", "id": id, "result": null}));
+            self.notifications.push(m.clone());
         } else if m.get("method").is_some() {
             self.notifications.push(m.clone());
         }
@@ -406,6 +407,77 @@ fn without_a_workspace_the_setting_names_the_robot() {
     s.request("shutdown", Value::Null);
     s.notify("exit", Value::Null);
     assert!(s.child.wait().expect("exits").success());
+}
+
+#[test]
+fn the_run_command_says_what_it_cannot_run() {
+    let root = workspace("run-refusals");
+    std::fs::write(root.join("task.ilmr"), "goahead(1)\n").expect("a task");
+    std::fs::write(root.join("skills.ilms"), SKILLS).expect("skills");
+    let task = uri(&root, "task.ilmr");
+    let mut s = Server::start(&root);
+    let root_uri = s.root_uri.trim_end_matches('/').to_string();
+    s.request(
+        "initialize",
+        json!({"processId": null, "rootUri": root_uri,
+               "capabilities": {"workspace": {"inlayHint": {"refreshSupport": true},
+                                              "codeLens": {"refreshSupport": true}}},
+               "initializationOptions": {"robot": "moro", "ilmrc": "/nonexistent/ilmrc"}}),
+    );
+    s.notify("initialized", json!({}));
+    let error = |answer: &Value| answer["error"]["code"].as_i64();
+    let unknown = s.request(
+        "workspace/executeCommand",
+        json!({"command": "ilmr.fly", "arguments": [task]}),
+    );
+    assert_eq!(error(&unknown), Some(-32602), "{unknown}");
+    let bare = s.request("workspace/executeCommand", json!({"command": "ilmr.run"}));
+    assert_eq!(error(&bare), Some(-32602), "{bare}");
+    let skill = s.request(
+        "workspace/executeCommand",
+        json!({"command": "ilmr.run", "arguments": [uri(&root, "skills.ilms")]}),
+    );
+    assert_eq!(error(&skill), Some(-32602), "{skill}");
+    assert!(
+        skill["error"]["message"]
+            .as_str()
+            .is_some_and(|m| m.contains("only a task file")),
+        "{skill}"
+    );
+    // An `ilmrc` that is not there: the run's answer and the message say so, and the
+    // client is told to ask for hints and lenses again.
+    let run = s.request(
+        "workspace/executeCommand",
+        json!({"command": "ilmr.run", "arguments": [task]}),
+    );
+    let summary = run["result"]["summary"].as_str().expect("a summary");
+    assert!(
+        summary.starts_with("cannot run `/nonexistent/ilmrc`"),
+        "{run}"
+    );
+    assert_eq!(run["result"]["exit"], Value::Null, "{run}");
+    let told = |s: &Server, method: &str| s.notifications.iter().any(|n| n["method"] == method);
+    assert!(told(&s, "window/showMessage"), "{:?}", s.notifications);
+    assert!(
+        told(&s, "workspace/inlayHint/refresh"),
+        "{:?}",
+        s.notifications
+    );
+    assert!(
+        told(&s, "workspace/codeLens/refresh"),
+        "{:?}",
+        s.notifications
+    );
+    let lenses = s.request(
+        "textDocument/codeLens",
+        json!({"textDocument": {"uri": task}}),
+    );
+    let title = lenses["result"][0]["command"]["title"]
+        .as_str()
+        .unwrap_or("");
+    assert!(title.contains("last run: cannot run"), "{lenses}");
+    still_serves(&mut s, "the run command");
+    s.shut_down();
 }
 
 /// A request that needs the engine, answered normally.

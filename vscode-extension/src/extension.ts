@@ -16,8 +16,12 @@ export async function activate(context: vscode.ExtensionContext): Promise<void> 
     vscode.commands.registerCommand('ilmr.restartServer', () => restart()),
     vscode.workspace.onDidChangeConfiguration(async (event) => {
       // The robot setting reaches the running server as a configuration change; only
-      // a different executable needs a restart.
-      if (event.affectsConfiguration('ilmr.server.path')) {
+      // a different executable (the server's, or the `ilmrc` its run lens starts)
+      // needs a restart.
+      if (
+        event.affectsConfiguration('ilmr.server.path') ||
+        event.affectsConfiguration('ilmr.ilmrc.path')
+      ) {
         await restart();
       }
     }),
@@ -46,8 +50,12 @@ async function start(): Promise<void> {
       { scheme: 'untitled', language: 'ilmr' },
       { scheme: 'file', pattern: '**/{ROBO,robo,Robo}.{INI,ini}' },
     ],
+    // The concurrency lens (inlay hints), the "run in simulator" code lens and its
+    // `ilmr.run` command come from the server: the client shows hints and lenses and
+    // forwards the command to it (workspace/executeCommand) by itself.
     initializationOptions: {
       robot: vscode.workspace.getConfiguration('ilmr').get<string>('robot', 'moro'),
+      ilmrc: vscode.workspace.getConfiguration('ilmr').get<string>('ilmrc.path', ''),
     },
     synchronize: {
       configurationSection: 'ilmr',

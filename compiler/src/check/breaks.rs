@@ -27,6 +27,58 @@ pub fn matches(statement: &str, needle: &str) -> bool {
         || (!statement.is_ascii() && statement.to_lowercase().contains(&needle.to_lowercase()))
 }
 
+/// The statements a `break(pattern)` may end, with their text: every statement but
+/// breaks, of task files and of the library files a task calls into, leaving out what
+/// stands between `check` and `checkend` (which never runs). The checker's W0701/W0702
+/// and the language server's lens both match patterns against this list.
+pub fn breakable<'s>(files: &[FileEntry<'s>], skills: &Skills) -> Vec<(FileId, Span, &'s str)> {
+    let mut statements: Vec<(FileId, Span, &'s str)> = Vec::new();
+    for (i, entry) in files.iter().enumerate() {
+        let file = FileId(i as u32);
+        if !runs(entry, file, skills) {
+            continue;
+        }
+        let text = entry.text;
+        let from = statements.len();
+        entry
+            .tree
+            .for_each_stmt(&mut |stmt: &Stmt<'_>| match &stmt.kind {
+                StmtKind::Break { .. } | StmtKind::Error => {}
+                _ => statements.push((file, stmt.span, stmt.span.slice(text))),
+            });
+        // What stands between `check` and `checkend` never runs, so no break can end it.
+        let mut inside_check = Vec::new();
+        entry.tree.for_each_stmt(&mut |stmt: &Stmt<'_>| {
+            if let StmtKind::Check { body, .. } = &stmt.kind {
+                inside_check.extend(body.iter().map(|b| b.span));
+            }
+        });
+        if !inside_check.is_empty() {
+            let mut k = from;
+            for j in from..statements.len() {
+                let span = statements[j].1;
+                if !inside_check
+                    .iter()
+                    .any(|b| b.start <= span.start && span.end <= b.end)
+                {
+                    statements[k] = statements[j];
+                    k += 1;
+                }
+            }
+            statements.truncate(k);
+        }
+    }
+    statements
+}
+
+/// Whether a file's statements can run: a task file, or a library a task calls into.
+fn runs(entry: &FileEntry<'_>, file: FileId, skills: &Skills) -> bool {
+    !entry.library
+        || skills
+            .iter()
+            .any(|(id, s)| s.file == file && skills.is_called(id))
+}
+
 pub fn check_patterns(files: &[FileEntry<'_>], skills: &Skills, diags: &mut Vec<Diagnostic>) {
     let mut any = false;
     for entry in files.iter().filter(|f| f.break_patterns) {
@@ -37,37 +89,17 @@ pub fn check_patterns(files: &[FileEntry<'_>], skills: &Skills, diags: &mut Vec<
     if !any {
         return;
     }
-    let mut statements: Vec<(FileId, Span, &str)> = Vec::new();
+    let statements = breakable(files, skills);
     let mut patterns: Vec<(FileId, Pattern<'_>)> = Vec::new();
     for (i, entry) in files.iter().enumerate() {
         let file = FileId(i as u32);
-        if entry.library {
-            let called = skills
-                .iter()
-                .any(|(id, s)| s.file == file && skills.is_called(id));
-            if !called {
-                continue;
-            }
+        if !runs(entry, file, skills) {
+            continue;
         }
-        entry
-            .tree
-            .for_each_stmt(&mut |stmt: &Stmt<'_>| match &stmt.kind {
-                StmtKind::Break { pattern: Some(p) } => patterns.push((file, *p)),
-                StmtKind::Break { pattern: None } | StmtKind::Error => {}
-                _ => statements.push((file, stmt.span, stmt.span.slice(entry.text))),
-            });
-        // What stands between `check` and `checkend` never runs, so no break can end it.
-        let mut inside_check = Vec::new();
         entry.tree.for_each_stmt(&mut |stmt: &Stmt<'_>| {
-            if let StmtKind::Check { body, .. } = &stmt.kind {
-                inside_check.extend(body.iter().map(|b| b.span));
+            if let StmtKind::Break { pattern: Some(p) } = &stmt.kind {
+                patterns.push((file, *p));
             }
-        });
-        statements.retain(|(f, span, _)| {
-            *f != file
-                || !inside_check
-                    .iter()
-                    .any(|b| b.start <= span.start && span.end <= b.end)
         });
     }
     for (file, pattern) in patterns {

@@ -14,6 +14,7 @@ mod names;
 mod owners;
 pub mod params;
 mod paths;
+pub mod schedule;
 mod scope;
 mod skills;
 mod starve;
@@ -33,7 +34,7 @@ use crate::span::Span;
 const SKILLS_LISTED: usize = 5;
 
 pub use args::fits;
-pub use breaks::needle;
+pub use breaks::{breakable, matches, needle};
 pub use constants::Constants;
 pub use scope::{Places, Var, VarId, Vars};
 pub use skills::SkillId;

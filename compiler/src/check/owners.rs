@@ -33,6 +33,7 @@ use rustc_hash::{FxHashMap, FxHasher};
 
 use crate::ast::{Arg, Args, Block, Call, Expr, ExprKind, Stmt, StmtKind};
 use crate::check::params;
+use crate::check::schedule::{Moment, Start};
 use crate::check::skills::{SkillId, Skills};
 use crate::check::{FileEntry, Target, Unit};
 use crate::diagnostic::{Code, Diagnostic, FileId};
@@ -114,6 +115,40 @@ struct Owners<'a, 's> {
     /// only as not being skills.
     relevant: Vec<(&'static [u8], Command)>,
     buf: String,
+    /// The file whose statements' moments are written down (`schedule.rs`), if any.
+    recording: Option<FileId>,
+    moments: Vec<Moment>,
+}
+
+/// What starts a list of sibling blocks.
+#[derive(Debug, Clone, Copy)]
+enum Opening {
+    Unit { skill: bool },
+    Guard(Span),
+    Loop(Span),
+}
+
+impl Opening {
+    fn start(self, block: usize, blocks: usize) -> Start {
+        let (block, blocks) = (block as u32 + 1, blocks as u32);
+        match self {
+            Opening::Unit { skill } => Start::Unit {
+                skill,
+                block,
+                blocks,
+            },
+            Opening::Guard(guard) => Start::Guard {
+                guard,
+                block,
+                blocks,
+            },
+            Opening::Loop(guard) => Start::Loop {
+                guard,
+                block,
+                blocks,
+            },
+        }
+    }
 }
 
 pub fn check_owners(
@@ -123,46 +158,82 @@ pub fn check_owners(
     model: &RobotModel,
     diags: &mut Vec<Diagnostic>,
 ) {
-    let calls = units
-        .iter()
-        .filter(|u| u.special.is_none())
-        .map(|u| {
-            let slot = u.skill.map_or(0, |id| skills.get(id).index as u32 + 1);
-            ((u.file.0, slot), &u.targets)
-        })
-        .collect();
-    let mut o = Owners {
-        files,
-        calls,
-        skills,
-        model,
-        keys: FxHashMap::default(),
-        next_key: 0,
-        targets: FxHashMap::default(),
-        records: Vec::new(),
-        strands: 0,
-        origins: 0,
-        holds: FxHashMap::default(),
-        starts: FxHashMap::default(),
-        relevant: Command::all()
-            .filter(|c| c.spec().sets != Sets::Nothing || c.spec().holds_block)
-            .map(|c| (c.name().as_bytes(), c))
-            .collect(),
-        buf: String::new(),
-    };
+    let mut o = Owners::new(files, skills, units, model);
     for (i, entry) in files.iter().enumerate() {
-        if entry.library {
-            continue;
-        }
-        let file = FileId(i as u32);
-        let key = o.key(0, Step::Unit(file.0, 0));
-        o.blocks(file, &entry.tree.blocks, key, 0);
-        for (s, skill) in entry.tree.skills.iter().enumerate() {
-            let key = o.key(0, Step::Unit(file.0, s as u32 + 1));
-            o.blocks(file, &skill.blocks, key, s as u32 + 1);
+        if !entry.library {
+            o.file(FileId(i as u32));
         }
     }
     o.report(diags);
+}
+
+/// The moments of `file`'s statements, unsorted (`schedule::schedule`).
+pub fn moments(
+    files: &[FileEntry<'_>],
+    skills: &Skills,
+    units: &[Unit],
+    model: &RobotModel,
+    file: FileId,
+) -> Vec<Moment> {
+    let mut o = Owners::new(files, skills, units, model);
+    o.recording = Some(file);
+    if files.get(file.0 as usize).is_some() {
+        o.file(file);
+    }
+    o.moments
+}
+
+impl<'a, 's> Owners<'a, 's> {
+    fn new(
+        files: &'a [FileEntry<'s>],
+        skills: &'a Skills,
+        units: &'a [Unit],
+        model: &'a RobotModel,
+    ) -> Owners<'a, 's> {
+        let calls = units
+            .iter()
+            .filter(|u| u.special.is_none())
+            .map(|u| {
+                let slot = u.skill.map_or(0, |id| skills.get(id).index as u32 + 1);
+                ((u.file.0, slot), &u.targets)
+            })
+            .collect();
+        Owners {
+            files,
+            calls,
+            skills,
+            model,
+            keys: FxHashMap::default(),
+            next_key: 0,
+            targets: FxHashMap::default(),
+            records: Vec::new(),
+            strands: 0,
+            origins: 0,
+            holds: FxHashMap::default(),
+            starts: FxHashMap::default(),
+            relevant: Command::all()
+                .filter(|c| c.spec().sets != Sets::Nothing || c.spec().holds_block)
+                .map(|c| (c.name().as_bytes(), c))
+                .collect(),
+            buf: String::new(),
+            recording: None,
+            moments: Vec::new(),
+        }
+    }
+
+    /// A task file's blocks and its skills' blocks, each unit from its own start.
+    fn file(&mut self, file: FileId) {
+        let files = self.files;
+        let entry = &files[file.0 as usize];
+        let key = self.key(0, Step::Unit(file.0, 0));
+        let task = Opening::Unit { skill: false };
+        self.blocks(file, &entry.tree.blocks, key, 0, task);
+        for (s, skill) in entry.tree.skills.iter().enumerate() {
+            let key = self.key(0, Step::Unit(file.0, s as u32 + 1));
+            let opening = Opening::Unit { skill: true };
+            self.blocks(file, &skill.blocks, key, s as u32 + 1, opening);
+        }
+    }
 }
 
 impl<'s> Owners<'_, 's> {
@@ -209,12 +280,37 @@ impl<'s> Owners<'_, 's> {
     }
 
     /// Sibling blocks: each its own strand, all starting at `key`.
-    fn blocks(&mut self, file: FileId, blocks: &[Block<'_>], key: u32, slot: u32) {
-        for block in blocks {
+    fn blocks(
+        &mut self,
+        file: FileId,
+        blocks: &[Block<'_>],
+        key: u32,
+        slot: u32,
+        opening: Opening,
+    ) {
+        let recording = self.recording == Some(file);
+        for (b, block) in blocks.iter().enumerate() {
             let strand = self.strand();
             let mut key = key;
+            let mut queue = Queue::default();
+            let mut start = opening.start(b, blocks.len());
+            let mut first = true;
             for stmt in &block.stmts {
-                key = self.stmt(file, slot, stmt, key, strand);
+                if recording {
+                    let queued_after = queue.issue(stmt);
+                    self.moments.push(Moment {
+                        span: stmt.span,
+                        start,
+                        first,
+                        queued_after,
+                    });
+                }
+                let next = self.stmt(file, slot, stmt, key, strand);
+                first = next != key;
+                if first {
+                    start = Start::HeldBy { by: stmt.span };
+                }
+                key = next;
             }
         }
     }
@@ -238,12 +334,12 @@ impl<'s> Owners<'_, 's> {
             },
             StmtKind::If(c) => {
                 let body = own(self);
-                self.blocks(file, &c.body, body, slot);
+                self.blocks(file, &c.body, body, slot, Opening::Guard(stmt.span));
                 key
             }
             StmtKind::While { body, .. } => {
                 let at = own(self);
-                self.blocks(file, &body.body, at, slot);
+                self.blocks(file, &body.body, at, slot, Opening::Loop(stmt.span));
                 key
             }
             StmtKind::Check { .. }
@@ -622,6 +718,45 @@ impl<'s> Owners<'_, 's> {
         d.with_help(format!(
             "the robot keeps whichever the VM issues last, which the order of the blocks decides, not the text{more}; set it in one block, in the order meant, or hold one of them (`wait(v)`) until the other's moment has passed"
         ))
+    }
+}
+
+/// The movement reservation as one block sees it: the last movement it issued that
+/// may still hold the reservation when the next one is issued.
+#[derive(Default)]
+struct Queue<'s> {
+    last: Option<(Span, Option<&'s str>)>,
+}
+
+impl<'s> Queue<'s> {
+    /// Takes `stmt`: the earlier movement it queues behind, if it is a movement.
+    fn issue(&mut self, stmt: &Stmt<'s>) -> Option<Span> {
+        let StmtKind::Call { bind, call } = &stmt.kind else {
+            return None;
+        };
+        let command = Command::from_name(call.name.text);
+        if command == Some(Command::Wait) {
+            // `wait(m)` on the last movement: it has ended before anything after.
+            let waited = call.args.as_ref().and_then(|a| match a.items.first() {
+                Some(Arg::Positional(Expr {
+                    kind: ExprKind::Name(n),
+                    ..
+                })) => Some(n.text),
+                _ => None,
+            });
+            if let (Some(w), Some((_, Some(b)))) = (waited, self.last)
+                && w.eq_ignore_ascii_case(b)
+            {
+                self.last = None;
+            }
+            return None;
+        }
+        if !command.is_some_and(|c| c.spec().movement) {
+            return None;
+        }
+        let before = self.last.map(|(span, _)| span);
+        self.last = Some((stmt.span, bind.map(|b| b.text)));
+        before
     }
 }
 

@@ -1,5 +1,7 @@
 -- End-to-end check with Neovim (0.7+, headless) as the LSP client: diagnostics,
--- completion, hover, definition and formatting against the real server.
+-- completion, hover, definition and formatting, and the concurrency lens (inlay hints,
+-- the "run in simulator" code lens and its times), workspace symbols and document
+-- highlights against the real server and a real `ilmrc run`.
 -- Run by run.sh, which sets ILMR_LSP (the binary) and ILMR_WS (a scratch workspace).
 
 local server = os.getenv('ILMR_LSP')
@@ -36,6 +38,7 @@ check(got and typo ~= nil, 'diagnostics arrive with their codes', vim.diagnostic
 check(typo and typo.lnum == 2 and typo.col == 23, 'UTF-16 columns after Finnish names', typo)
 
 local function request(method, line, character, extra)
+  -- On the first document, task.ilmr.
   local params = {
     textDocument = { uri = vim.uri_from_bufnr(buf) },
     position = { line = line, character = character },
@@ -69,6 +72,76 @@ local edits = request('textDocument/formatting', 0, 0, { options = { tabSize = 4
 if edits then vim.lsp.util.apply_text_edits(edits, buf, 'utf-16') end
 local lines = vim.api.nvim_buf_get_lines(buf, 0, -1, false)
 check(lines[4] == 't = turn(left)', 'formatting is ilmrc fmt', lines)
+
+-- The concurrency lens on a second task (run.sh writes it):
+--   1 m = goahead(0.5)       2 turn(d=20,c=0.5)   3 wait(m)   4 speed(0.3)
+--   6 f = followwall(left,1) 7 break(followw)
+vim.cmd('edit ' .. ws .. '/lens.ilmr')
+local lens_buf = vim.api.nvim_get_current_buf()
+vim.lsp.buf_attach_client(lens_buf, client_id)
+
+local function ask(b, method, params, timeout)
+  local answers = vim.lsp.buf_request_sync(b, method, params, timeout or 10000) or {}
+  for _, answer in pairs(answers) do
+    if answer.result then return answer.result end
+  end
+  return nil
+end
+
+local function hints()
+  local got = ask(lens_buf, 'textDocument/inlayHint', {
+    textDocument = { uri = vim.uri_from_bufnr(lens_buf) },
+    range = { start = { line = 0, character = 0 }, ['end'] = { line = 100, character = 0 } },
+  }) or {}
+  local by_line = {}
+  for _, h in ipairs(got) do
+    local line = h.position.line + 1
+    by_line[line] = (by_line[line] or '') .. '|' .. h.label
+  end
+  return by_line
+end
+
+local function has(by_line, line, text)
+  return by_line[line] ~= nil and by_line[line]:find(text, 1, true) ~= nil
+end
+
+local before = hints()
+check(has(before, 1, 'starts at t=0 with block 2') and has(before, 1, '|m')
+    and has(before, 2, 'queued after line 1 (movement)')
+    and has(before, 4, 'held until `wait(m)` at line 3') and has(before, 4, '|m/s')
+    and has(before, 6, 'ended by break at line 7'),
+  'inlay hints: when each statement starts, what ends it, units', before)
+
+local lenses = ask(lens_buf, 'textDocument/codeLens',
+  { textDocument = { uri = vim.uri_from_bufnr(lens_buf) } }) or {}
+local run = lenses[1] and lenses[1].command
+check(run and run.command == 'ilmr.run' and run.title:find('run in simulator', 1, true),
+  'a "run in simulator" code lens', lenses)
+
+local symbols = ask(buf, 'workspace/symbol', { query = 'kier' }) or {}
+check(#symbols == 1 and symbols[1].name == 'KIERROS' and symbols[1].location.uri:find('skills.ilms', 1, true),
+  'workspace symbols find a skill by a fuzzy query', symbols)
+
+-- `käännös` on line 1 (bound) and line 2 (waited on): Write = 3, Read = 2.
+local marks = request('textDocument/documentHighlight', 0, 2) or {}
+local kinds = {}
+for _, h in ipairs(marks) do kinds[#kinds + 1] = h.range.start.line .. ':' .. h.kind end
+check(table.concat(kinds, ' ') == '0:3 1:2', 'document highlights: binding and use', marks)
+
+if run then
+  local done = ask(lens_buf, 'workspace/executeCommand',
+    { command = run.command, arguments = run.arguments }, 100000)
+  check(done and done.exit == 0 and done.summary:find('finished: no command left', 1, true),
+    'the lens runs the task in the simulator and answers its summary', done)
+  local after = hints()
+  check(has(after, 1, '|ran t=0.00') and has(after, 2, '|ran t=') and has(after, 4, '|issued t='),
+    'after a run, each statement has its times from the trace', after)
+  local again = ask(lens_buf, 'textDocument/codeLens',
+    { textDocument = { uri = vim.uri_from_bufnr(lens_buf) } }) or {}
+  local title = again[1] and again[1].command and again[1].command.title or ''
+  check(title:find('last run: ', 1, true) ~= nil and title:find(': finished: no command left', 1, true) ~= nil,
+    'the lens tells how the last run ended', again)
+end
 
 vim.lsp.stop_client(client_id)
 io.stdout:write(string.format('%d failed\n', failures))

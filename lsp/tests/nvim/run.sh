@@ -5,10 +5,13 @@ set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
 repo="$(cd "$here/../../.." && pwd)"
 command -v nvim >/dev/null || { echo "nvim not found (apt-get install neovim)"; exit 2; }
-cargo build -q -p ilmr-lsp --manifest-path "$repo/Cargo.toml"
+# ilmrc too: the "run in simulator" lens runs the one beside the server.
+cargo build -q -p ilmr-lsp -p ilmrc --manifest-path "$repo/Cargo.toml"
 ws="$(mktemp -d)"
 trap 'rm -rf "$ws"' EXIT
 printf '%s\n' 'käännös = turn(left)' 'wait(käännös)' 'kääntö = followwall(lft)' 't = turn(' 'KIERROS' > "$ws/task.ilmr"
 printf '%s\n' 'KIERROS:' 'speed(0.3)' > "$ws/skills.ilms"
+printf '%s\n' 'm = goahead(0.5)' 'turn(d=20,c=0.5)' 'wait(m)' 'speed(0.3)' '' \
+  'f = followwall(left,1)' 'break(followw)' > "$ws/lens.ilmr"
 ILMR_LSP="$repo/target/debug/ilmr-lsp" ILMR_WS="$ws" \
-  timeout 60 nvim --headless --clean -u NONE -S "$here/e2e.lua"
+  timeout 120 nvim --headless --clean -u NONE -S "$here/e2e.lua"

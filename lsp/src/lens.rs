@@ -1,0 +1,415 @@
+//! The concurrency lens: inlay hints that say, per statement, when it is issued relative
+//! to the others ("starts at t=0 with block 2", "held until `wait(t1)` at line 8",
+//! "guard: runs once when d>10", "queued after line 12 (movement)") and which
+//! `break(pattern)` can end it. When a statement starts is the compiler's own model of
+//! the schedule (`check::schedule`, the walk of the W0905 check); which statements a
+//! pattern ends is the checker's own matching (`check::breakable`, `check::matches`).
+//!
+//! Only the statements in the range the client shows are labelled, found by skipping
+//! the blocks outside it, so a request costs the visible statements times the program's
+//! breaks, plus the file's schedule once per check (cached by the engine).
+
+use ilmr_compiler::Span;
+use ilmr_compiler::ast::{Block, Stmt, StmtKind};
+use ilmr_compiler::check::schedule::{Moment, Start};
+use ilmr_compiler::check::{breakable, matches, needle};
+use ilmr_compiler::diagnostic::FileId;
+
+use crate::analysis::Program;
+use crate::line_index::LineIndex;
+
+/// A quoted statement in a label is cut to this many characters.
+const QUOTED_CHARS: usize = 32;
+
+/// Top-level blocks named one by one in "starts at t=0 with blocks 2, 3"; more are
+/// counted.
+const BLOCKS_NAMED: u32 = 3;
+
+/// Statements a break's hover lists; more are counted.
+pub const ENDED_LISTED: usize = 20;
+
+/// A `break(pattern)` of the program, with its needle (`check::needle`).
+#[derive(Debug, Clone)]
+pub struct BreakAt {
+    pub file: FileId,
+    pub span: Span,
+    pub needle: String,
+}
+
+/// Every `break(pattern)` in the program's files that an editor can open.
+pub fn breaks(program: &Program) -> Vec<BreakAt> {
+    let mut out = Vec::new();
+    for (i, entry) in program.analysis().files.iter().enumerate() {
+        let file = FileId(i as u32);
+        if !entry.break_patterns || program.uri(file).is_none() {
+            continue;
+        }
+        entry.tree.for_each_stmt(&mut |stmt: &Stmt<'_>| {
+            if let StmtKind::Break { pattern: Some(p) } = &stmt.kind {
+                out.push(BreakAt {
+                    file,
+                    span: stmt.span,
+                    needle: needle(p).to_string(),
+                });
+            }
+        });
+    }
+    out
+}
+
+/// One statement's label, at the end of its line.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Label {
+    pub at: usize,
+    pub text: String,
+    pub tooltip: String,
+}
+
+/// What the lens needs of one open file.
+pub struct FileLens<'a> {
+    pub program: &'a Program,
+    pub file: FileId,
+    pub text: &'a str,
+    pub index: &'a LineIndex,
+    /// The file's schedule, sorted by position (`check::schedule`).
+    pub moments: &'a [Moment],
+    pub breaks: &'a [BreakAt],
+}
+
+impl FileLens<'_> {
+    /// Labels of the statements that start inside `range`, in order.
+    pub fn labels(&self, range: Span) -> Vec<Label> {
+        let tree = self.program.tree(self.file);
+        let mut out = Vec::new();
+        let mut around = Vec::new();
+        self.blocks(&tree.blocks, range, &mut around, &mut out);
+        for skill in &tree.skills {
+            if overlaps(skill.span, range) {
+                self.blocks(&skill.blocks, range, &mut around, &mut out);
+            }
+        }
+        out
+    }
+
+    fn blocks<'t>(
+        &self,
+        blocks: &'t [Block<'t>],
+        range: Span,
+        around: &mut Vec<Span>,
+        out: &mut Vec<Label>,
+    ) {
+        // Blocks are in text order: the first that reaches the range, then on until one
+        // starts after it.
+        let from = blocks.partition_point(|b| b.span.end < range.start);
+        for block in blocks[from..]
+            .iter()
+            .take_while(|b| b.span.start <= range.end)
+        {
+            for stmt in &block.stmts {
+                if stmt.span.start > range.end {
+                    break;
+                }
+                if stmt.span.start >= range.start {
+                    self.label(stmt, around, out);
+                }
+                match &stmt.kind {
+                    StmtKind::If(c) | StmtKind::While { body: c, .. } => {
+                        around.push(stmt.span);
+                        self.blocks(&c.body, range, around, out);
+                        around.pop();
+                    }
+                    // Never runs: nothing to say of when.
+                    StmtKind::Check { .. } => {}
+                    _ => {}
+                }
+            }
+        }
+    }
+
+    fn label(&self, stmt: &Stmt<'_>, around: &[Span], out: &mut Vec<Label>) {
+        let mut parts = Vec::new();
+        let mut tips = Vec::new();
+        if let Some(m) = self.moment(stmt.span) {
+            if m.first {
+                let (part, tip) = self.start(&m.start);
+                parts.push(part);
+                tips.push(tip);
+            }
+            if let Some(q) = m.queued_after {
+                parts.push(format!("queued after line {} (movement)", self.line(q)));
+                tips.push(format!(
+                    "A movement command: it starts when `{}` (line {}), queued before it in its block, has given up the movement reservation.",
+                    self.quote(q),
+                    self.line(q)
+                ));
+            }
+        }
+        if !matches!(stmt.kind, StmtKind::Break { .. }) {
+            let text = stmt.span.slice(self.text);
+            for b in self.breaks {
+                let through = if matches(text, &b.needle) {
+                    Some(None)
+                } else {
+                    around
+                        .iter()
+                        .rev()
+                        .find(|s| matches(s.slice(self.text), &b.needle))
+                        .map(Some)
+                };
+                let Some(through) = through else { continue };
+                let at = self.place(b.file, b.span);
+                parts.push(format!("ended by break at {at}"));
+                tips.push(match through {
+                    None => format!(
+                        "`{}` at {at} ends it if it is running then: its text contains `{}`.",
+                        self.program_quote(b.file, b.span),
+                        b.needle
+                    ),
+                    Some(s) => format!(
+                        "`{}` at {at} ends `{}` (line {}) and so everything inside it.",
+                        self.program_quote(b.file, b.span),
+                        self.quote(*s),
+                        self.line(*s)
+                    ),
+                });
+            }
+        }
+        if !parts.is_empty() {
+            out.push(Label {
+                at: stmt.span.end as usize,
+                text: parts.join(" · "),
+                tooltip: tips.join("\n\n"),
+            });
+        }
+    }
+
+    fn moment(&self, span: Span) -> Option<&Moment> {
+        let i = self.moments.partition_point(|m| m.span.start < span.start);
+        self.moments.get(i).filter(|m| m.span == span)
+    }
+
+    /// The label of a moment's start and its tooltip.
+    fn start(&self, start: &Start) -> (String, String) {
+        match *start {
+            Start::Unit {
+                skill,
+                block,
+                blocks,
+            } => {
+                let when = if skill {
+                    "starts when the skill is called"
+                } else {
+                    "starts at t=0"
+                };
+                let with = others(block, blocks);
+                let tip = if skill {
+                    format!(
+                        "Block {block} of the skill's {blocks}: the first block runs in the caller's block, the others beside it, all when the skill is called."
+                    )
+                } else {
+                    format!(
+                        "Block {block} of the task's {blocks} top-level blocks, which all start together when the task starts."
+                    )
+                };
+                (format!("{when}{with}"), tip)
+            }
+            Start::HeldBy { by } => (
+                format!("held until `{}` at line {}", self.quote(by), self.line(by)),
+                format!(
+                    "Its block is held back by `{}` (line {}): a `wait`, an `init` or a call of a skill whose first block holds. What follows it in the block is issued when it lets go.",
+                    self.quote(by),
+                    self.line(by)
+                ),
+            ),
+            Start::Guard {
+                guard,
+                block,
+                blocks,
+            } => (
+                format!(
+                    "guard: runs once when {}{}",
+                    self.condition(guard),
+                    part(block, blocks)
+                ),
+                format!(
+                    "In the body of the guard at line {}: the `if` does not hold its block; its condition is evaluated every tick from when it is issued until it holds, then the body runs once.",
+                    self.line(guard)
+                ),
+            ),
+            Start::Loop {
+                guard,
+                block,
+                blocks,
+            } => (
+                format!(
+                    "loop: runs each time {} holds{}",
+                    self.condition(guard),
+                    part(block, blocks)
+                ),
+                format!(
+                    "In the body of the loop at line {}: the condition is evaluated again when every command an iteration started has ended.",
+                    self.line(guard)
+                ),
+            ),
+        }
+    }
+
+    fn line(&self, span: Span) -> usize {
+        self.index.line_of(span.start as usize) + 1
+    }
+
+    fn quote(&self, span: Span) -> String {
+        cut(span.slice(self.text).trim())
+    }
+
+    /// A statement of any file of the program.
+    fn program_quote(&self, file: FileId, span: Span) -> String {
+        cut(span.slice(self.program.text(file)).trim())
+    }
+
+    /// "line 20" in this file, "skills.ilms:20" in another.
+    fn place(&self, file: FileId, span: Span) -> String {
+        if file == self.file {
+            return format!("line {}", self.line(span));
+        }
+        let text = self.program.text(file);
+        let line = text[..span.start as usize].matches('\n').count() + 1;
+        let uri = self.program.uri(file).unwrap_or("");
+        let name = uri.rsplit('/').next().unwrap_or(uri);
+        format!("{name}:{line}")
+    }
+
+    /// The condition of an `if(...)`/`while(...)` line, without its parentheses.
+    fn condition(&self, guard: Span) -> String {
+        let line = guard.slice(self.text);
+        let inner = match (line.find('('), line.rfind(')')) {
+            (Some(a), Some(b)) if a < b => &line[a + 1..b],
+            (Some(a), _) => &line[a + 1..],
+            _ => line,
+        };
+        cut(inner.trim())
+    }
+}
+
+/// Every statement a `break(pattern)` ends when they run: those whose text contains the
+/// needle, and, through an `if` or `while` they stand in, those inside a matched one.
+/// Each with whether it is matched through a block around it.
+pub fn ended_by(program: &Program, needle: &str) -> Vec<(FileId, Span, bool)> {
+    let analysis = program.analysis();
+    let mut out: Vec<(FileId, Span, bool)> = Vec::new();
+    let mut matched: Vec<(FileId, Span)> = Vec::new();
+    for (file, span, text) in breakable(&analysis.files, &analysis.skills) {
+        if matches(text, needle) {
+            out.push((file, span, false));
+            matched.push((file, span));
+        }
+    }
+    // The bodies of matched `if`s and `while`s: one walk of each file that has one,
+    // not one per match (`break(while)` can match every loop of a long file).
+    let heads: std::collections::HashSet<(FileId, Span)> = matched.iter().copied().collect();
+    let mut files: Vec<FileId> = matched.iter().map(|(f, _)| *f).collect();
+    files.dedup();
+    for file in files {
+        let tree = program.tree(file);
+        let mut inside = Vec::new();
+        let mut heads_in = |blocks: &[Block<'_>]| {
+            within(blocks, &|span| heads.contains(&(file, span)), &mut inside)
+        };
+        heads_in(&tree.blocks);
+        for skill in &tree.skills {
+            heads_in(&skill.blocks);
+        }
+        out.extend(inside.into_iter().map(|s| (file, s, true)));
+    }
+    out.sort_by_key(|&(f, s, _)| (f, s.start));
+    out.dedup_by_key(|&mut (f, s, _)| (f, s));
+    out
+}
+
+/// The statements inside the `if`s and `while`s that `head` names.
+fn within(blocks: &[Block<'_>], head: &dyn Fn(Span) -> bool, out: &mut Vec<Span>) {
+    for block in blocks {
+        for stmt in &block.stmts {
+            if let StmtKind::If(c) | StmtKind::While { body: c, .. } = &stmt.kind {
+                if head(stmt.span) {
+                    collect(&c.body, out);
+                } else {
+                    within(&c.body, head, out);
+                }
+            }
+        }
+    }
+}
+
+fn collect(blocks: &[Block<'_>], out: &mut Vec<Span>) {
+    for block in blocks {
+        for stmt in &block.stmts {
+            match &stmt.kind {
+                StmtKind::Break { .. } | StmtKind::Error | StmtKind::Check { .. } => {}
+                StmtKind::If(c) | StmtKind::While { body: c, .. } => {
+                    out.push(stmt.span);
+                    collect(&c.body, out);
+                }
+                _ => out.push(stmt.span),
+            }
+        }
+    }
+}
+
+/// " with block 2", " with blocks 1, 3", " with 41 other blocks", or nothing alone.
+fn others(block: u32, blocks: u32) -> String {
+    if blocks <= 1 {
+        return String::new();
+    }
+    if blocks - 1 > BLOCKS_NAMED {
+        return format!(" with {} other blocks", blocks - 1);
+    }
+    let names: Vec<String> = (1..=blocks)
+        .filter(|&b| b != block)
+        .map(|b| b.to_string())
+        .collect();
+    let s = if names.len() == 1 { "" } else { "s" };
+    format!(" with block{s} {}", names.join(", "))
+}
+
+/// " (block 2 of 3)" for a body of several blocks.
+fn part(block: u32, blocks: u32) -> String {
+    if blocks <= 1 {
+        String::new()
+    } else {
+        format!(" (block {block} of {blocks})")
+    }
+}
+
+fn cut(text: &str) -> String {
+    match text.char_indices().nth(QUOTED_CHARS) {
+        Some((i, _)) => format!("{}…", &text[..i]),
+        None => text.to_string(),
+    }
+}
+
+fn overlaps(a: Span, b: Span) -> bool {
+    a.start <= b.end && b.start <= a.end
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn other_blocks_are_named_then_counted() {
+        assert_eq!(others(1, 1), "");
+        assert_eq!(others(1, 2), " with block 2");
+        assert_eq!(others(2, 4), " with blocks 1, 3, 4");
+        assert_eq!(others(3, 5), " with 4 other blocks");
+        assert_eq!(part(1, 1), "");
+        assert_eq!(part(2, 3), " (block 2 of 3)");
+    }
+
+    #[test]
+    fn long_statements_are_cut_on_a_character() {
+        assert_eq!(cut("wait(t1)"), "wait(t1)");
+        let long = "ä".repeat(40);
+        assert_eq!(cut(&long), format!("{}…", "ä".repeat(QUOTED_CHARS)));
+    }
+}
