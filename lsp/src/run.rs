@@ -91,8 +91,8 @@ pub fn fingerprint(text: &str) -> u64 {
     h.finish()
 }
 
-/// Each line's times from a trace, keeping only events whose statement text is that
-/// line's text in `task` (a skill's statements carry lines of their own file).
+/// Each line's times from a trace, keeping only the task's own statements (a skill's
+/// or a typed line's name their file) whose text is still that line's text in `task`.
 pub fn times(trace: &str, task: &str) -> Result<BTreeMap<u32, Times>, String> {
     let lines: Vec<&str> = task.lines().map(str::trim).collect();
     let ours = |line: u32, text: &str| {
@@ -110,7 +110,7 @@ pub fn times(trace: &str, task: &str) -> Result<BTreeMap<u32, Times>, String> {
             Event::End(e) => e.stmt.as_ref(),
             _ => continue,
         };
-        let Some(stmt) = stmt.filter(|s| ours(s.line, &s.text)) else {
+        let Some(stmt) = stmt.filter(|s| s.file.is_none() && ours(s.line, &s.text)) else {
             continue;
         };
         let entry = out.entry(stmt.line).or_default();
@@ -310,6 +310,7 @@ mod tests {
 {"t":2.5,"event":"start","line":2,"text":"turn(left)"}
 {"t":6.25,"event":"end","line":2,"text":"turn(left)","how":"completed"}
 {"t":0.01,"event":"issue","line":1,"text":"speed(0.3)"}
+{"t":7,"event":"end","line":2,"text":"turn(left)","file":"skills/turns.ilms","how":"completed"}
 "#;
 
     #[test]
@@ -317,7 +318,8 @@ mod tests {
         let times = times(TRACE, "goahead(1)\nturn(left)\n").unwrap();
         assert_eq!(times.len(), 2, "{times:?}");
         assert_eq!(times[&1].label(), "ran t=0.00–2.50 s");
-        // Issued at 0, started at 2.5 when the reservation came.
+        // Issued at 0, started at 2.5 when the reservation came; the skill's
+        // `turn(left)` on its own line 2 ended later, which is not this line's end.
         assert_eq!(times[&2].label(), "ran t=2.50–6.25 s");
     }
 
