@@ -417,14 +417,12 @@ impl<H: Hal, C: Clock> Vm<H, C> {
     #[inline]
     pub(super) fn assign(&mut self, var: u32, expr: ExprId, stmt: StmtId) {
         match self.eval(expr) {
-            Ok(v) => self.write_reporting(
-                var,
-                &[(Field::Value, v), (Field::Status, 1.0)],
-                Some(None),
-                stmt.0,
-                false,
-                FieldMask(FieldMask::bit(Field::Value)),
-            ),
+            Ok(v) => {
+                // As `write_reporting` of value and status with no `how`, on the
+                // record in place: the value is traced even when unchanged.
+                let mask = self.vars.assign(var, v);
+                self.changed(var, mask, stmt.0, false);
+            }
             Err(e) => self.error(Some(stmt), e.to_string()),
         }
     }
@@ -449,13 +447,11 @@ impl<H: Hal, C: Clock> Vm<H, C> {
         self.write_reporting(to, &fields, Some(r.how), stmt, false, report);
     }
 
-    /// The ticks a `wait(seconds)` sleeps: at least one. `wait(1e26)` checks (a
-    /// non-negative time) and its tick count saturates; it must wait for ever, not
-    /// overflow the tick or wrap round to now.
+    /// The ticks a `wait(seconds)` sleeps ([`super::frame::ticks_of`]).
     #[inline]
     pub(super) fn wait_ticks(&mut self, seconds: ExprId) -> u64 {
         let secs = self.eval(seconds).unwrap_or(0.0);
-        ((secs.max(0.0) / self.cfg.period).round() as u64).max(1)
+        super::frame::ticks_of(secs, self.cfg.period)
     }
 
     /// A skill call, issued in line (section 4.2.2.2: the skill's commands are

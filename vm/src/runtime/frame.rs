@@ -22,7 +22,7 @@ use super::exec::Ready;
 use super::nodes::{Class, Kind, NodeRef};
 use super::trace::EventKind;
 use super::vars::{FieldMask, How, NONE};
-use crate::bytecode::{BlockId, ExprId, Module, Op, StmtId};
+use crate::bytecode::{BlockId, ExprId, ExprOp, Module, Op, StmtId};
 
 /// Loops a frame can hold open at once (a loop in the block, a loop in its body).
 /// A block nested deeper keeps the tree.
@@ -43,6 +43,9 @@ pub(crate) enum FOp {
     Wait {
         seconds: u32,
         bind: u32,
+        /// The ticks of a constant time, worked out once as `Vm::wait_ticks` would
+        /// (0: evaluate the expression).
+        ticks: u64,
     },
     /// Issues the loop at `level` and checks it at once: its [`FOp::Check`] is the
     /// next instruction.
@@ -90,11 +93,13 @@ pub(crate) struct Frames {
     pub code: Vec<FInstr>,
     /// Per block: the pc its frame starts at, or NONE when it keeps the tree.
     entry: Vec<u32>,
+    period: f64,
 }
 
 impl Frames {
     /// Compiles the blocks the module gained since the last call.
-    pub fn grow(&mut self, m: &Module) {
+    pub fn grow(&mut self, m: &Module, period: f64) {
+        self.period = period;
         for b in self.entry.len()..m.blocks.len() {
             let start = self.code.len();
             let mut checks = [NONE; MAX_LOOPS];
@@ -144,6 +149,13 @@ impl Frames {
                 Op::WaitTime { seconds, bind } => FOp::Wait {
                     seconds: seconds.0,
                     bind: bind.map_or(NONE, |v| v.0),
+                    ticks: match m.expr_ops(seconds) {
+                        [ExprOp::Const(k)] => m
+                            .consts
+                            .get(k.index())
+                            .map_or(0, |&secs| ticks_of(secs, self.period)),
+                        _ => 0,
+                    },
                 },
                 Op::While { cond, body, bind } if i + 1 == code.len() && level < MAX_LOOPS => {
                     let bind = bind.map_or(NONE, |v| v.0);
@@ -193,6 +205,13 @@ impl Frames {
         }
         true
     }
+}
+
+/// The ticks a `wait(secs)` sleeps: at least one. `wait(1e26)` checks (a
+/// non-negative time) and its tick count saturates; it must wait for ever, not
+/// overflow the tick or wrap round to now.
+pub(crate) fn ticks_of(secs: f64, period: f64) -> u64 {
+    ((secs.max(0.0) / period).round() as u64).max(1)
 }
 
 /// The end of a block with `level` loops open around it.
@@ -249,13 +268,14 @@ impl<H: Hal, C: Clock> Vm<H, C> {
 
     /// Moves the counts of what a frame stands for from resting at `from` to resting
     /// at `to` (`None`: not live).
+    #[inline]
     pub(super) fn frame_account(&mut self, from: Option<u32>, to: Option<u32>) {
-        let of = |pc: Option<u32>| {
-            pc.and_then(|pc| self.frames.code.get(pc as usize))
-                .map_or((0, 0), |i| (usize::from(i.live), usize::from(i.issuing)))
+        let of = |pc: Option<u32>| match pc.and_then(|pc| self.frames.code.get(pc as usize)) {
+            Some(i) => (usize::from(i.live), usize::from(i.issuing)),
+            None => (0, 0),
         };
         let ((live0, iss0), (live1, iss1)) = (of(from), of(to));
-        if (live0, iss0) == (live1, iss1) {
+        if live0 == live1 && iss0 == iss1 {
             return;
         }
         self.nodes.live = (self.nodes.live + live1).saturating_sub(live0);
@@ -300,11 +320,21 @@ impl<H: Hal, C: Clock> Vm<H, C> {
                     self.issue_event(stmt);
                     self.copy(to, from, stmt);
                 }
-                FOp::Wait { seconds, bind } => {
+                FOp::Wait {
+                    seconds,
+                    bind,
+                    ticks,
+                } => {
                     self.ops_left -= 1;
                     f.pc += 1;
                     self.issue_event(stmt);
-                    let ticks = self.wait_ticks(ExprId(seconds));
+                    let ticks = if ticks == 0 {
+                        self.wait_ticks(ExprId(seconds))
+                    } else {
+                        // The constant's one op, as evaluating it would charge.
+                        self.ops_left = self.ops_left.saturating_sub(1);
+                        ticks
+                    };
                     self.bind_issue(bind, stmt);
                     f.nap = f.nap.wrapping_add(1);
                     f.asleep = true;
