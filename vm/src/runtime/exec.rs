@@ -65,11 +65,15 @@ impl<H: Hal, C: Clock> Vm<H, C> {
         )
     }
 
+    #[inline]
     pub(super) fn enqueue(&mut self, idx: u32) {
         let n = self.nodes.get_mut(idx);
         if !n.queued {
             n.queued = true;
-            let r = self.nodes.at(idx);
+            let r = NodeRef {
+                idx,
+                epoch: n.epoch,
+            };
             self.ready.push_back(Ready::Node(r));
         }
     }
@@ -92,7 +96,11 @@ impl<H: Hal, C: Clock> Vm<H, C> {
                     continue;
                 }
             };
-            if !self.nodes.alive(r) {
+            // `Nodes::alive`, with the node looked up once for the whole visit.
+            let Some(n) = self.nodes.all.get_mut(r.idx as usize) else {
+                continue;
+            };
+            if n.epoch != r.epoch || matches!(n.kind, Kind::Free) {
                 continue;
             }
             if self.ops_left == 0 {
@@ -100,8 +108,9 @@ impl<H: Hal, C: Clock> Vm<H, C> {
                 self.overrun(r.idx);
                 return;
             }
-            self.nodes.get_mut(r.idx).queued = false;
-            match self.nodes.get(r.idx).kind {
+            n.queued = false;
+            let kind = n.kind;
+            match kind {
                 Kind::Block(_) => {
                     if let Some(at) = self.run_strand(r) {
                         self.nodes.get_mut(at.idx).queued = true;
@@ -110,13 +119,11 @@ impl<H: Hal, C: Clock> Vm<H, C> {
                         return;
                     }
                 }
-                Kind::Frame(_) => {
-                    if self.run_frame(r.idx) {
-                        self.nodes.get_mut(r.idx).queued = true;
-                        self.ready.push_front(entry);
-                        self.overrun(r.idx);
-                        return;
-                    }
+                Kind::Frame(_) if self.run_frame(r.idx) => {
+                    self.nodes.get_mut(r.idx).queued = true;
+                    self.ready.push_front(entry);
+                    self.overrun(r.idx);
+                    return;
                 }
                 Kind::If { .. } => self.check_guard(r.idx),
                 Kind::While { .. } => self.check_while(r.idx),

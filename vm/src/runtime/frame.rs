@@ -405,9 +405,49 @@ impl<H: Hal, C: Clock> Vm<H, C> {
         }
     }
 
+    #[inline]
     fn frame_store(&mut self, idx: u32, f: FrameState, from: u32) {
         self.nodes.get_mut(idx).kind = Kind::Frame(f);
-        self.frame_account(Some(from), Some(f.pc));
+        if from != f.pc {
+            self.frame_account(Some(from), Some(f.pc));
+        }
+    }
+
+    /// A due alarm of a frame asleep in a wait with neither trace nor bound
+    /// variable: it wakes and is queued, as `end_sleep` and `enqueue` would, on one
+    /// look at its node. Returns false for any other alarm, which takes the
+    /// general path.
+    #[inline]
+    pub(super) fn wake_frame(&mut self, a: &super::timers::Alarm) -> bool {
+        if self.tracing() {
+            return false;
+        }
+        let Some(n) = self.nodes.all.get_mut(a.node.idx as usize) else {
+            return false;
+        };
+        let Kind::Frame(f) = &mut n.kind else {
+            return false;
+        };
+        if n.epoch != a.node.epoch || !f.asleep || f.nap != a.nap {
+            return false;
+        }
+        let unbound = f
+            .pc
+            .checked_sub(1)
+            .and_then(|pc| self.frames.code.get(pc as usize))
+            .is_some_and(|w| matches!(w.op, FOp::Wait { bind: NONE, .. }));
+        if !unbound || n.queued {
+            return false;
+        }
+        f.asleep = false;
+        n.queued = true;
+        self.ready.push_back(Ready::Node(a.node));
+        let sleep = &mut self.nodes.classes[Class::Sleep as usize];
+        *sleep = sleep.saturating_sub(1);
+        self.nodes.sleepers = self.nodes.sleepers.saturating_sub(1);
+        // `end_sleep` spends the code meant for a command's end.
+        self.end_code = None;
+        true
     }
 
     /// A loop of a frame ends: what ending its `while` node writes.

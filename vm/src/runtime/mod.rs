@@ -504,6 +504,9 @@ impl<H: Hal, C: Clock> Vm<H, C> {
     fn fire_timers(&mut self) {
         let due = self.timers.due(self.tick);
         for a in &due {
+            if self.wake_frame(a) {
+                continue;
+            }
             if self.nodes.asleep(a.node, a.nap) {
                 self.end_sleep(a.node.idx, vars::How::Completed);
                 self.enqueue(a.node.idx);

@@ -481,7 +481,7 @@ impl Nodes {
     pub fn alive(&self, r: NodeRef) -> bool {
         self.all
             .get(r.idx as usize)
-            .is_some_and(|n| n.epoch == r.epoch && n.kind != Kind::Free)
+            .is_some_and(|n| n.epoch == r.epoch && !matches!(n.kind, Kind::Free))
     }
 
     pub fn get(&self, idx: u32) -> &Node {
