@@ -7,8 +7,8 @@
 mod common;
 
 use common::{Asm, X, config, robot, trace, vm};
+use ilmr_vm::bytecode::{BlockId, ExprOp, Instr, Op};
 use ilmr_vm::{Config, TraceLevel};
-use ilmr_vm::bytecode::{BlockId, ExprOp, Instr};
 
 /// xorshift64*: seeded, so a failing seed is reproduced by its number.
 struct Rng(u64);
@@ -128,7 +128,25 @@ impl Gen {
         let mut code = vec![a.wait(&format!("wait(0.05) #{};", self.tag()), 0.05)];
         let v = self.rng.pick(&VARS);
         let t = self.tag();
-        match self.rng.below(5) {
+        match self.rng.below(8) {
+            5 => code.push(a.op(&format!("break #{t};"), Op::BreakAll)),
+            6 => {
+                // `priority = highest` must come first in its block.
+                code.insert(0, a.op(&format!("priority=highest #{t};"), Op::Priority));
+            }
+            7 => {
+                // A skill of two frame-shaped blocks: the first runs in line (the
+                // tree), the second starts as a strand of its own (a frame).
+                let skill = a.skill(&format!("Skill{t}"));
+                let first = self.frame_block(a, 1);
+                let b1 = a.block(first);
+                a.blank();
+                let second = self.frame_block(a, 2);
+                let b2 = a.block(second);
+                a.define(skill, &[b1, b2]);
+                let bind = format!("s{t}");
+                code.push(a.call(&format!("{bind}=Skill{t} #{t};"), skill, Some(&bind)));
+            }
             0 => {
                 let k = self.rng.below(6) as f64;
                 let g = a.if_(
@@ -197,13 +215,21 @@ fn frames_trace_byte_for_byte_as_the_tree() {
         .ok()
         .and_then(|s| s.parse().ok())
         .unwrap_or(150);
-    for seed in 0..seeds {
+    let from: u64 = std::env::var("FRAMES_FROM")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(0);
+    for seed in from..seeds {
         let (module, budget) = program(seed);
         let cfg = |frames| Config {
             budget_ops: budget,
             frames,
             ..config()
         };
+        // FRAMES_FROM=N FRAMES_SEEDS=N+1 FRAMES_VERBOSE=1: one program, listed.
+        if std::env::var_os("FRAMES_VERBOSE").is_some() {
+            eprintln!("seed {seed}\n{}", ilmr_vm::bytecode::disassemble(&module));
+        }
         let mut tree = vm(module.clone(), robot(), cfg(false));
         let mut flat = vm(module.clone(), robot(), cfg(true));
         // With the trace off a frame wakes on a shorter path: the same states.
@@ -215,7 +241,13 @@ fn frames_trace_byte_for_byte_as_the_tree() {
         let mut flat_off = vm(module, robot(), quiet(true));
         let what = |v: &common::TestVm| {
             let vars: Vec<_> = VARS.iter().map(|n| v.var(n)).collect();
-            (v.activity(), v.live(), v.live_statements(), v.finished(), format!("{vars:?}"))
+            (
+                v.activity(),
+                v.live(),
+                v.live_statements(),
+                v.finished(),
+                format!("{vars:?}"),
+            )
         };
         for tick in 0..200 {
             if tree.finished() && flat.finished() {
@@ -232,4 +264,41 @@ fn frames_trace_byte_for_byte_as_the_tree() {
         framed += usize::from(flat.footprint() != tree.footprint());
     }
     assert!(framed > 40, "only {framed} programs ran frames");
+}
+
+#[test]
+fn a_parked_frame_under_a_tree_loop_ends_with_it() {
+    // `clear` keeps the block on the tree; the loop's body is a frame, parked
+    // between iterations. A bare `break` ends the loop while its body is parked or
+    // queued: the frame ends with it (this once hung in `end_subtree`).
+    let program = || {
+        let mut a = Asm::new();
+        let code = vec![
+            a.clear("clear(q)", "q"),
+            a.while_(
+                "while(x<1000000)",
+                &[X::V("x"), X::N(1e6), X::Op(ExprOp::Lt)],
+                None,
+                |a| vec![a.assign("x=x+1", "x", &[X::V("x"), X::N(1.0), X::Op(ExprOp::Add)])],
+            ),
+        ];
+        let b1 = a.block(code);
+        a.blank();
+        let code = vec![a.wait("wait(0.05)", 0.05), a.op("break", Op::BreakAll)];
+        let b2 = a.block(code);
+        a.task(&[b1, b2])
+    };
+    let cfg = |frames| Config {
+        budget_ops: 1_000,
+        frames,
+        ..config()
+    };
+    let mut tree = vm(program(), robot(), cfg(false));
+    let mut flat = vm(program(), robot(), cfg(true));
+    assert!(
+        tree.run_for(1.0) && flat.run_for(1.0),
+        "the break ends the loop"
+    );
+    assert_eq!(trace(&tree), trace(&flat));
+    assert_eq!(flat.live(), 0);
 }

@@ -820,11 +820,11 @@ impl<H: Hal, C: Clock> Vm<H, C> {
                 // Its wait would have been its last child, ended just before it.
                 self.end_sleep(idx, how);
             }
-            if let Kind::Frame(f) = kind {
-                if f.parked {
-                    return None;
-                }
-                // What the frame stands for ends innermost first, as a subtree.
+            // What a frame stands for ends innermost first, as a subtree; a parked
+            // one (a loop's body between iterations) stands for nothing.
+            if let Kind::Frame(f) = kind
+                && !f.parked
+            {
                 self.end_frame_loops(idx, 0, how);
                 if let Kind::Frame(f) = self.nodes.get(idx).kind {
                     self.frame_account(Some(f.pc), None);

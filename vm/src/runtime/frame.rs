@@ -431,11 +431,10 @@ impl<H: Hal, C: Clock> Vm<H, C> {
         if n.epoch != a.node.epoch || !f.asleep || f.nap != a.nap {
             return false;
         }
-        let unbound = f
-            .pc
-            .checked_sub(1)
-            .and_then(|pc| self.frames.code.get(pc as usize))
-            .is_some_and(|w| matches!(w.op, FOp::Wait { bind: NONE, .. }));
+        let unbound =
+            f.pc.checked_sub(1)
+                .and_then(|pc| self.frames.code.get(pc as usize))
+                .is_some_and(|w| matches!(w.op, FOp::Wait { bind: NONE, .. }));
         if !unbound || n.queued {
             return false;
         }
