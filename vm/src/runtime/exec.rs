@@ -684,11 +684,11 @@ impl<H: Hal, C: Clock> Vm<H, C> {
         match self.eval(ExprId(cond)) {
             Ok(v) if v != 0.0 => {
                 if let Kind::While { iteration, .. } = &mut self.nodes.get_mut(idx).kind {
-                    *iteration += 1;
+                    *iteration = iteration.wrapping_add(1);
                 }
                 if self.tracing() {
                     let stmt = stmt_of(self.nodes.get(idx).stmt);
-                    let iteration = Some(iteration + 1);
+                    let iteration = Some(iteration.wrapping_add(1));
                     self.push_event(stmt, EventKind::Start { iteration });
                 }
                 let last = self.nodes.get(idx).first_child;

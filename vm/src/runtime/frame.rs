@@ -368,7 +368,7 @@ impl<H: Hal, C: Clock> Vm<H, C> {
                         Ok(v) if v != 0.0 => {
                             let mut iteration = 0;
                             if let Some(i) = f.iters.get_mut(usize::from(level)) {
-                                *i += 1;
+                                *i = i.wrapping_add(1);
                                 iteration = *i;
                             }
                             if self.tracing() {
