@@ -65,6 +65,9 @@ pub struct Config {
     /// `record(..)` stores a point every this many metres.
     pub record_spacing: f64,
     pub trace: TraceLevel,
+    /// Run blocks that only compute and sleep as compact frames (`docs/bytecode.md`);
+    /// `false` runs every block on the tree of nodes. Both give the same trace.
+    pub frames: bool,
     /// Thresholds of the run-time refusals and the supervisor.
     pub safety: Safety,
 }
@@ -96,6 +99,7 @@ impl Default for Config {
             max_call_depth: 64,
             record_spacing: 0.1,
             trace: TraceLevel::Full,
+            frames: true,
             safety: Safety::default(),
         }
     }

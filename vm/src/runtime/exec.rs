@@ -5,6 +5,7 @@ use ilmr_hal::Hal;
 use ilmr_stdlib::Field;
 
 use super::clock::Clock;
+use super::frame::{FInstr, FOp, FrameHit, FrameState};
 use super::nodes::{BlockState, Kind, NodeRef, SLEEPING};
 use super::trace::EventKind;
 use super::vars::{FieldMask, How, NONE, Waiter, Woken};
@@ -39,6 +40,9 @@ pub(crate) enum Ready {
 
 impl<H: Hal, C: Clock> Vm<H, C> {
     pub(super) fn start_block(&mut self, parent: u32, block: u32, depth: u16) -> NodeRef {
+        if let Some(r) = self.start_frame(parent, block) {
+            return r;
+        }
         let r = self.new_block(parent, block, depth, false);
         self.enqueue(r.idx);
         r
@@ -61,11 +65,15 @@ impl<H: Hal, C: Clock> Vm<H, C> {
         )
     }
 
+    #[inline]
     pub(super) fn enqueue(&mut self, idx: u32) {
         let n = self.nodes.get_mut(idx);
         if !n.queued {
             n.queued = true;
-            let r = self.nodes.at(idx);
+            let r = NodeRef {
+                idx,
+                epoch: n.epoch,
+            };
             self.ready.push_back(Ready::Node(r));
         }
     }
@@ -88,7 +96,11 @@ impl<H: Hal, C: Clock> Vm<H, C> {
                     continue;
                 }
             };
-            if !self.nodes.alive(r) {
+            // `Nodes::alive`, with the node looked up once for the whole visit.
+            let Some(n) = self.nodes.all.get_mut(r.idx as usize) else {
+                continue;
+            };
+            if n.epoch != r.epoch || matches!(n.kind, Kind::Free) {
                 continue;
             }
             if self.ops_left == 0 {
@@ -96,8 +108,9 @@ impl<H: Hal, C: Clock> Vm<H, C> {
                 self.overrun(r.idx);
                 return;
             }
-            self.nodes.get_mut(r.idx).queued = false;
-            match self.nodes.get(r.idx).kind {
+            n.queued = false;
+            let kind = n.kind;
+            match kind {
                 Kind::Block(_) => {
                     if let Some(at) = self.run_strand(r) {
                         self.nodes.get_mut(at.idx).queued = true;
@@ -105,6 +118,12 @@ impl<H: Hal, C: Clock> Vm<H, C> {
                         self.overrun(at.idx);
                         return;
                     }
+                }
+                Kind::Frame(_) if self.run_frame(r.idx) => {
+                    self.nodes.get_mut(r.idx).queued = true;
+                    self.ready.push_front(entry);
+                    self.overrun(r.idx);
+                    return;
                 }
                 Kind::If { .. } => self.check_guard(r.idx),
                 Kind::While { .. } => self.check_while(r.idx),
@@ -209,6 +228,7 @@ impl<H: Hal, C: Clock> Vm<H, C> {
                 let code = self.module.block_code(crate::bytecode::BlockId(b.block));
                 code.get(b.pc as usize).map_or(NONE, |i| i.stmt.0)
             }
+            Kind::Frame(f) => self.frames.code.get(f.pc as usize).map_or(NONE, |i| i.stmt),
             _ => self.nodes.get(idx).stmt,
         };
         let pending = self.ready.len() as u32;
@@ -305,9 +325,7 @@ impl<H: Hal, C: Clock> Vm<H, C> {
     /// Executes one statement instruction of block `blk`. Returns the block that
     /// continues the strand when the instruction called a skill.
     fn exec(&mut self, blk: u32, depth: u16, op: Op, stmt: StmtId) -> Option<NodeRef> {
-        if self.tracing() {
-            self.push_event(Some(stmt), EventKind::Issue);
-        }
+        self.issue_event(stmt.0);
         let s = stmt.0;
         match op {
             Op::Issue {
@@ -322,48 +340,15 @@ impl<H: Hal, C: Clock> Vm<H, C> {
                     self.hold(blk, child);
                 }
             }
-            Op::Assign { var, expr } => match self.eval(expr) {
-                Ok(v) => {
-                    self.write_reporting(
-                        var.0,
-                        &[(Field::Value, v), (Field::Status, 1.0)],
-                        Some(None),
-                        s,
-                        false,
-                        FieldMask(FieldMask::bit(Field::Value)),
-                    );
-                }
-                Err(e) => self.error(Some(stmt), e.to_string()),
-            },
-            Op::Copy { to, from } => {
-                let r = self.vars.get(from.0);
-                let fields = [
-                    (Field::Status, r.status),
-                    (Field::X, r.x),
-                    (Field::Y, r.y),
-                    (Field::H, r.h),
-                    (Field::Value, r.value),
-                    (Field::Dist, r.dist),
-                ];
-                let report = FieldMask(
-                    FieldMask::bit(Field::Status)
-                        | FieldMask::bit(Field::X)
-                        | FieldMask::bit(Field::Y)
-                        | FieldMask::bit(Field::H),
-                );
-                self.write_reporting(to.0, &fields, Some(r.how), s, false, report);
-            }
+            Op::Assign { var, expr } => self.assign(var.0, expr, stmt),
+            Op::Copy { to, from } => self.copy(to.0, from.0, s),
             Op::WaitTime { seconds, bind } => {
-                let secs = self.eval(seconds).unwrap_or(0.0);
-                let bind = bind.map_or(NONE, |v| v.0);
-                self.bind_issue(bind, s);
-                let ticks = (secs.max(0.0) / self.cfg.period).round() as u64;
+                let ticks = self.wait_ticks(seconds);
+                self.bind_issue(bind.map_or(NONE, |v| v.0), s);
                 let nap = self.nodes.sleep(blk);
                 let node = self.nodes.at(blk);
-                // `wait(1e26)` checks (a non-negative time) and its tick count saturates;
-                // it must wait for ever, not overflow the tick or wrap round to now.
                 self.timers.set(
-                    self.tick.saturating_add(ticks.max(1)),
+                    self.tick.saturating_add(ticks),
                     super::timers::Alarm { node, nap },
                 );
             }
@@ -425,6 +410,55 @@ impl<H: Hal, C: Clock> Vm<H, C> {
             }
         }
         None
+    }
+
+    /// The `issue` event of a statement, when the trace is on.
+    #[inline]
+    pub(super) fn issue_event(&mut self, stmt: u32) {
+        if self.tracing() {
+            self.push_event(Some(StmtId(stmt)), EventKind::Issue);
+        }
+    }
+
+    /// `var = expr`.
+    #[inline]
+    pub(super) fn assign(&mut self, var: u32, expr: ExprId, stmt: StmtId) {
+        match self.eval(expr) {
+            Ok(v) => {
+                // As `write_reporting` of value and status with no `how`, on the
+                // record in place: the value is traced even when unchanged.
+                let mask = self.vars.assign(var, v);
+                self.changed(var, mask, stmt.0, false);
+            }
+            Err(e) => self.error(Some(stmt), e.to_string()),
+        }
+    }
+
+    /// `to = from` for a record: every field and how its command ended.
+    pub(super) fn copy(&mut self, to: u32, from: u32, stmt: u32) {
+        let r = self.vars.get(from);
+        let fields = [
+            (Field::Status, r.status),
+            (Field::X, r.x),
+            (Field::Y, r.y),
+            (Field::H, r.h),
+            (Field::Value, r.value),
+            (Field::Dist, r.dist),
+        ];
+        let report = FieldMask(
+            FieldMask::bit(Field::Status)
+                | FieldMask::bit(Field::X)
+                | FieldMask::bit(Field::Y)
+                | FieldMask::bit(Field::H),
+        );
+        self.write_reporting(to, &fields, Some(r.how), stmt, false, report);
+    }
+
+    /// The ticks a `wait(seconds)` sleeps ([`super::frame::ticks_of`]).
+    #[inline]
+    pub(super) fn wait_ticks(&mut self, seconds: ExprId) -> u64 {
+        let secs = self.eval(seconds).unwrap_or(0.0);
+        super::frame::ticks_of(secs, self.cfg.period)
     }
 
     /// A skill call, issued in line (section 4.2.2.2: the skill's commands are
@@ -650,16 +684,21 @@ impl<H: Hal, C: Clock> Vm<H, C> {
         match self.eval(ExprId(cond)) {
             Ok(v) if v != 0.0 => {
                 if let Kind::While { iteration, .. } = &mut self.nodes.get_mut(idx).kind {
-                    *iteration += 1;
+                    *iteration = iteration.wrapping_add(1);
                 }
                 if self.tracing() {
                     let stmt = stmt_of(self.nodes.get(idx).stmt);
-                    let iteration = Some(iteration + 1);
+                    let iteration = Some(iteration.wrapping_add(1));
                     self.push_event(stmt, EventKind::Start { iteration });
                 }
                 let last = self.nodes.get(idx).first_child;
                 if self.nodes.parked(last) {
                     let r = self.nodes.unpark(last);
+                    if let Kind::Frame(_) = self.nodes.get(r.idx).kind {
+                        let entry = self.frames.entry(body).unwrap_or(NONE);
+                        self.nodes.get_mut(r.idx).kind = Kind::Frame(FrameState::at(entry));
+                        self.frame_account(None, Some(entry));
+                    }
                     self.enqueue(r.idx);
                 } else {
                     let depth = self.depth_of(idx);
@@ -773,10 +812,23 @@ impl<H: Hal, C: Clock> Vm<H, C> {
     /// [`Vm::end_node`] without telling the parent, which it returns (`None` when the
     /// node had ended already).
     fn end_one(&mut self, idx: u32, how: How, linked: bool, reason: Option<String>) -> Option<u32> {
-        if let Kind::Block(b) = self.nodes.get(idx).kind {
-            if b.holder == SLEEPING {
+        let kind = self.nodes.get(idx).kind;
+        if matches!(kind, Kind::Block(_) | Kind::Frame(_)) {
+            if let Kind::Block(b) = kind
+                && b.holder == SLEEPING
+            {
                 // Its wait would have been its last child, ended just before it.
                 self.end_sleep(idx, how);
+            }
+            // What a frame stands for ends innermost first, as a subtree; a parked
+            // one (a loop's body between iterations) stands for nothing.
+            if let Kind::Frame(f) = kind
+                && !f.parked
+            {
+                self.end_frame_loops(idx, 0, how);
+                if let Kind::Frame(f) = self.nodes.get(idx).kind {
+                    self.frame_account(Some(f.pc), None);
+                }
             }
             // A block is no command: no event, no variable, no subscription, no
             // movement; only the code meant for a command's `end` is spent.
@@ -865,22 +917,46 @@ impl<H: Hal, C: Clock> Vm<H, C> {
     /// command: its `end` event and its variable. The block is held no longer; the
     /// caller queues it or ends it.
     pub(super) fn end_sleep(&mut self, idx: u32, how: How) {
-        let Kind::Block(b) = self.nodes.get(idx).kind else {
-            return;
+        let (stmt, bind) = match self.nodes.get(idx).kind {
+            Kind::Block(b) => {
+                self.nodes.wake(idx);
+                let instr =
+                    b.pc.checked_sub(1)
+                        .and_then(|pc| self.module.instr_at(BlockId(b.block), pc))
+                        .copied();
+                let Some(Instr {
+                    op: Op::WaitTime { bind, .. },
+                    stmt,
+                }) = instr
+                else {
+                    self.end_code = None;
+                    return;
+                };
+                (stmt, bind)
+            }
+            Kind::Frame(f) => {
+                self.nodes.wake(idx);
+                let instr =
+                    f.pc.checked_sub(1)
+                        .and_then(|pc| self.frames.code.get(pc as usize))
+                        .copied();
+                let Some(FInstr {
+                    op: FOp::Wait { bind, .. },
+                    stmt,
+                    ..
+                }) = instr
+                else {
+                    self.end_code = None;
+                    return;
+                };
+                (
+                    StmtId(stmt),
+                    (bind != NONE).then_some(crate::bytecode::VarId(bind)),
+                )
+            }
+            _ => return,
         };
-        self.nodes.wake(idx);
         let code = self.end_code.take();
-        let instr =
-            b.pc.checked_sub(1)
-                .and_then(|pc| self.module.instr_at(BlockId(b.block), pc))
-                .copied();
-        let Some(Instr {
-            op: Op::WaitTime { bind, .. },
-            stmt,
-        }) = instr
-        else {
-            return;
-        };
         if self.tracing() {
             let end = EventKind::End {
                 how,
@@ -1009,7 +1085,8 @@ impl<H: Hal, C: Clock> Vm<H, C> {
             stmt.and_then(|s| self.lower.get(s.index()))
                 .is_some_and(|t| t.contains(&pat))
         };
-        // A hit is a node, or the `wait(seconds)` a block sleeps in (its nap).
+        // A hit is a node, the `wait(seconds)` a block sleeps in (its nap), or what
+        // a frame stands for (an open loop, its sleep).
         let mut hits = Vec::new();
         for (i, n) in self.nodes.all.iter().enumerate() {
             let r = NodeRef {
@@ -1020,22 +1097,34 @@ impl<H: Hal, C: Clock> Vm<H, C> {
                 Kind::Free => {}
                 Kind::Block(b) if b.holder == SLEEPING => {
                     if matches(self.sleep_stmt(&b)) {
-                        hits.push((r, Some(b.nap)));
+                        hits.push(Hit::Sleep(r, b.nap));
                     }
                 }
+                Kind::Frame(f) => self.frame_hits(r, &f, &mut |h, stmt| {
+                    if matches(Some(StmtId(stmt))) {
+                        hits.push(Hit::Frame(h));
+                    }
+                }),
                 _ => {
                     if matches(stmt_of(n.stmt)) {
-                        hits.push((r, None));
+                        hits.push(Hit::Node(r));
                     }
                 }
             }
         }
-        for (h, nap) in hits {
-            match nap {
-                None if self.nodes.alive(h) => self.end_subtree(h.idx, How::Broken),
-                Some(nap) if self.nodes.asleep(h, nap) => {
-                    self.end_sleep(h.idx, How::Broken);
-                    self.enqueue(h.idx);
+        for h in hits {
+            match h {
+                Hit::Node(r) if self.nodes.alive(r) => self.end_subtree(r.idx, How::Broken),
+                Hit::Sleep(r, nap) | Hit::Frame(FrameHit::Sleep { frame: r, nap })
+                    if self.nodes.asleep(r, nap) =>
+                {
+                    self.end_sleep(r.idx, How::Broken);
+                    self.enqueue(r.idx);
+                }
+                Hit::Frame(FrameHit::Loop { frame, level })
+                    if self.frame_loop_open(frame, level) =>
+                {
+                    self.break_frame_loop(frame.idx, level);
                 }
                 _ => {}
             }
@@ -1054,6 +1143,13 @@ impl<H: Hal, C: Clock> Vm<H, C> {
             parent = self.nodes.get(parent).parent;
         }
     }
+}
+
+/// What `break(pattern)` ends.
+enum Hit {
+    Node(NodeRef),
+    Sleep(NodeRef, u32),
+    Frame(FrameHit),
 }
 
 /// A compiled guard's entry is live: the same node, not yet fired.

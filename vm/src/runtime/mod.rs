@@ -7,6 +7,7 @@ mod commands;
 pub mod config;
 mod decode;
 mod exec;
+mod frame;
 mod motion;
 mod nodes;
 pub mod safety;
@@ -93,6 +94,8 @@ pub struct Vm<H: Hal, C: Clock> {
     stack: [f64; EXPR_STACK],
     /// Every expression of the module, decoded for [`Vm::eval`].
     decoded: decode::Decoder,
+    /// The flat code of the module's frame-shaped blocks.
+    frames: frame::Frames,
     supervisor: safety::supervisor::Supervisor,
     /// The robot's static map, asked for once at the start.
     known_map: Option<KnownMap>,
@@ -184,6 +187,7 @@ impl<H: Hal, C: Clock> Vm<H, C> {
             scratch: Vec::new(),
             stack: [0.0; EXPR_STACK],
             decoded: decode::Decoder::default(),
+            frames: frame::Frames::default(),
             supervisor: Default::default(),
             known_map,
             map_from_estimate: ilmr_hal::Pose::default(),
@@ -193,6 +197,7 @@ impl<H: Hal, C: Clock> Vm<H, C> {
             end_code: None,
         };
         vm.decoded.grow(&vm.module);
+        vm.frames.grow(&vm.module, vm.cfg.period);
         let main = vm.module.main.index();
         let blocks = vm.module.units[main].blocks.clone();
         for b in blocks {
@@ -275,17 +280,16 @@ impl<H: Hal, C: Clock> Vm<H, C> {
     /// have none), sorted, one entry per live node: what a status view lists. Walks
     /// the node arena, so it is for occasional queries, not for every tick.
     pub fn live_statements(&self) -> Vec<StmtId> {
-        let mut live: Vec<StmtId> = self
-            .nodes
-            .all
-            .iter()
-            .filter_map(|n| match n.kind {
-                Kind::Free | Kind::Root => None,
-                Kind::Block(b) if b.holder == nodes::SLEEPING => self.sleep_stmt(&b),
-                Kind::Block(_) => None,
-                _ => stmt_of(n.stmt),
-            })
-            .collect();
+        let mut live = Vec::new();
+        for n in &self.nodes.all {
+            match n.kind {
+                Kind::Free | Kind::Root => {}
+                Kind::Block(b) if b.holder == nodes::SLEEPING => live.extend(self.sleep_stmt(&b)),
+                Kind::Block(_) => {}
+                Kind::Frame(f) => self.frame_statements(&f, &mut live),
+                _ => live.extend(stmt_of(n.stmt)),
+            }
+        }
         live.sort_unstable_by_key(|s| s.0);
         live
     }
@@ -465,6 +469,7 @@ impl<H: Hal, C: Clock> Vm<H, C> {
     fn joined(&mut self, start: impl Iterator<Item = u32>) {
         self.vars.grow(self.module.globals.len());
         self.decoded.grow(&self.module);
+        self.frames.grow(&self.module, self.cfg.period);
         self.lower.extend(
             self.module.stmts[self.lower.len()..]
                 .iter()
@@ -499,6 +504,9 @@ impl<H: Hal, C: Clock> Vm<H, C> {
     fn fire_timers(&mut self) {
         let due = self.timers.due(self.tick);
         for a in &due {
+            if self.wake_frame(a) {
+                continue;
+            }
             if self.nodes.asleep(a.node, a.nap) {
                 self.end_sleep(a.node.idx, vars::How::Completed);
                 self.enqueue(a.node.idx);

@@ -6,6 +6,7 @@
 use ilmr_hal::Side;
 use ilmr_stdlib::{Command, Field};
 
+use super::frame::FrameState;
 use super::vars::NONE;
 
 /// A block's `holder` while its own `wait(seconds)` holds it. A wait of time is not a
@@ -124,6 +125,9 @@ pub(crate) enum Kind {
     Free,
     Root,
     Block(BlockState),
+    /// A block that only computes and sleeps, run as a compact frame
+    /// (`super::frame`): it stands for the block, its loops and their bodies.
+    Frame(FrameState),
     If {
         cond: u32,
         body: u32,
@@ -236,6 +240,7 @@ impl Class {
             Kind::If { fired: false, .. } => Class::Guard,
             Kind::Root
             | Kind::Block(_)
+            | Kind::Frame(_)
             | Kind::If { .. }
             | Kind::While { .. }
             | Kind::Call { .. } => Class::Container,
@@ -244,6 +249,15 @@ impl Class {
             Kind::Sensor { forever: true, .. } => Class::Endless,
             Kind::Sensor { .. } | Kind::Async { .. } | Kind::SpeedAfter { .. } => Class::Active,
         })
+    }
+}
+
+/// A loop body kept for the next iteration: not live.
+fn is_parked(kind: &Kind) -> bool {
+    match kind {
+        Kind::Block(b) => b.holder == PARKED,
+        Kind::Frame(f) => f.parked,
+        _ => false,
     }
 }
 
@@ -352,7 +366,7 @@ impl Nodes {
         n.epoch = n.epoch.wrapping_add(1);
         n.kind = Kind::Free;
         self.free.push(idx);
-        if !matches!(kind, Kind::Block(b) if b.holder == PARKED) {
+        if !is_parked(&kind) {
             self.live = self.live.saturating_sub(1);
         }
     }
@@ -364,11 +378,14 @@ impl Nodes {
     pub fn park(&mut self, idx: u32) {
         let n = &mut self.all[idx as usize];
         // A block ends only when it has issued everything: it is a container already.
-        let Kind::Block(b) = &mut n.kind else {
-            return;
-        };
-        debug_assert!(b.issued);
-        b.holder = PARKED;
+        match &mut n.kind {
+            Kind::Block(b) => {
+                debug_assert!(b.issued);
+                b.holder = PARKED;
+            }
+            Kind::Frame(f) => f.parked = true,
+            _ => return,
+        }
         n.epoch = n.epoch.wrapping_add(1);
         n.queued = false;
         self.live = self.live.saturating_sub(1);
@@ -393,14 +410,19 @@ impl Nodes {
 
     /// Block `idx` is a parked loop body.
     pub fn parked(&self, idx: u32) -> bool {
-        idx != NONE && matches!(self.all[idx as usize].kind, Kind::Block(b) if b.holder == PARKED)
+        idx != NONE && is_parked(&self.all[idx as usize].kind)
     }
 
-    /// Starts a parked loop body again from its first statement.
+    /// Starts a parked loop body again from its first statement (a frame's caller
+    /// sets its pc).
     pub fn unpark(&mut self, idx: u32) -> NodeRef {
-        if let Kind::Block(b) = &mut self.all[idx as usize].kind {
-            b.holder = NONE;
-            b.pc = 0;
+        match &mut self.all[idx as usize].kind {
+            Kind::Block(b) => {
+                b.holder = NONE;
+                b.pc = 0;
+            }
+            Kind::Frame(f) => f.parked = false,
+            _ => {}
         }
         self.set_issued(idx, false);
         self.live += 1;
@@ -423,10 +445,18 @@ impl Nodes {
     /// Block `idx` wakes from its `wait(seconds)` (the wait ended); it is held no
     /// longer.
     pub fn wake(&mut self, idx: u32) {
-        if let Kind::Block(b) = &mut self.all[idx as usize].kind
-            && b.holder == SLEEPING
-        {
-            b.holder = NONE;
+        let was = match &mut self.all[idx as usize].kind {
+            Kind::Block(b) if b.holder == SLEEPING => {
+                b.holder = NONE;
+                true
+            }
+            Kind::Frame(f) if f.asleep => {
+                f.asleep = false;
+                true
+            }
+            _ => false,
+        };
+        if was {
             let n = &mut self.classes[Class::Sleep as usize];
             *n = n.saturating_sub(1);
             self.sleepers = self.sleepers.saturating_sub(1);
@@ -436,7 +466,11 @@ impl Nodes {
     /// The block is asleep in the sleep numbered `nap`.
     pub fn asleep(&self, r: NodeRef, nap: u32) -> bool {
         self.alive(r)
-            && matches!(self.all[r.idx as usize].kind, Kind::Block(b) if b.holder == SLEEPING && b.nap == nap)
+            && match self.all[r.idx as usize].kind {
+                Kind::Block(b) => b.holder == SLEEPING && b.nap == nap,
+                Kind::Frame(f) => f.asleep && f.nap == nap,
+                _ => false,
+            }
     }
 
     pub fn footprint(&self) -> usize {
@@ -447,7 +481,7 @@ impl Nodes {
     pub fn alive(&self, r: NodeRef) -> bool {
         self.all
             .get(r.idx as usize)
-            .is_some_and(|n| n.epoch == r.epoch && n.kind != Kind::Free)
+            .is_some_and(|n| n.epoch == r.epoch && !matches!(n.kind, Kind::Free))
     }
 
     pub fn get(&self, idx: u32) -> &Node {

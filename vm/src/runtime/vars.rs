@@ -293,6 +293,23 @@ impl Vars {
         }
     }
 
+    /// `v = value` of an assignment: value and status 1, no `how`; returns the
+    /// fields to trace (the value always, the status if it changed).
+    #[inline]
+    pub fn assign(&mut self, v: u32, value: f64) -> FieldMask {
+        let Some(r) = self.records.get_mut(v as usize) else {
+            return FieldMask(FieldMask::bit(Field::Value));
+        };
+        let mut mask = FieldMask::bit(Field::Value);
+        if r.status.to_bits() != 1.0f64.to_bits() {
+            r.status = 1.0;
+            mask |= FieldMask::bit(Field::Status);
+        }
+        r.value = value;
+        r.how = None;
+        FieldMask(mask)
+    }
+
     pub fn set_how(&mut self, v: u32, how: Option<How>) {
         if let Some(r) = self.records.get_mut(v as usize) {
             r.how = how;
@@ -390,6 +407,36 @@ impl Vars {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn an_assignment_writes_and_reports_as_a_write_of_value_and_status() {
+        let values = [0.0, 1.0, -0.0, f64::NAN, 1e300, 1.0];
+        let starts = [
+            VarRecord::default(),
+            VarRecord {
+                status: 1.0,
+                value: 1.0,
+                how: Some(How::Broken),
+                ..VarRecord::default()
+            },
+        ];
+        for start in starts {
+            for v in values {
+                let (mut a, mut b) = (Vars::new(1), Vars::new(1));
+                a.records[0] = start;
+                b.records[0] = start;
+                let mut mask = FieldMask::bit(Field::Value);
+                for (f, x) in [(Field::Value, v), (Field::Status, 1.0)] {
+                    if b.set(0, f, x) {
+                        mask |= FieldMask::bit(f);
+                    }
+                }
+                b.set_how(0, None);
+                assert_eq!(a.assign(0, v), FieldMask(mask));
+                assert_eq!(format!("{:?}", a.records[0]), format!("{:?}", b.records[0]));
+            }
+        }
+    }
 
     #[test]
     fn subscriptions_wake_in_order_and_drop_per_node() {

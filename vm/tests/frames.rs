@@ -1,0 +1,304 @@
+//! Compact frames (`vm/src/runtime/frame.rs`) against the tree of nodes they stand
+//! for: random programs of blocks that compute and sleep, mixed with guards, waits on
+//! variables, `break(pattern)`, a bare `break` and small budgets, run with
+//! `Config::frames` on and off. The traces must be byte for byte the same, and after
+//! every tick so must be what a runner sees (`activity`, `live`, `live_statements`).
+
+mod common;
+
+use common::{Asm, X, config, robot, trace, vm};
+use ilmr_vm::bytecode::{BlockId, ExprOp, Instr, Op};
+use ilmr_vm::{Config, TraceLevel};
+
+/// xorshift64*: seeded, so a failing seed is reproduced by its number.
+struct Rng(u64);
+
+impl Rng {
+    fn next(&mut self) -> u64 {
+        self.0 ^= self.0 >> 12;
+        self.0 ^= self.0 << 25;
+        self.0 ^= self.0 >> 27;
+        self.0.wrapping_mul(0x2545_f491_4f6c_dd1d)
+    }
+    fn below(&mut self, n: u64) -> u64 {
+        self.next() % n
+    }
+    fn pick<'a>(&mut self, of: &[&'a str]) -> &'a str {
+        of[self.below(of.len() as u64) as usize]
+    }
+}
+
+const VARS: [&str; 4] = ["a", "b", "c", "d"];
+
+struct Gen {
+    rng: Rng,
+    /// Distinct statement texts, so that break patterns name what they mean to.
+    n: u32,
+}
+
+impl Gen {
+    fn tag(&mut self) -> u32 {
+        self.n += 1;
+        self.n
+    }
+
+    /// A statement that only computes or sleeps.
+    fn simple(&mut self, a: &mut Asm) -> Instr {
+        let v = self.rng.pick(&VARS);
+        let w = self.rng.pick(&VARS);
+        let t = self.tag();
+        match self.rng.below(7) {
+            0 => a.assign(
+                &format!("{v}={v}+1 #{t};"),
+                v,
+                &[X::V(v), X::N(1.0), X::Op(ExprOp::Add)],
+            ),
+            1 => a.assign(
+                &format!("{v}={w}*2 #{t};"),
+                v,
+                &[X::V(w), X::N(2.0), X::Op(ExprOp::Mul)],
+            ),
+            2 => a.assign(
+                &format!("{v}=({v}+{w})/{w} #{t};"),
+                v,
+                &[
+                    X::V(v),
+                    X::V(w),
+                    X::Op(ExprOp::Add),
+                    X::V(w),
+                    X::Op(ExprOp::Div),
+                ],
+            ),
+            3 => a.assign(&format!("{v}=0 #{t};"), v, &[X::N(0.0)]),
+            4 => a.wait(&format!("wait(0.01) #{t};"), 0.01),
+            5 => a.wait(&format!("wait(0.03) #{t};"), 0.03),
+            _ => a.wait_bound(&format!("z{t}=wait(0.02)"), 0.02, &format!("z{t}")),
+        }
+    }
+
+    /// A frame-shaped block: simple statements, then perhaps a loop of depth `depth`.
+    fn frame_block(&mut self, a: &mut Asm, depth: u32) -> Vec<Instr> {
+        let mut code: Vec<Instr> = (0..self.rng.below(3)).map(|_| self.simple(a)).collect();
+        if depth > 0 && self.rng.below(4) != 0 {
+            let v = self.rng.pick(&VARS);
+            let w = self.rng.pick(&VARS);
+            let k = 2 + self.rng.below(8) as i32;
+            let t = self.tag();
+            let bind = (self.rng.below(3) == 0).then(|| format!("l{t}"));
+            let (text, cond): (String, Vec<X>) = if self.rng.below(3) == 0 {
+                (
+                    format!("while({v}+{w}<{k}) #{t};"),
+                    vec![
+                        X::V(v),
+                        X::V(w),
+                        X::Op(ExprOp::Add),
+                        X::N(f64::from(k)),
+                        X::Op(ExprOp::Lt),
+                    ],
+                )
+            } else {
+                (
+                    format!("while({v}<{k}) #{t};"),
+                    vec![X::V(v), X::N(f64::from(k)), X::Op(ExprOp::Lt)],
+                )
+            };
+            let cond: Vec<X> = cond;
+            let text = match &bind {
+                Some(b) => format!("{b}={text}"),
+                None => text,
+            };
+            let instr = a.while_(&text, &cond, bind.as_deref(), |a| {
+                let t = self.tag();
+                let step = a.assign(
+                    &format!("{v}={v}+1 #{t};"),
+                    v,
+                    &[X::V(v), X::N(1.0), X::Op(ExprOp::Add)],
+                );
+                let mut body = vec![step];
+                body.extend(self.frame_block(a, depth - 1));
+                body
+            });
+            code.push(instr);
+        }
+        code
+    }
+
+    /// A block that keeps the tree: a guard, a wait on a variable, a break.
+    fn other_block(&mut self, a: &mut Asm) -> Vec<Instr> {
+        let mut code = vec![a.wait(&format!("wait(0.05) #{};", self.tag()), 0.05)];
+        let v = self.rng.pick(&VARS);
+        let t = self.tag();
+        match self.rng.below(8) {
+            5 => code.push(a.op(&format!("break #{t};"), Op::BreakAll)),
+            6 => {
+                // `priority = highest` must come first in its block.
+                code.insert(0, a.op(&format!("priority=highest #{t};"), Op::Priority));
+            }
+            7 => {
+                // A skill of two frame-shaped blocks: the first runs in line (the
+                // tree), the second starts as a strand of its own (a frame).
+                let skill = a.skill(&format!("Skill{t}"));
+                let first = self.frame_block(a, 1);
+                let b1 = a.block(first);
+                a.blank();
+                let second = self.frame_block(a, 2);
+                let b2 = a.block(second);
+                a.define(skill, &[b1, b2]);
+                let bind = format!("s{t}");
+                code.push(a.call(&format!("{bind}=Skill{t} #{t};"), skill, Some(&bind)));
+            }
+            0 => {
+                let k = self.rng.below(6) as f64;
+                let g = a.if_(
+                    &format!("if({v}>{k}) #{t};"),
+                    &[X::V(v), X::N(k), X::Op(ExprOp::Gt)],
+                    |a| {
+                        vec![a.assign(
+                            &format!("d=d+10 #{t};"),
+                            "d",
+                            &[X::V("d"), X::N(10.0), X::Op(ExprOp::Add)],
+                        )]
+                    },
+                );
+                code.push(g);
+            }
+            1..=3 => {
+                // One statement by its tag: a pattern that ends what several frames
+                // stand for ends them in the frames' order (docs/performance.md).
+                let k = 1 + self.rng.below(u64::from(self.n));
+                code.push(a.brk(&format!("break(#{k};) #{t};"), &format!("#{k};")));
+            }
+            _ => {
+                let w = self.rng.pick(&VARS);
+                code.push(a.wait_var(&format!("wait({w}) #{t};"), w));
+            }
+        }
+        // A loop in a block that keeps the tree: its body may be a frame, parked
+        // under the tree's `while` between iterations.
+        if self.rng.below(2) == 0 {
+            code.extend(self.frame_block(a, 2));
+        }
+        code
+    }
+}
+
+fn program(seed: u64) -> (ilmr_vm::Module, u32) {
+    let mut g = Gen {
+        rng: Rng(seed.wrapping_mul(0x9e37_79b9_7f4a_7c15) | 1),
+        n: 0,
+    };
+    let mut a = Asm::new();
+    let mut blocks: Vec<BlockId> = Vec::new();
+    for _ in 0..1 + g.rng.below(5) {
+        let code = if g.rng.below(4) == 0 {
+            g.other_block(&mut a)
+        } else {
+            let depth = 1 + g.rng.below(3) as u32;
+            g.frame_block(&mut a, depth)
+        };
+        if !blocks.is_empty() {
+            a.blank();
+        }
+        blocks.push(a.block(code));
+    }
+    let budget = match g.rng.below(3) {
+        0 => 2 + g.rng.below(20) as u32,
+        _ => 200_000,
+    };
+    (a.task(&blocks), budget)
+}
+
+#[test]
+fn frames_trace_byte_for_byte_as_the_tree() {
+    let mut framed = 0;
+    let seeds: u64 = std::env::var("FRAMES_SEEDS")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(150);
+    let from: u64 = std::env::var("FRAMES_FROM")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(0);
+    for seed in from..seeds {
+        let (module, budget) = program(seed);
+        let cfg = |frames| Config {
+            budget_ops: budget,
+            frames,
+            ..config()
+        };
+        // FRAMES_FROM=N FRAMES_SEEDS=N+1 FRAMES_VERBOSE=1: one program, listed.
+        if std::env::var_os("FRAMES_VERBOSE").is_some() {
+            eprintln!("seed {seed}\n{}", ilmr_vm::bytecode::disassemble(&module));
+        }
+        let mut tree = vm(module.clone(), robot(), cfg(false));
+        let mut flat = vm(module.clone(), robot(), cfg(true));
+        // With the trace off a frame wakes on a shorter path: the same states.
+        let quiet = |frames| Config {
+            trace: TraceLevel::Off,
+            ..cfg(frames)
+        };
+        let mut tree_off = vm(module.clone(), robot(), quiet(false));
+        let mut flat_off = vm(module, robot(), quiet(true));
+        let what = |v: &common::TestVm| {
+            let vars: Vec<_> = VARS.iter().map(|n| v.var(n)).collect();
+            (
+                v.activity(),
+                v.live(),
+                v.live_statements(),
+                v.finished(),
+                format!("{vars:?}"),
+            )
+        };
+        for tick in 0..200 {
+            if tree.finished() && flat.finished() {
+                break;
+            }
+            for v in [&mut tree, &mut flat, &mut tree_off, &mut flat_off] {
+                v.tick();
+            }
+            assert_eq!(what(&tree), what(&flat), "seed {seed}, tick {tick}");
+            assert_eq!(what(&tree), what(&tree_off), "seed {seed}, tick {tick}");
+            assert_eq!(what(&tree_off), what(&flat_off), "seed {seed}, tick {tick}");
+        }
+        assert_eq!(trace(&tree), trace(&flat), "seed {seed}");
+        framed += usize::from(flat.footprint() != tree.footprint());
+    }
+    assert!(framed > 40, "only {framed} programs ran frames");
+}
+
+#[test]
+fn a_parked_frame_under_a_tree_loop_ends_with_it() {
+    // `clear` keeps the block on the tree; the loop's body is a frame, parked
+    // between iterations. A bare `break` ends the loop while its body is parked or
+    // queued: the frame ends with it (this once hung in `end_subtree`).
+    let program = || {
+        let mut a = Asm::new();
+        let code = vec![
+            a.clear("clear(q)", "q"),
+            a.while_(
+                "while(x<1000000)",
+                &[X::V("x"), X::N(1e6), X::Op(ExprOp::Lt)],
+                None,
+                |a| vec![a.assign("x=x+1", "x", &[X::V("x"), X::N(1.0), X::Op(ExprOp::Add)])],
+            ),
+        ];
+        let b1 = a.block(code);
+        a.blank();
+        let code = vec![a.wait("wait(0.05)", 0.05), a.op("break", Op::BreakAll)];
+        let b2 = a.block(code);
+        a.task(&[b1, b2])
+    };
+    let cfg = |frames| Config {
+        budget_ops: 1_000,
+        frames,
+        ..config()
+    };
+    let mut tree = vm(program(), robot(), cfg(false));
+    let mut flat = vm(program(), robot(), cfg(true));
+    assert!(
+        tree.run_for(1.0) && flat.run_for(1.0),
+        "the break ends the loop"
+    );
+    assert_eq!(trace(&tree), trace(&flat));
+    assert_eq!(flat.live(), 0);
+}
