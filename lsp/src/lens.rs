@@ -16,6 +16,7 @@ use ilmr_compiler::check::{breakable, matches, needle};
 use ilmr_compiler::diagnostic::FileId;
 
 use crate::analysis::Program;
+use crate::in_view::statements_reaching;
 use crate::line_index::LineIndex;
 
 /// A quoted statement in a label is cut to this many characters.
@@ -98,30 +99,19 @@ impl FileLens<'_> {
         around: &mut Vec<Span>,
         out: &mut Vec<Label>,
     ) {
-        // Blocks are in text order: the first that reaches the range, then on until one
-        // starts after it.
-        let from = blocks.partition_point(|b| b.span.end < range.start);
-        for block in blocks[from..]
-            .iter()
-            .take_while(|b| b.span.start <= range.end)
-        {
-            for stmt in &block.stmts {
-                if stmt.span.start > range.end {
-                    break;
+        for stmt in statements_reaching(blocks, range) {
+            if stmt.span.start >= range.start {
+                self.label(stmt, around, out);
+            }
+            match &stmt.kind {
+                StmtKind::If(c) | StmtKind::While { body: c, .. } => {
+                    around.push(stmt.span);
+                    self.blocks(&c.body, range, around, out);
+                    around.pop();
                 }
-                if stmt.span.start >= range.start {
-                    self.label(stmt, around, out);
-                }
-                match &stmt.kind {
-                    StmtKind::If(c) | StmtKind::While { body: c, .. } => {
-                        around.push(stmt.span);
-                        self.blocks(&c.body, range, around, out);
-                        around.pop();
-                    }
-                    // Never runs: nothing to say of when.
-                    StmtKind::Check { .. } => {}
-                    _ => {}
-                }
+                // Never runs: nothing to say of when.
+                StmtKind::Check { .. } => {}
+                _ => {}
             }
         }
     }

@@ -15,6 +15,7 @@ pub mod docs;
 pub mod engine;
 pub mod framing;
 pub mod hover;
+pub mod in_view;
 pub mod lens;
 pub mod line_index;
 pub mod message;

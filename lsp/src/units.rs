@@ -10,6 +10,7 @@ use ilmr_compiler::diagnostic::FileId;
 use ilmr_stdlib::{Command, Form, Param, ParamKind, Unit};
 
 use crate::analysis::Program;
+use crate::in_view::statements_reaching;
 
 /// Each argument with the parameter it fills (`None`: more arguments than the form
 /// has parameters, or a setting the form does not know).
@@ -97,45 +98,36 @@ pub fn hints(program: &Program, file: FileId, range: Span) -> Vec<UnitHint> {
 }
 
 fn walk(blocks: &[Block<'_>], range: Span, units: &[&CheckedUnit], out: &mut Vec<UnitHint>) {
-    let from = blocks.partition_point(|b| b.span.end < range.start);
-    for block in blocks[from..]
-        .iter()
-        .take_while(|b| b.span.start <= range.end)
-    {
-        for stmt in &block.stmts {
-            if stmt.span.start > range.end {
-                break;
-            }
-            match &stmt.kind {
-                StmtKind::Call {
-                    call:
-                        ilmr_compiler::ast::Call {
-                            args: Some(args), ..
-                        },
-                    ..
-                } if stmt.span.start >= range.start => {
-                    let target = units.iter().find_map(|u| u.targets.get(&stmt.span));
-                    let Some(&Target::Command { command, form }) = target else {
-                        continue;
-                    };
-                    let form = &command.spec().forms[form];
-                    for (arg, param) in params(form, args) {
-                        let Some(param) = param else { continue };
-                        if let Some(unit) = unit_of(command, param, arg) {
-                            out.push(UnitHint {
-                                at: arg.span().end as usize,
-                                symbol: unit.symbol(),
-                                param: param.name,
-                                doc: param.doc,
-                            });
-                        }
+    for stmt in statements_reaching(blocks, range) {
+        match &stmt.kind {
+            StmtKind::Call {
+                call:
+                    ilmr_compiler::ast::Call {
+                        args: Some(args), ..
+                    },
+                ..
+            } if stmt.span.start >= range.start => {
+                let target = units.iter().find_map(|u| u.targets.get(&stmt.span));
+                let Some(&Target::Command { command, form }) = target else {
+                    continue;
+                };
+                let form = &command.spec().forms[form];
+                for (arg, param) in params(form, args) {
+                    let Some(param) = param else { continue };
+                    if let Some(unit) = unit_of(command, param, arg) {
+                        out.push(UnitHint {
+                            at: arg.span().end as usize,
+                            symbol: unit.symbol(),
+                            param: param.name,
+                            doc: param.doc,
+                        });
                     }
                 }
-                StmtKind::If(c) | StmtKind::While { body: c, .. } => {
-                    walk(&c.body, range, units, out);
-                }
-                _ => {}
             }
+            StmtKind::If(c) | StmtKind::While { body: c, .. } => {
+                walk(&c.body, range, units, out);
+            }
+            _ => {}
         }
     }
 }
