@@ -24,6 +24,13 @@ local client_id = vim.lsp.start_client({
   cmd = { server },
   root_dir = ws,
   init_options = { robot = 'moro' },
+  -- The server's messages (a run's summary) on lines of their own, not echoed into
+  -- the checks' output.
+  handlers = {
+    ['window/showMessage'] = function(_, result)
+      io.stdout:write('message: ' .. result.message:gsub('\n', '\n         ') .. '\n')
+    end,
+  },
 })
 vim.lsp.buf_attach_client(buf, client_id)
 
