@@ -98,9 +98,13 @@ struct Recording<'a> {
 }
 
 fn recording<'a>(path: &Path, records: &[Record<'a>]) -> Result<Recording<'a>, String> {
-    let tape_at = records
+    let (tape_at, tape) = records
         .iter()
-        .position(|r| matches!(r.event, Event::Tape(_)))
+        .enumerate()
+        .find_map(|(i, r)| match &r.event {
+            Event::Tape(tape) => Some((i, tape)),
+            _ => None,
+        })
         .ok_or_else(|| {
             format!(
                 "`{}` has no recorded inputs: record them with `ilmrc run --record-inputs --trace {}`",
@@ -108,9 +112,6 @@ fn recording<'a>(path: &Path, records: &[Record<'a>]) -> Result<Recording<'a>, S
                 path.display()
             )
         })?;
-    let Event::Tape(tape) = &records[tape_at].event else {
-        unreachable!("found above")
-    };
     if tape.format != ilmr_trace::INPUT_FORMAT {
         return Err(format!(
             "`{}` records its inputs in form {}; this ilmrc replays form {}",
