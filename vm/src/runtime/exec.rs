@@ -932,7 +932,7 @@ impl<H: Hal, C: Clock> Vm<H, C> {
                     self.end_code = None;
                     return;
                 };
-                (stmt, bind)
+                (stmt.0, bind.map_or(NONE, |v| v.0))
             }
             Kind::Frame(f) => {
                 self.nodes.wake(idx);
@@ -949,33 +949,11 @@ impl<H: Hal, C: Clock> Vm<H, C> {
                     self.end_code = None;
                     return;
                 };
-                (
-                    StmtId(stmt),
-                    (bind != NONE).then_some(crate::bytecode::VarId(bind)),
-                )
+                (stmt, bind)
             }
             _ => return,
         };
-        let code = self.end_code.take();
-        if self.tracing() {
-            let end = EventKind::End {
-                how,
-                linked: false,
-                code,
-                reason: None,
-            };
-            self.push_event(Some(stmt), end);
-        }
-        if let Some(var) = bind {
-            self.write_reporting(
-                var.0,
-                &[(Field::Status, 1.0)],
-                Some(Some(how)),
-                stmt.0,
-                false,
-                FieldMask::default(),
-            );
-        }
+        self.end_in_place(stmt, bind, how, None);
     }
 
     /// The `wait(seconds)` a sleeping block sleeps in (the instruction before its pc).

@@ -382,8 +382,8 @@ impl<H: Hal, C: Clock> Vm<H, C> {
                             self.enqueue(idx);
                             return false;
                         }
-                        Ok(_) => self.end_loop(stmt, bind, How::Completed, None),
-                        Err(e) => self.end_loop(stmt, bind, How::Refused, Some(e.to_string())),
+                        Ok(_) => self.end_in_place(stmt, bind, How::Completed, None),
+                        Err(e) => self.end_in_place(stmt, bind, How::Refused, Some(e.to_string())),
                     }
                     f.pc = exit;
                 }
@@ -449,8 +449,9 @@ impl<H: Hal, C: Clock> Vm<H, C> {
         true
     }
 
-    /// A loop of a frame ends: what ending its `while` node writes.
-    fn end_loop(&mut self, stmt: u32, bind: u32, how: How, reason: Option<String>) {
+    /// A statement that has no node of its own ends (a frame's loop, a sleep): what
+    /// ending its node would write, its `end` event and its variable (`bind`, or NONE).
+    pub(super) fn end_in_place(&mut self, stmt: u32, bind: u32, how: How, reason: Option<String>) {
         let code = self.end_code.take();
         if self.tracing() {
             let end = EventKind::End {
@@ -493,7 +494,7 @@ impl<H: Hal, C: Clock> Vm<H, C> {
                 continue;
             };
             if let FOp::Check { bind, exit, .. } = c.op {
-                self.end_loop(c.stmt, bind, how, None);
+                self.end_in_place(c.stmt, bind, how, None);
                 pc = exit;
             }
         }
