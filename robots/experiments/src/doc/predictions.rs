@@ -1,28 +1,17 @@
 //! The calibrated model's predictions of Tables 11 and 12 and Figure 53, beside the
 //! dissertation's figures.
 
-use super::fmt::{f, n};
-use super::test1::verdict;
+use super::fmt::n;
+use super::test1::{spread, verdict};
 use crate::predictions::{FIRST_SEED, PROFILE, Predictions, SEEDS};
 use crate::stats::Spread;
 use crate::{test2_turn_left as t2, test5_short_task as t5};
-
-fn cell(s: &Spread) -> String {
-    format!(
-        "{} [{}, {}]; {}-{}",
-        f(s.mean, 4),
-        f(s.lo, 4),
-        f(s.hi, 4),
-        f(s.min, 4),
-        f(s.max, 4)
-    )
-}
 
 fn row(what: &str, s: &Spread, table: f64) -> String {
     format!(
         "| {what} | {} | {} | {} |\n",
         n(table),
-        cell(s),
+        spread(s),
         verdict(s, table)
     )
 }

@@ -7,7 +7,7 @@ use crate::stats::Spread;
 use crate::test1_turn::{PROFILE, REPLICAS, SEED, Sweep, TOLERANCE, Test1};
 
 /// "0.0231 [0.0205, 0.0257]; 0.0112-0.0403".
-fn spread(s: &Spread) -> String {
+pub fn spread(s: &Spread) -> String {
     format!(
         "{} [{}, {}]; {}-{}",
         f(s.mean, 4),
