@@ -100,7 +100,10 @@ class Client:
                 return at, m
 
 
-def measure(server, lines, edits):
+def opened(server, lines):
+    """A server with the skill file and a task of `lines` lines open, its first
+    diagnostics in: the client, the task's URI, its text, the wait for a version's
+    diagnostics and a line in its middle."""
     c = Client(server)
     c.request("initialize", {"processId": None, "rootUri": None, "capabilities": {}})
     c.notify("initialized", {})
@@ -114,6 +117,11 @@ def measure(server, lines, edits):
                                 and m["params"]["uri"] == uri and m["params"].get("version") == v)
     c.wait(diagnostics_of(1))
     middle = (lines // 2) // 12 * 12 + 3
+    return c, uri, text, diagnostics_of, middle
+
+
+def measure(server, lines, edits):
+    c, uri, text, diagnostics_of, middle = opened(server, lines)
     edit = {"start": {"line": middle, "character": 4}, "end": {"line": middle, "character": 5}}
     for v in range(2, edits + 2):
         c.notify("textDocument/didChange", {"textDocument": {"uri": uri, "version": v},
@@ -152,19 +160,7 @@ def timed(c, method, params, n=20):
 
 
 def measure_lens(server, lines):
-    c = Client(server)
-    c.request("initialize", {"processId": None, "rootUri": None, "capabilities": {}})
-    c.notify("initialized", {})
-    uri = f"file:///bench/task{lines}.ilmr"
-    c.notify("textDocument/didOpen", {"textDocument": {
-        "uri": "file:///bench/skills.ilms", "languageId": "ilmr", "version": 1, "text": skills()}})
-    text = task(lines)
-    c.notify("textDocument/didOpen", {"textDocument": {
-        "uri": uri, "languageId": "ilmr", "version": 1, "text": text}})
-    diagnostics_of = lambda v: (lambda m: m.get("method") == "textDocument/publishDiagnostics"
-                                and m["params"]["uri"] == uri and m["params"].get("version") == v)
-    c.wait(diagnostics_of(1))
-    middle = (lines // 2) // 12 * 12 + 3
+    c, uri, text, diagnostics_of, middle = opened(server, lines)
     doc = {"uri": uri}
     screen = {"textDocument": doc, "range": {"start": {"line": middle - 30, "character": 0},
                                              "end": {"line": middle + 30, "character": 0}}}
