@@ -225,7 +225,7 @@ impl Place {
     pub fn distance(&self, x: f64, y: f64) -> f64 {
         match self {
             Place::Point(px, py) => (x - px).hypot(y - py),
-            Place::Object { from, to, .. } => segment_distance((x, y), *from, *to),
+            Place::Object { from, to, .. } => ilmr_hal::segment_distance((x, y), *from, *to),
         }
     }
 
@@ -235,17 +235,6 @@ impl Place {
             Place::Object { name, .. } => format!("`{name}`"),
         }
     }
-}
-
-fn segment_distance(p: (f64, f64), a: (f64, f64), b: (f64, f64)) -> f64 {
-    let (dx, dy) = (b.0 - a.0, b.1 - a.1);
-    let len2 = dx * dx + dy * dy;
-    let t = if len2 > 0.0 {
-        (((p.0 - a.0) * dx + (p.1 - a.1) * dy) / len2).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    (p.0 - (a.0 + t * dx)).hypot(p.1 - (a.1 + t * dy))
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
