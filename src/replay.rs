@@ -97,7 +97,9 @@ struct Recording<'a> {
     truncated: Option<f64>,
 }
 
-fn recording<'a>(path: &Path, records: &[Record<'a>]) -> Result<Recording<'a>, String> {
+/// What `records` hold for a replay. Their `input` lines are moved into the recording
+/// (the events left are what a changed task's replay is compared with).
+fn recording<'a>(path: &Path, records: &mut Vec<Record<'a>>) -> Result<Recording<'a>, String> {
     let (tape_at, tape) = records
         .iter()
         .enumerate()
@@ -128,18 +130,24 @@ fn recording<'a>(path: &Path, records: &[Record<'a>]) -> Result<Recording<'a>, S
         lines: Vec::new(),
         truncated: None,
     };
-    for r in records {
-        match &r.event {
-            Event::Run(run) => rec.seed = run.seed,
-            Event::Input(i) => rec.ticks.push((**i).clone()),
-            Event::Line(l) => rec.lines.push(Line {
+    let mut events = Vec::with_capacity(records.len());
+    for r in records.drain(..) {
+        match r.event {
+            Event::Input(i) => {
+                rec.ticks.push(*i);
+                continue;
+            }
+            Event::Run(ref run) => rec.seed = run.seed,
+            Event::Line(ref l) => rec.lines.push(Line {
                 t: r.t.0,
                 text: l.text.to_string(),
             }),
             Event::Truncated(_) => rec.truncated = Some(r.t.0),
             _ => {}
         }
+        events.push(r);
     }
+    *records = events;
     Ok(rec)
 }
 
@@ -256,10 +264,10 @@ impl Lines {
 fn replay_inputs(args: &ReplayArgs, inputs: &Path) -> Result<u8, String> {
     let lines = Lines::read(inputs)?;
     let text = lines.text();
-    let records: Vec<Record<'_>> = ilmr_trace::records(text)
+    let mut records: Vec<Record<'_>> = ilmr_trace::records(text)
         .collect::<Result<_, _>>()
         .map_err(|e| format!("`{}` is not a trace of ilmrc run: {e}", inputs.display()))?;
-    let rec = recording(inputs, &records)?;
+    let rec = recording(inputs, &mut records)?;
     if rec.tape.ilmrc != env!("CARGO_PKG_VERSION") {
         eprintln!(
             "warning: `{}` was recorded by ilmrc {}; this is {}: the VM may run the task differently",
