@@ -111,7 +111,7 @@ fn drive(
         RobotKind::Workpartner => SimRobot::workpartner(world, seed),
     }
     .map_err(|e| format!("the robot does not start: {e}"))?;
-    let mut config = ilmr_sim::vm_config(&robot.model, Some(sim.sim().config()));
+    let mut config = ilmr_vm::Config::for_robot(&robot.model, Some(sim.sim().config().offsets()));
     config.trace = TraceLevel::Commands;
     let max_speed = config.safety.max_speed;
     let mut vm = Vm::new(module, Recorded::new(sim), SimClock, config)

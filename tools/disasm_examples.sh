@@ -13,7 +13,7 @@ out=${1:?usage: tools/disasm_examples.sh OUT_DIR}
 mkdir -p "$out"
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-for task in examples/*.ilmr robots/experiments/tasks/*.ilmr; do
+for task in examples/*.ilmr experiments/tasks/*.ilmr; do
     for robot in moro workpartner; do
         for skills in examples/skills examples/skills_moro; do
             name=$(echo "$task-$robot-$skills" | tr '/' '_')

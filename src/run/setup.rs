@@ -327,9 +327,13 @@ fn limits(model: &RobotModel) -> Limits {
     }
 }
 
-/// The VM's tunables for a run live with the simulator, which both `ilmrc run` and
-/// the experiment tests use.
-pub use ilmr_sim::vm_config;
+/// The VM's settings for `model`, with a simulated `body`'s offsets where there is one.
+pub fn vm_config(
+    model: &ilmr_model::RobotModel,
+    body: Option<&ilmr_sim::RobotConfig>,
+) -> ilmr_vm::Config {
+    ilmr_vm::Config::for_robot(model, body.map(ilmr_sim::RobotConfig::offsets))
+}
 
 /// The VM's `scanner_offset` for a ROS 2 robot: where `tf` puts its scanner ahead of
 /// the body frame. Without a transform the scan is read as taken at the robot's origin,

@@ -18,6 +18,6 @@ pub use hal::Hal;
 pub use recorded::Recorded;
 pub use scripted::{Call, Limits, OpMatch, OpOutcome, ScriptedRobot, Stream};
 pub use types::{
-    AsyncOp, BodyPose, Detection, DeviceReading, HalError, KnownMap, ManipTask, OpId, OpStatus,
-    Pose, Scan, Side, Snapshot, Solid, segment_distance,
+    AsyncOp, BodyOffsets, BodyPose, Detection, DeviceReading, HalError, KnownMap, ManipTask, OpId,
+    OpStatus, Pose, Scan, Side, Snapshot, Solid, segment_distance,
 };

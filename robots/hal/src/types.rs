@@ -3,6 +3,15 @@
 use serde::{Deserialize, Serialize};
 use std::fmt;
 
+/// Where a body's front and its laser scanner lie ahead of the reference point whose
+/// pose the robot reports, metres: what the VM needs of a body to place what it sees
+/// and what it may hit. The simulator knows them of its bodies; a model alone does not.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BodyOffsets {
+    pub front: f64,
+    pub scanner: f64,
+}
+
 /// A planar pose: metres and radians (heading counter-clockwise from x).
 #[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
 pub struct Pose {

@@ -260,6 +260,14 @@ pub struct RobotConfig {
 }
 
 impl RobotConfig {
+    /// The body's front and its scanner ahead of the reference point, for the VM.
+    pub fn offsets(&self) -> ilmr_hal::BodyOffsets {
+        ilmr_hal::BodyOffsets {
+            front: self.body.length - self.body.rear_overhang,
+            scanner: self.scanner.mount.x,
+        }
+    }
+
     pub fn for_kind(kind: RobotKind) -> Self {
         match kind {
             RobotKind::Moro => Self::moro(),

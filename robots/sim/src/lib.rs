@@ -23,7 +23,6 @@ pub mod rng;
 mod robot;
 pub mod sensors;
 mod sim;
-mod vm_config;
 pub mod world;
 
 pub use config::{RobotConfig, RobotKind};
@@ -36,5 +35,4 @@ pub use robot::{
     config_from_model,
 };
 pub use sim::{Contact, EventKind, Faults, SensorSnapshot, SimError, SimEvent, Simulator};
-pub use vm_config::{TURN_SHARE, vm_config};
 pub use world::{World, WorldError};

@@ -1,9 +1,9 @@
 //! `SimRobot` behind the HAL: lockstep with the VM's clock, the snapshot,
 //! asynchronous operations that take time and can fail, refusals.
 
-mod experiment;
+mod common;
 
-use experiment::shipped;
+use common::shipped;
 use ilmr_hal::{AsyncOp, BodyPose, Hal, HalError, ManipTask, OpStatus, Snapshot};
 use ilmr_sim::{SimRobot, TAKE_SECONDS, World};
 

@@ -2,6 +2,13 @@
 //! physical ones (each field names the ROBO.INI parameter it comes from).
 
 use super::safety::Safety;
+use ilmr_hal::BodyOffsets;
+use ilmr_model::RobotModel;
+
+/// `turn(left|right)` on a known body: three quarters of full lock, so the
+/// controller keeps steering in reserve (the setting the dissertation's tests were
+/// reproduced with, docs/experiments.md).
+pub const TURN_SHARE: f64 = 0.75;
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum TraceLevel {
@@ -72,6 +79,38 @@ pub struct Config {
     pub safety: Safety,
 }
 
+impl Config {
+    /// The one place that turns a ROBO.INI model, and a body's offsets where the
+    /// body is known (a simulated one), into the VM's settings; `ilmrc run` and the
+    /// experiments alike. Each field names the model parameter it stands for. Without
+    /// a body (a scripted robot, or none) the defaults stand for what the model does
+    /// not say, as they did for every scripted trace recorded so far.
+    pub fn for_robot(model: &RobotModel, body: Option<BodyOffsets>) -> Config {
+        let base = Config::default();
+        let mut config = Config {
+            default_speed: model.default_speed(),
+            max_curvature: model.max_curvature(),
+            curinc: model.curinc(),
+            turn_curvature: base.turn_curvature.min(model.max_curvature()),
+            acceleration: model.max_acceleration(),
+            deceleration: model.max_deceleration(),
+            robot_width: model.robot_width(),
+            robot_length: model.robot_length(),
+            followwall_d: model.followwall_d(),
+            obstacle_curvature: model.omax_curvature(),
+            safety: Safety::from_model(model),
+            ..base
+        };
+        if let Some(body) = body {
+            config.turn_curvature = TURN_SHARE * model.max_curvature();
+            config.front_offset = body.front;
+            config.scanner_offset = body.scanner;
+            config.security_wait = model.bs_security();
+        }
+        config
+    }
+}
+
 impl Default for Config {
     fn default() -> Config {
         Config {
@@ -102,5 +141,28 @@ impl Default for Config {
             frames: true,
             safety: Safety::default(),
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_known_body_sets_its_offsets_and_the_turn_share() {
+        let model = RobotModel::builtin("workpartner").unwrap_or_else(|| unreachable!());
+        let body = BodyOffsets {
+            front: 2.1,
+            scanner: 1.7,
+        };
+        let c = Config::for_robot(&model, Some(body));
+        assert_eq!(c.max_curvature, 0.25);
+        assert!((c.turn_curvature - 0.1875).abs() < 1e-12);
+        assert_eq!((c.front_offset, c.scanner_offset), (2.1, 1.7));
+        assert_eq!(c.security_wait, model.bs_security());
+        assert_eq!(c.safety.max_speed, model.max_speed());
+        let bare = Config::for_robot(&model, None);
+        assert_eq!(bare.front_offset, Config::default().front_offset);
+        assert!(bare.turn_curvature <= 0.25);
     }
 }

@@ -359,10 +359,8 @@ fn an_obstacle_that_goes_away_releases_the_robot() {
 
 #[test]
 fn faults_from_the_world_file_run_byte_identically() {
-    let text = std::fs::read_to_string(
-        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/worlds/corridor.toml"),
-    )
-    .expect("corridor world");
+    let text = std::fs::read_to_string(ilmr_experiments::harness::worlds().join("corridor.toml"))
+        .expect("corridor world");
     let text = format!(
         "{text}\n[[fault]]\nkind = \"odometry_slip\"\nstart = 1.0\nslip = 0.2\n\n\
          [[fault]]\nkind = \"scanner_dropout\"\nstart = 3.0\nduration = 2.0\n"

@@ -48,7 +48,7 @@ pub const WORKPARTNER_SECONDS: f64 = 60.0;
 pub const YARD_SECONDS: f64 = 60.0;
 
 /// The corrected figure, from the repository's root.
-pub const CORRECTED: &str = "robots/experiments/tasks/fetch_boxes_corrected.ilmr";
+pub const CORRECTED: &str = "experiments/tasks/fetch_boxes_corrected.ilmr";
 /// The figure as printed, in `examples/`.
 pub const PRINTED: &str = "fetch_boxes.ilmr";
 /// Workpartner's `Takebox` on its own, in the yard in front of a box.

@@ -17,7 +17,7 @@ pub fn vm_config(model: &RobotModel, sim: &ilmr_sim::RobotConfig) -> Config {
     Config {
         trace: TraceLevel::Full,
         pose_every: 10,
-        ..ilmr_sim::vm_config(model, Some(sim))
+        ..Config::for_robot(model, Some(sim.offsets()))
     }
 }
 
@@ -25,7 +25,7 @@ pub type SimVm = Vm<SimRobot, SimClock>;
 
 /// The repository's root.
 pub fn repo() -> PathBuf {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
     root.canonicalize().unwrap_or(root)
 }
 

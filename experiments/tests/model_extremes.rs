@@ -42,7 +42,7 @@ fn runs_within_bounds(model: RobotModel, what: &str) {
 
 /// MoRo's file with `name`'s own line replaced by `name value`.
 fn set(name: &str, value: f64) -> RobotModel {
-    let base = include_str!("../../model/models/moro.ini");
+    let base = include_str!("../../robots/model/models/moro.ini");
     let kept: Vec<&str> = base
         .lines()
         .filter(|l| {
@@ -78,7 +78,7 @@ fn every_parameter_at_either_end_of_its_range_runs() {
 
 #[test]
 fn the_longest_braking_distance_runs() {
-    let base = include_str!("../../model/models/moro.ini");
+    let base = include_str!("../../robots/model/models/moro.ini");
     let text = base
         .lines()
         .filter(|l| {

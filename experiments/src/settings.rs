@@ -1,5 +1,5 @@
 //! The VM's physical settings for each simulated robot, as `ilmrc run` and every
-//! experiment use them (`ilmr_sim::vm_config` from the shipped ROBO.INI models).
+//! experiment use them (`ilmr_vm::Config::for_robot` from the shipped ROBO.INI models).
 
 use crate::harness::{moro, shipped, vm_config, workpartner};
 

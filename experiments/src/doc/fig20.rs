@@ -150,8 +150,8 @@ Workpartner's (`examples/skills`) takes the box with the manipulator, MoRo's
 (`examples/skills_moro`) drives up to it, sounds the horn and waits 20 s while a
 person loads it. Both drive the last stretch to the box with avoidance off (the
 avoider would steer round the box itself; the supervisor still stops short).
-`robots/experiments/src/fig20_fetch_boxes.rs` runs it, seed {SEED}, and
-`robots/experiments/tests/fig20_fetch_boxes.rs` asserts what follows.
+`experiments/src/fig20_fetch_boxes.rs` runs it, seed {SEED}, and
+`experiments/tests/fig20_fetch_boxes.rs` asserts what follows.
 
 **The figure as printed does not complete**, on any floor plan, for three reasons:
 
