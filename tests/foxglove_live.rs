@@ -217,6 +217,24 @@ fn a_viewer_that_stops_reading_does_not_slow_the_run() {
     // viewer that holds its connection open.
     let took = seen["took"].as_f64().unwrap();
     assert!(took < 10.0, "the run took {took} s with a stalled viewer");
+    // What the SDK dropped for it is counted, and said: all it was published but what
+    // its backlog (1,024) and the two sockets' buffers (at most 12 KB, a message being
+    // 30 bytes or more) held.
+    let stderr = seen["stderr"].as_str().unwrap();
+    let count = |after: &str| -> u64 {
+        stderr
+            .split(after)
+            .nth(1)
+            .and_then(|rest| rest.split(' ').next())
+            .and_then(|n| n.parse().ok())
+            .unwrap_or_else(|| panic!("no `{after}` count:\n{stderr}"))
+    };
+    let (missed, of) = (count("viewer 1 fell behind the run: "), count(" of the "));
+    assert!(missed > 0 && missed <= of, "{stderr}");
+    assert!(
+        missed + 1024 + 12 * 1024 / 30 >= of,
+        "the viewer missed only {missed} of {of}:\n{stderr}"
+    );
 }
 
 /// Foxglove's client, for `seconds`, on `topics`.

@@ -5,9 +5,12 @@
 //!
 //! The tick never waits for a viewer. It hands its messages to an outbox of
 //! [`OUTBOX`] messages; a publisher thread encodes them and gives them to the SDK,
-//! which keeps [`BACKLOG`] messages per client and drops a slow client's oldest. When
-//! the outbox is full (the publisher is behind), the tick's messages are dropped and
-//! counted ([`Live::dropped`]); the viewer is told in a status message.
+//! which keeps [`BACKLOG`] messages per client and drops a slow client's oldest. Both
+//! drops are counted: when the outbox is full (the publisher is behind), the tick's
+//! messages are dropped ([`Live::dropped`]) and every viewer is told in a status
+//! message; what the SDK drops for one slow viewer is counted per viewer
+//! (through the patched SDK in `vendor/foxglove`; [`close`] says it on stderr) and that viewer is
+//! told, at most once every [`TELL_EVERY`].
 //!
 //! A viewer that connects late still sees the scene: when it subscribes to a scene
 //! topic, the world, the last [`KEPT_SCENES`] paths and trajectory pieces are sent
@@ -15,11 +18,11 @@
 
 use std::collections::VecDeque;
 use std::net::SocketAddr;
-use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::mpsc::{Receiver, RecvTimeoutError, SyncSender, TrySendError, sync_channel};
+use std::sync::{Arc, Mutex};
 use std::thread::JoinHandle;
-use std::time::Duration;
+use std::time::{Duration, Instant};
 
 use foxglove::schemas::log::Level;
 use foxglove::websocket::{Capability, Client, ServerListener, Status};
@@ -40,6 +43,9 @@ pub const OUTBOX: usize = 4096;
 pub const BACKLOG: usize = 1024;
 /// Paths and trajectory pieces a late viewer is sent again, newest first.
 pub const KEPT_SCENES: usize = 600;
+/// A slow viewer is told how much it has missed at most this often: the warning goes
+/// on its control queue, which the SDK does not let overflow (it disconnects instead).
+pub const TELL_EVERY: Duration = Duration::from_secs(1);
 
 /// What the publisher is sent: a message, or how many the tick has dropped so far.
 enum Post {
@@ -56,6 +62,7 @@ pub struct Live {
     dropped: u64,
     /// Drops not yet told to the viewer.
     untold: u64,
+    viewers: Viewers,
 }
 
 /// `--foxglove[=ADDR]`, shared by `run`, `shell`, `serve` and `sim`.
@@ -91,14 +98,81 @@ pub fn parse_addr(text: &str) -> Result<SocketAddr, String> {
         .map_err(|_| format!("--foxglove `{text}` is not HOST:PORT (e.g. {DEFAULT_ADDR})"))
 }
 
+/// Every client that has subscribed to something, in the order they first did: the
+/// ones the SDK can have dropped messages for. Their counts outlive their connections.
+#[derive(Clone, Default)]
+struct Viewers(Arc<Mutex<Vec<Viewer>>>);
+
+struct Viewer {
+    client: Client,
+    /// Messages published since it first subscribed, on any topic.
+    published: u64,
+    /// How much it had missed when last told.
+    told: u64,
+    told_at: Option<Instant>,
+}
+
+impl Viewers {
+    fn add(&self, client: Client) {
+        let mut all = self.0.lock().unwrap_or_else(|e| e.into_inner());
+        if all.iter().all(|v| v.client.id() != client.id()) {
+            all.push(Viewer {
+                client,
+                published: 0,
+                told: 0,
+                told_at: None,
+            });
+        }
+    }
+
+    /// What each viewer missed, and of how many published since it subscribed.
+    fn missed(&self) -> Vec<(u64, u64)> {
+        let all = self.0.lock().unwrap_or_else(|e| e.into_inner());
+        all.iter()
+            .map(|v| (v.client.dropped_messages(), v.published))
+            .collect()
+    }
+
+    fn published(&self) {
+        let mut all = self.0.lock().unwrap_or_else(|e| e.into_inner());
+        for v in all.iter_mut() {
+            v.published += 1;
+        }
+    }
+
+    /// Tells each viewer that has missed more since it was last told.
+    fn tell(&self, now: Instant) {
+        let mut all = self.0.lock().unwrap_or_else(|e| e.into_inner());
+        for v in all.iter_mut() {
+            let missed = v.client.dropped_messages();
+            let due = v
+                .told_at
+                .is_none_or(|t| now.duration_since(t) >= TELL_EVERY);
+            if missed > v.told && due {
+                v.client.send_status(
+                    Status::warning(format!(
+                        "ilmrc: {missed} messages dropped for this viewer so far (it is behind \
+                         the run; the server keeps {BACKLOG} per viewer)"
+                    ))
+                    .with_id("missed"),
+                );
+                v.told = missed;
+                v.told_at = Some(now);
+            }
+        }
+    }
+}
+
 /// Sets a topic's flag when a client subscribes to it: the publisher then sends the
-/// topic's kept messages again.
+/// topic's kept messages again. Keeps the client among the viewers.
 struct Subscriptions {
     resend: Arc<[AtomicBool; Topic::ALL.len()]>,
+    viewers: Viewers,
 }
 
 impl ServerListener for Subscriptions {
-    fn on_subscribe(&self, _client: Client, channel: foxglove::websocket::ChannelView) {
+    fn on_subscribe(&self, client: Client, channel: foxglove::websocket::ChannelView) {
+        self.viewers.add(client);
         if let Some(i) = Topic::ALL.iter().position(|t| t.name() == channel.topic()) {
             self.resend[i].store(true, Ordering::Relaxed);
         }
@@ -111,8 +185,10 @@ impl Live {
         let context = Context::new();
         let resend: Arc<[AtomicBool; Topic::ALL.len()]> =
             Arc::new(std::array::from_fn(|_| AtomicBool::new(false)));
+        let viewers = Viewers::default();
         let listener = Subscriptions {
             resend: resend.clone(),
+            viewers: viewers.clone(),
         };
         let mut channels = Vec::new();
         for topic in Topic::ALL {
@@ -139,6 +215,7 @@ impl Live {
             server,
             channels,
             resend,
+            viewers: viewers.clone(),
             kept: Kept::default(),
             bytes: Vec::new(),
             _context: context,
@@ -155,6 +232,7 @@ impl Live {
             outgoing: Vec::new(),
             dropped: 0,
             untold: 0,
+            viewers,
         };
         if let Some(w) = world {
             let world = live.messages.world(w);
@@ -280,6 +358,7 @@ struct Publisher {
     /// By [`Topic`].
     channels: Vec<Arc<RawChannel>>,
     resend: Arc<[AtomicBool; Topic::ALL.len()]>,
+    viewers: Viewers,
     kept: Kept,
     bytes: Vec<u8>,
     /// Holds the channels' sinks for as long as the server runs.
@@ -319,6 +398,7 @@ impl Publisher {
                 Err(RecvTimeoutError::Disconnected) => break,
             }
             self.resend_kept();
+            self.viewers.tell(Instant::now());
         }
         // Stopping discards what the SDK still queues for a client: a connected
         // viewer is given a moment to receive the run's last messages first.
@@ -362,6 +442,7 @@ impl Publisher {
                 log_time: Some(nanos(o.t)),
             },
         );
+        self.viewers.published();
     }
 }
 
@@ -387,13 +468,24 @@ fn open(addr: &str, task: &str, world: Option<&World>) -> Result<Live, String> {
     Ok(live)
 }
 
-/// Ends the live view, saying on stderr what a viewer missed.
+/// Ends the live view, saying on stderr what the viewers missed.
 pub fn close(live: Live) {
     let dropped = live.dropped();
+    let viewers = live.viewers.clone();
     live.finish();
     if dropped > 0 {
         eprintln!(
             "foxglove: {dropped} messages dropped (the viewer or this machine was behind the run)"
         );
+    }
+    for (i, (missed, of)) in viewers.missed().into_iter().enumerate() {
+        if missed > 0 {
+            eprintln!(
+                "foxglove: viewer {} fell behind the run: {missed} of the {of} messages \
+                 published since it subscribed were dropped (the server keeps {BACKLOG} per \
+                 viewer)",
+                i + 1
+            );
+        }
     }
 }

@@ -1,4 +1,6 @@
 use std::sync::Weak;
+use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::Arc;
 
 use super::Parameter;
 use super::Status;
@@ -14,6 +16,7 @@ pub struct Client {
     id: ClientId,
     sink_id: SinkId,
     client: Weak<ConnectedClient>,
+    dropped: Arc<AtomicU64>,
 }
 
 impl Client {
@@ -22,6 +25,7 @@ impl Client {
             id: client.id(),
             sink_id: client.sink_id(),
             client: client.weak().clone(),
+            dropped: client.dropped().clone(),
         }
     }
 
@@ -33,6 +37,15 @@ impl Client {
     /// Returns the client's sink ID.
     pub fn sink_id(&self) -> Option<SinkId> {
         Some(self.sink_id)
+    }
+
+    /// How many messages logged for this client were dropped because its queue was full
+    /// (a slow client: see [`WebSocketServer::message_backlog_size`]). The count stays
+    /// readable after the client disconnects.
+    ///
+    /// [`WebSocketServer::message_backlog_size`]: crate::WebSocketServer::message_backlog_size
+    pub fn dropped_messages(&self) -> u64 {
+        self.dropped.load(Ordering::Relaxed)
     }
 
     /// Send a status message to this client. Does nothing if client is disconnected.

@@ -1,6 +1,7 @@
 use std::collections::HashSet;
 use std::collections::hash_map::Entry;
 use std::sync::Weak;
+use std::sync::atomic::{AtomicU64, Ordering};
 use std::{collections::HashMap, net::SocketAddr, sync::Arc};
 
 use bimap::BiHashMap;
@@ -77,6 +78,11 @@ pub(super) struct ConnectedClient {
     schema_table: parking_lot::Mutex<SchemaTable>,
     data_plane_tx: flume::Sender<Message>,
     data_plane_rx: flume::Receiver<Message>,
+    /// Data-plane messages this client was never sent because its queue was full: the
+    /// oldest ones dropped to make room, and new ones dropped when no room could be made.
+    /// Shared with every [`Client`](super::Client) handle, so the count outlives the
+    /// connection.
+    dropped: Arc<AtomicU64>,
     control_plane_tx: flume::Sender<Message>,
     service_call_sem: Semaphore,
     fetch_asset_sem: Semaphore,
@@ -192,6 +198,7 @@ impl ConnectedClient {
             channels: parking_lot::RwLock::default(),
             schema_table: parking_lot::Mutex::default(),
             data_plane_tx,
+            dropped: Arc::default(),
             data_plane_rx,
             control_plane_tx,
             service_call_sem: Semaphore::new(DEFAULT_SERVICE_CALLS_PER_CLIENT),
@@ -301,13 +308,28 @@ impl ConnectedClient {
 
     /// Send the message on the data plane, dropping up to retries older messages to make room, if necessary.
     fn send_data_lossy(&self, message: impl Into<Message>, retries: usize) -> SendLossyResult {
-        send_lossy::send_lossy(
+        let result = send_lossy::send_lossy(
             &self.addr,
             &self.data_plane_tx,
             &self.data_plane_rx,
             message.into(),
             retries,
-        )
+        );
+        let lost = match result {
+            SendLossyResult::Sent => 0,
+            SendLossyResult::SentLossy(dropped) => dropped as u64,
+            // Every retry dropped an older message, and the new one was not sent either.
+            SendLossyResult::ExhaustedRetries => retries as u64 + 1,
+        };
+        if lost > 0 {
+            self.dropped.fetch_add(lost, Ordering::Relaxed);
+        }
+        result
+    }
+
+    /// The count of this client's dropped data-plane messages.
+    pub(super) fn dropped(&self) -> &Arc<AtomicU64> {
+        &self.dropped
     }
 
     /// Clears this client's schema table and enqueues `serverInfo` while holding the table lock.
