@@ -107,7 +107,8 @@ fn foxgloves_client_sees_the_channels_and_the_poses_of_the_trace() {
             String::from_utf8_lossy(&watch.stderr)
         )
     });
-    assert_eq!(seen["protocol"], "foxglove.sdk.v1");
+    // What a stock `@foxglove/ws-protocol` client offers: the protocol's first name.
+    assert_eq!(seen["protocol"], "foxglove.websocket.v1");
     assert_eq!(seen["serverInfo"]["name"], "ilmrc");
     assert_eq!(
         seen["serverInfo"]["capabilities"],
@@ -237,9 +238,11 @@ fn a_viewer_that_stops_reading_does_not_slow_the_run() {
     );
 }
 
-/// Foxglove's client, for `seconds`, on `topics`.
+/// Foxglove's client, for `seconds`, on `topics`, offering the SDK's name for the
+/// protocol.
 fn watch(url: &str, seconds: u32, topics: &[&str]) -> Value {
     let out = Command::new("node")
+        .env("FOXGLOVE_PROTOCOLS", "foxglove.sdk.v1")
         .arg(support::root().join("tests/foxglove/watch.mjs"))
         .arg(url)
         .arg(seconds.to_string())
@@ -270,6 +273,7 @@ fn serve_shows_its_robot_live() {
     let seen = watch(&url, 3, &["/pose", "/world", "/scan"]);
     let _ = child.kill();
     let _ = child.wait();
+    assert_eq!(seen["protocol"], "foxglove.sdk.v1");
     assert_eq!(seen["messages"]["/world"][0]["entities"][0], "office");
     let poses = seen["messages"]["/pose"].as_array().expect("poses");
     assert!(poses.len() >= 10, "{} poses in 3 s at 10 Hz", poses.len());

@@ -1,5 +1,5 @@
 //! `--foxglove [ADDR]`: the run live in Foxglove, over the Foxglove WebSocket protocol
-//! (subprotocol `foxglove.websocket.v1`, served by Foxglove's SDK), with the topics
+//! (subprotocol `foxglove.websocket.v1` or `foxglove.sdk.v1`, served by Foxglove's SDK), with the topics
 //! and messages of the recording ([`super`]) and the run's logical time as the
 //! viewer's clock.
 //!

@@ -6,7 +6,7 @@
 // { protocol, serverInfo, channels: [{topic, schemaName, encoding}], messages: {topic: [...]},
 //   time: last broadcast time (ns), statuses: [...] }
 //
-// Usage: node watch.mjs ws://127.0.0.1:PORT SECONDS TOPIC...
+// Usage: [FOXGLOVE_PROTOCOLS=a,b] node watch.mjs ws://127.0.0.1:PORT SECONDS TOPIC...
 
 import wsProtocol from "@foxglove/ws-protocol";
 import protobuf from "protobufjs";
@@ -49,10 +49,13 @@ const finish = (code) => {
   process.exit(code);
 };
 
-// The client offers the protocol under both its names: the ws-protocol package's
-// `foxglove.websocket.v1` and `foxglove.sdk.v1`, the name Foxglove's SDK (and so
-// ilmrc) negotiates since the protocol moved into the SDK.
-const ws = new WebSocket(url, [FoxgloveClient.SUPPORTED_SUBPROTOCOL, "foxglove.sdk.v1"]);
+// The client offers what the ws-protocol package offers, `foxglove.websocket.v1`, unless
+// FOXGLOVE_PROTOCOLS names others (comma-separated), such as `foxglove.sdk.v1`, the name
+// Foxglove's SDK took when the protocol moved into it.
+const protocols = process.env.FOXGLOVE_PROTOCOLS
+  ? process.env.FOXGLOVE_PROTOCOLS.split(",")
+  : [FoxgloveClient.SUPPORTED_SUBPROTOCOL];
+const ws = new WebSocket(url, protocols);
 ws.on("open", () => {
   out.protocol = ws.protocol;
 });

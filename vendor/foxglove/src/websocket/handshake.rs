@@ -5,6 +5,9 @@ use tokio_tungstenite::{WebSocketStream, tungstenite};
 
 pub(crate) const SUBPROTOCOL_V1: &str = "foxglove.sdk.v1";
 pub(crate) const SUBPROTOCOL_V1_1: &str = "foxglove.sdk.v1.1";
+/// The protocol's name before it moved into the SDK, which `@foxglove/ws-protocol` clients
+/// still offer by default: the same messages as `foxglove.sdk.v1`. (Patched in for ILMR.)
+pub(crate) const SUBPROTOCOL_WEBSOCKET_V1: &str = "foxglove.websocket.v1";
 
 /// The WebSocket subprotocol negotiated with a client.
 ///
@@ -46,11 +49,25 @@ impl Subprotocol {
 ///
 /// The server prefers the newest subprotocol it supports, regardless of the order in which the
 /// client listed them. Returns `None` if the client did not offer a supported subprotocol.
+#[cfg(test)]
 fn select_subprotocol<'a>(offered: impl IntoIterator<Item = &'a str>) -> Option<Subprotocol> {
+    select_named(offered).map(|(subprotocol, _)| subprotocol)
+}
+
+/// The subprotocol [`select_subprotocol`] selects, with the name to answer the client in:
+/// one it offered. `foxglove.websocket.v1` is taken as `foxglove.sdk.v1` when the client
+/// offers neither SDK name.
+fn select_named<'a>(
+    offered: impl IntoIterator<Item = &'a str>,
+) -> Option<(Subprotocol, &'static str)> {
     offered
         .into_iter()
-        .filter_map(|name| Subprotocol::from_name(name.trim()))
-        .max_by_key(|subprotocol| match subprotocol {
+        .filter_map(|name| match name.trim() {
+            SUBPROTOCOL_WEBSOCKET_V1 => Some((Subprotocol::V1, SUBPROTOCOL_WEBSOCKET_V1)),
+            name => Subprotocol::from_name(name).map(|s| (s, s.as_str())),
+        })
+        .max_by_key(|&(subprotocol, name)| match subprotocol {
+            Subprotocol::V1 if name == SUBPROTOCOL_WEBSOCKET_V1 => 0,
             Subprotocol::V1 => 1,
             Subprotocol::V1_1 => 2,
         })
@@ -73,7 +90,7 @@ pub(crate) async fn do_handshake<S: AsyncRead + AsyncWrite + Unpin>(
                 .get_all("sec-websocket-protocol")
                 .iter()
                 .flat_map(|header| header.to_str().unwrap_or_default().split(','));
-            let Some(subprotocol) = select_subprotocol(offered) else {
+            let Some((subprotocol, name)) = select_named(offered) else {
                 return Err(server::Response::builder()
                     .status(400)
                     .body(Some(
@@ -83,7 +100,7 @@ pub(crate) async fn do_handshake<S: AsyncRead + AsyncWrite + Unpin>(
             };
             res.headers_mut().insert(
                 "sec-websocket-protocol",
-                HeaderValue::from_static(subprotocol.as_str()),
+                HeaderValue::from_static(name),
             );
             negotiated = Some(subprotocol);
             Ok(res)
