@@ -9,10 +9,7 @@ fn main() {
 }
 
 fn office() -> ilmr_sim::World {
-    match ilmr_sim::world::shipped("office") {
-        Some(Ok(w)) => w,
-        _ => panic!("the office world ships with the crate"),
-    }
+    ilmr_experiments::harness::shipped("office").unwrap_or_else(|e| panic!("{e}"))
 }
 
 /// Figure 52's task compiled for MoRo, as `ilmrc run` compiles it.

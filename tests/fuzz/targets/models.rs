@@ -98,9 +98,8 @@ fn entries(model: &RobotModel) -> serde_json::Value {
     serde_json::to_value(&m).unwrap_or_default()
 }
 
-/// The simulated body and the VM as `ilmrc run` sets them up from a model. The bin's
-/// own mapping (`src/run/setup.rs`) is private to it, so the fields that come from
-/// the model are restated here.
+/// The simulated body and the VM as `ilmrc run` sets them up from a model
+/// (`Config::for_robot`, as `src/run/setup.rs` calls it).
 fn simulate(module: ilmr_vm::Module, model: &RobotModel, world: &World) {
     let kind = if model.nav_rate().is_some() {
         RobotKind::Workpartner
@@ -110,21 +109,11 @@ fn simulate(module: ilmr_vm::Module, model: &RobotModel, world: &World) {
     let Ok(robot) = SimRobot::new(model.clone(), kind, world.clone(), 1) else {
         return;
     };
+    let body = robot.sim().config().offsets();
     let config = Config {
         budget_ops: 500,
         trace: TraceLevel::Commands,
-        default_speed: model.default_speed(),
-        max_curvature: model.max_curvature(),
-        curinc: model.curinc(),
-        turn_curvature: 0.75 * model.max_curvature(),
-        acceleration: model.max_acceleration(),
-        deceleration: model.max_deceleration(),
-        robot_width: model.robot_width(),
-        robot_length: model.robot_length(),
-        followwall_d: model.followwall_d(),
-        obstacle_curvature: model.omax_curvature(),
-        security_wait: model.bs_security(),
-        ..Config::default()
+        ..Config::for_robot(model, Some(body))
     };
     let Ok(mut vm) = Vm::new(module, robot, SimClock, config) else {
         panic!("Vm::new refused a lowered module");
