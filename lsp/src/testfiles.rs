@@ -8,6 +8,7 @@ use std::collections::{BTreeSet, HashMap};
 use std::path::PathBuf;
 
 use ilmr_compiler::Span;
+use ilmr_testfile::codes::Code;
 use ilmr_testfile::complete::{self, Candidate, Candidates, Spot, What};
 use ilmr_testfile::file::Outline;
 use ilmr_testfile::problem::Problem;
@@ -38,6 +39,14 @@ struct TestDoc {
 }
 
 impl TestDoc {
+    fn path(&self) -> PathBuf {
+        // A document not saved anywhere is read as if in the working directory.
+        self.uri
+            .to_file_path()
+            .map(|p| p.into_owned())
+            .unwrap_or_else(|| PathBuf::from(ilmr_testfile::SUFFIX))
+    }
+
     fn check(&mut self) {
         self.too_large = self.text.len() as u64 > ilmr_files::Kind::Scenario.limit();
         if self.too_large {
@@ -45,15 +54,31 @@ impl TestDoc {
             self.outlines.clear();
             return;
         }
-        // A document not saved anywhere is read as if in the working directory.
-        let path = self
-            .uri
-            .to_file_path()
-            .map(|p| p.into_owned())
-            .unwrap_or_else(|| PathBuf::from(ilmr_testfile::SUFFIX));
-        let read = ilmr_testfile::file::check(&path, self.text.clone());
+        let read = ilmr_testfile::file::check(&self.path(), self.text.clone());
         self.problems = read.file.err().unwrap_or_default();
         self.outlines = read.outlines;
+    }
+
+    /// While an assertion is typed its string is often not closed yet, and the file is
+    /// no TOML: the text as it would be with the string (and the array) closed at the
+    /// cursor, and its outlines, when that makes the cursor's place an assertion.
+    fn closed_at(&self, offset: usize) -> Option<(String, Vec<Outline>)> {
+        let not_toml = self.problems.iter().any(|p| p.code == Code::NotToml);
+        if !not_toml || !self.text.is_char_boundary(offset) {
+            return None;
+        }
+        for closer in ["\"", "\"]"] {
+            let mut text = self.text.clone();
+            text.insert_str(offset, closer);
+            let read = ilmr_testfile::file::check(&self.path(), text.clone());
+            if matches!(
+                complete::spot(&text, &read.outlines, offset),
+                Spot::Assertion { .. }
+            ) {
+                return Some((text, read.outlines));
+            }
+        }
+        None
     }
 
     fn diagnostics(&self) -> Vec<Diagnostic> {
@@ -208,11 +233,16 @@ impl TestFiles {
             return CompletionList::default();
         };
         let offset = doc.index.offset(&doc.text, position);
-        let (candidates, start) = match complete::spot(&doc.text, &doc.outlines, offset) {
+        let closed = doc.closed_at(offset);
+        let (text, outlines) = match &closed {
+            Some((text, outlines)) => (text.as_str(), outlines.as_slice()),
+            None => (doc.text.as_str(), doc.outlines.as_slice()),
+        };
+        let (candidates, start) = match complete::spot(text, outlines, offset) {
             Spot::Assertion { outline, base } => {
-                let start = in_backticks(&doc.text, base, offset)
-                    .unwrap_or_else(|| complete::word_start(&doc.text, offset).max(base));
-                (complete::assertion(&doc.text, outline, base, offset), start)
+                let start = in_backticks(text, base, offset)
+                    .unwrap_or_else(|| complete::word_start(text, offset).max(base));
+                (complete::assertion(text, outline, base, offset), start)
             }
             Spot::Key => (
                 complete::keys(&doc.text, offset),

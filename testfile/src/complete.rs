@@ -98,14 +98,14 @@ pub fn assertion(text: &str, outline: &Outline, base: usize, offset: usize) -> C
     };
     let ctx = outline.context();
     // Inside a backtick: the statement's text, without the backticks.
-    if prefix.matches('`').count() % 2 == 1 {
-        let open = prefix.rfind('`').unwrap_or(0);
-        let wanted = assertion::wants(&prefix[..open], &ctx);
+    let whole = text.get(base..offset).unwrap_or("");
+    if whole.matches('`').count() % 2 == 1 {
+        let open = whole.rfind('`').unwrap_or(0);
+        let wanted = assertion::wants(&whole[..open], &ctx);
         if !wanted.contains(&Want::Text) {
             return Candidates::default();
         }
-        let typed = &prefix[open + 1..];
-        return ranked(texts(outline, false), typed);
+        return texts(outline, false, &whole[open + 1..]);
     }
     let mut out = Candidates::default();
     for want in assertion::wants(prefix, &ctx) {
@@ -114,17 +114,28 @@ pub fn assertion(text: &str, outline: &Outline, base: usize, offset: usize) -> C
                 vec![keyword(w)]
             }
             Want::Word(_) => Vec::new(),
-            Want::Line => outline
-                .statements
-                .iter()
-                .map(|(l, t)| Candidate {
-                    label: l.to_string(),
-                    what: What::Line,
-                    detail: Some(t.clone()),
-                    insert: l.to_string(),
-                })
-                .collect(),
-            Want::Text => texts(outline, true),
+            Want::Line => {
+                let part = ranked_by(
+                    &outline.statements,
+                    |(l, _)| l.to_string(),
+                    |(l, t)| Candidate {
+                        label: l.to_string(),
+                        what: What::Line,
+                        detail: Some(t.clone()),
+                        insert: l.to_string(),
+                    },
+                    typed,
+                );
+                out.incomplete |= part.incomplete;
+                out.items.extend(part.items);
+                continue;
+            }
+            Want::Text => {
+                let part = texts(outline, true, typed);
+                out.incomplete |= part.incomplete;
+                out.items.extend(part.items);
+                continue;
+            }
             Want::Variable => outline
                 .variables
                 .iter()
@@ -202,11 +213,11 @@ fn keyword(w: &'static str) -> Candidate {
     }
 }
 
-fn texts(outline: &Outline, backticks: bool) -> Vec<Candidate> {
-    outline
-        .statements
-        .iter()
-        .map(|(l, t)| Candidate {
+fn texts(outline: &Outline, backticks: bool, typed: &str) -> Candidates {
+    ranked_by(
+        &outline.statements,
+        |(_, t)| t.clone(),
+        |(l, t)| Candidate {
             label: t.clone(),
             what: What::Text,
             detail: Some(format!("line {l}")),
@@ -215,8 +226,46 @@ fn texts(outline: &Outline, backticks: bool) -> Vec<Candidate> {
             } else {
                 t.clone()
             },
-        })
-        .collect()
+        },
+        typed,
+    )
+}
+
+/// [`ranked`] over many items (a task's lines), making candidates only of those kept:
+/// a 100,000-line task offers 100 of its lines, not 100,000 made and cut.
+fn ranked_by<T>(
+    items: &[T],
+    label: impl Fn(&T) -> String,
+    make: impl Fn(&T) -> Candidate,
+    typed: &str,
+) -> Candidates {
+    let typed = typed.to_ascii_lowercase();
+    let mut kept: Vec<&T> = Vec::new();
+    let mut more = false;
+    for first in [true, false] {
+        for item in items {
+            let l = label(item).to_ascii_lowercase();
+            let fits = if first {
+                l.starts_with(&typed)
+            } else {
+                !l.starts_with(&typed) && l.contains(&typed)
+            };
+            if fits {
+                if kept.len() == MAX_CANDIDATES {
+                    more = true;
+                    break;
+                }
+                kept.push(item);
+            }
+        }
+        if more {
+            break;
+        }
+    }
+    Candidates {
+        items: kept.into_iter().map(make).collect(),
+        incomplete: more,
+    }
 }
 
 /// Those that begin with what is typed (ignoring case), then those that contain it, in

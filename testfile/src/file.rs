@@ -2,8 +2,10 @@
 //! defaults. Read with every value's span, so that each problem is said where it is;
 //! all of a file's problems are found, not just the first.
 
+use std::collections::HashMap;
 use std::ops::Range;
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 
 use toml::Spanned;
 use toml::de::{DeTable, DeValue};
@@ -131,8 +133,9 @@ pub struct Outline {
     /// Each string of its `assert`: the string's span, and where its content starts
     /// when the bytes there are the content as read (no escapes).
     pub asserts: Vec<(Range<usize>, Option<usize>)>,
-    /// The task's statements, line and text; empty when it could not be read.
-    pub statements: Vec<(u32, String)>,
+    /// The task's statements, line and text; empty when it could not be read. Shared
+    /// by the tests of one task.
+    pub statements: Arc<Vec<(u32, String)>>,
     pub variables: Vec<String>,
     /// The world's named places, for a simulated robot.
     pub objects: Option<Vec<Place>>,
@@ -225,6 +228,7 @@ fn read_into(
         return Err(problems);
     };
     let mut names: Vec<(String, Range<usize>)> = Vec::new();
+    let mut tasks = Tasks::new();
     for item in array.iter() {
         let Some(table) = item.get_ref().as_table() else {
             problems.push(Problem::new(
@@ -269,6 +273,7 @@ fn read_into(
             header: header.clone(),
             problems: &mut problems,
             notes,
+            tasks: &mut tasks,
             outline: Outline {
                 span: header.clone(),
                 ..Outline::default()
@@ -313,8 +318,12 @@ struct Reader<'a, 'p> {
     header: Range<usize>,
     problems: &'p mut Vec<Problem>,
     notes: &'p mut Vec<Note>,
+    /// Each task's statements, read once for all the tests of the file.
+    tasks: &'p mut Tasks,
     outline: Outline,
 }
+
+type Tasks = HashMap<PathBuf, Result<Arc<Vec<(u32, String)>>, String>>;
 
 impl<'a> Reader<'a, '_> {
     fn get(&self, key: &str) -> Option<&'a Spanned<DeValue<'a>>> {
@@ -778,15 +787,21 @@ impl<'a> Reader<'a, '_> {
                 (span, base)
             })
             .collect();
-        let source = match crate::sources::read_source(task) {
-            Ok(s) => s.text,
+        let read = self
+            .tasks
+            .entry(task.to_path_buf())
+            .or_insert_with(|| {
+                crate::sources::read_source(task).map(|s| Arc::new(statements(&s.text)))
+            })
+            .clone();
+        let statements = match read {
+            Ok(s) => s,
             Err(e) => {
                 self.problems
                     .push(Problem::new(Code::MissingFile, self.header.clone(), e));
                 return Vec::new();
             }
         };
-        let statements = statements(&source);
         // A skill's variables are the task's too: its statements run in the task.
         let skills: Vec<String> = skills
             .and_then(|dir| {

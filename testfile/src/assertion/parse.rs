@@ -334,11 +334,13 @@ impl Parser<'_, '_> {
     }
 
     fn goal(&mut self) -> Result<Goal, Problem> {
-        self.want([Want::Text, Want::Word("line"), Want::Variable]);
+        // Keywords first: a task's texts and variables may be many.
+        self.words(&["line"]);
         if self.ctx.poses {
             self.words(&["robot"]);
         }
         self.happenings();
+        self.want([Want::Variable, Want::Text]);
         match self.peek() {
             Some(Tok::Quoted(_)) => self.ends(),
             Some(Tok::Word(w)) if w.eq_ignore_ascii_case("line") => self.ends(),
