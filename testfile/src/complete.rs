@@ -320,7 +320,9 @@ pub fn hover_assertion(
     end: usize,
     offset: usize,
 ) -> Option<(String, Range<usize>)> {
-    let content = text.get(base..end)?;
+    // The string's closing quotes may be in `base..end` (a multi-line string's
+    // three): an assertion never ends with a quote.
+    let content = text.get(base..end)?.trim_end_matches(['"', '\'']);
     let toks = assertion::tokens(content)?;
     let at = offset.checked_sub(base)?;
     let i = toks.iter().position(|(_, r)| r.start <= at && at < r.end)?;

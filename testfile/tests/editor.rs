@@ -263,3 +263,19 @@ fn many_lines_are_cut_to_the_cap_and_marked_incomplete() {
     assert_eq!(lines, complete::MAX_CANDIDATES);
     assert!(got.incomplete);
 }
+
+#[test]
+fn hover_in_a_multi_line_string_reads_past_its_quotes() {
+    let dir = folder("hover_literal");
+    let text =
+        "task = \"task.ilmr\"\n[[test]]\nname = \"t\"\nassert = ['''eventually: line 5 ends''']\n";
+    let read = read(&dir, text);
+    assert!(read.file.is_ok());
+    let outline = &read.outlines[0];
+    let (span, base) = outline.asserts[0].clone();
+    let base = base.expect("a literal string's content is its bytes");
+    let at = text.find("5 ends").unwrap();
+    let (said, _) =
+        complete::hover_assertion(text, outline, base, span.end - 1, at).expect("a line reference");
+    assert_eq!(said, "line 5 of the task: `m=goahead(0.7)`");
+}
