@@ -25,6 +25,7 @@ use crate::lens::{self, BreakAt, FileLens};
 use crate::navigation::{self, RenameError};
 use crate::robot::{self, Robot};
 use crate::run::{self, Invocation, LastRun};
+use crate::testfiles::{self, TestFiles};
 use crate::workspace::{Document, FileKind, Workspace};
 use crate::{completion, hover, outline, semantic, signature, symbols, units};
 
@@ -71,6 +72,8 @@ pub struct Engine {
     lens: RefCell<LensCache>,
     /// Each task's last run (the "run in simulator" lens), by URI.
     runs: HashMap<String, LastRun>,
+    /// Open test files (`*.test.toml`), apart from the program.
+    tests: TestFiles,
 }
 
 impl Default for Engine {
@@ -101,6 +104,7 @@ impl Engine {
             stale: None,
             lens: RefCell::default(),
             runs: HashMap::new(),
+            tests: TestFiles::default(),
         }
     }
 
@@ -120,6 +124,9 @@ impl Engine {
     // ------------------------------------------------------------ changes
 
     pub fn open(&mut self, uri: Uri, version: i32, text: String) -> Vec<Publish> {
+        if testfiles::is_test(&uri) {
+            return self.tests.open(uri, version, text);
+        }
         let kind = FileKind::of(uri.as_str());
         if self.workspace.open(uri, version, text) {
             self.recheck(kind == Some(FileKind::RobotModel))
@@ -146,6 +153,9 @@ impl Engine {
         version: i32,
         changes: Vec<TextDocumentContentChangeEvent>,
     ) {
+        if testfiles::is_test(uri) {
+            return self.tests.change(uri, version, changes);
+        }
         if self.workspace.change(uri, version, changes) {
             let model = FileKind::of(uri.as_str()) == Some(FileKind::RobotModel);
             self.stale = Some(self.stale.unwrap_or(false) | model);
@@ -155,11 +165,19 @@ impl Engine {
     /// Checks the edits applied since the last check, if any: what to publish.
     /// Queries call it first, so that they never answer from an older text's analysis.
     pub fn refresh(&mut self) -> Option<Vec<Publish>> {
-        let model = self.stale.take()?;
-        Some(self.recheck(model))
+        let tests = self.tests.refresh();
+        let Some(model) = self.stale.take() else {
+            return tests;
+        };
+        let mut out = self.recheck(model);
+        out.extend(tests.into_iter().flatten());
+        Some(out)
     }
 
     pub fn close(&mut self, uri: &Uri) -> Vec<Publish> {
+        if testfiles::is_test(uri) {
+            return self.tests.close(uri);
+        }
         self.workspace.close(uri);
         self.recheck(FileKind::of(uri.as_str()) == Some(FileKind::RobotModel))
     }
@@ -177,11 +195,15 @@ impl Engine {
             model |= self.robot.file.as_ref().is_some_and(|f| f == uri);
             changed |= model;
         }
-        if changed {
+        // What a test file names (its task, skills, world, model) is read from disk.
+        let tests = self.tests.recheck();
+        let mut out = if changed {
             self.recheck(model)
         } else {
             Vec::new()
-        }
+        };
+        out.extend(tests);
+        out
     }
 
     pub fn configure(&mut self, robot: Option<String>) -> Vec<Publish> {
@@ -264,6 +286,9 @@ impl Engine {
     }
 
     pub fn diagnostics(&self, uri: &Uri) -> Vec<Diagnostic> {
+        if testfiles::is_test(uri) {
+            return self.tests.diagnostics(uri);
+        }
         if self.workspace.get(uri).is_some_and(too_large) {
             return vec![diagnostics::too_large()];
         }
@@ -295,6 +320,9 @@ impl Engine {
     /// Completion as the client gets it: incomplete when variables were left out
     /// ([`completion::MAX_VARIABLE_ITEMS`]), so that it asks again as a name is typed.
     pub fn completion_list(&self, uri: &Uri, position: Position) -> CompletionList {
+        if testfiles::is_test(uri) {
+            return self.tests.completion(uri, position);
+        }
         let Some((doc, file, offset)) = self.at(uri, position) else {
             return CompletionList::default();
         };
@@ -309,6 +337,9 @@ impl Engine {
     }
 
     pub fn hover(&self, uri: &Uri, position: Position) -> Option<Hover> {
+        if testfiles::is_test(uri) {
+            return self.tests.hover(uri, position);
+        }
         let (doc, file, offset) = self.at(uri, position)?;
         let (value, span) = hover::hover(&self.program, &self.robot.model, file, offset)?;
         Some(Hover {

@@ -27,6 +27,7 @@ pub mod semantic;
 pub mod server;
 pub mod signature;
 pub mod symbols;
+pub mod testfiles;
 pub mod transport;
 pub mod units;
 pub mod workspace;

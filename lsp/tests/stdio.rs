@@ -658,3 +658,146 @@ fn a_workspace_of_deeply_nested_files_is_served() {
     }
     s.shut_down();
 }
+
+/// A test file (`*.test.toml`) over stdio: every problem `ilmrc test` reports, with its
+/// span and code; completion of an assertion's words and of line references; hover on
+/// a line reference; re-checked on edits, cleared on close.
+#[test]
+fn a_test_file_over_stdio() {
+    let root = workspace("test_file");
+    std::fs::write(
+        root.join("task.ilmr"),
+        "speed(0.4)\ngoahead(1.2)\nm=goahead(0.7)\nwait(m)\n",
+    )
+    .unwrap();
+    let test = uri(&root, "task.test.toml");
+    let text = "task = \"task.ilmr\"\nseed = 1\nworld = \"nowhere.toml\"\n\n[[test]]\nname = \"t\"\nassert = [\"before(line \", \"eventualy: line 9 ends\"]\n";
+    let mut s = Server::start(&root);
+    s.initialize();
+    s.notify(
+        "textDocument/didOpen",
+        json!({"textDocument": {"uri": test, "languageId": "toml", "version": 1, "text": text}}),
+    );
+    let published = s.diagnostics(&test);
+    let found: Vec<(String, Value, Value)> = published["diagnostics"]
+        .as_array()
+        .expect("a list")
+        .iter()
+        .map(|d| {
+            let first = d["message"].as_str().unwrap_or("").lines().nth(1);
+            (
+                d["code"].as_str().unwrap_or("").to_string(),
+                d["range"]["start"].clone(),
+                json!(first),
+            )
+        })
+        .collect();
+    assert_eq!(
+        found,
+        [
+            (
+                "A0102".to_string(),
+                position(1, 0),
+                json!("unknown key `seed`")
+            ),
+            (
+                "A0106".to_string(),
+                position(2, 8),
+                json!(format!("no file `{}`", root.join("nowhere.toml").display()))
+            ),
+        ],
+        "{published}"
+    );
+    assert_eq!(published["version"], 1);
+
+    // With the world fixed, the assertions are read: each mistake is said where it is.
+    let fixed = text.replace("world = \"nowhere.toml\"", "world = \"empty\"");
+    s.notify(
+        "textDocument/didChange",
+        json!({"textDocument": {"uri": test, "version": 2},
+               "contentChanges": [{"text": fixed}]}),
+    );
+    let published = s.diagnostics(&test);
+    let codes: Vec<(&str, Value)> = published["diagnostics"]
+        .as_array()
+        .expect("a list")
+        .iter()
+        .map(|d| {
+            (
+                d["code"].as_str().unwrap_or(""),
+                d["range"]["start"].clone(),
+            )
+        })
+        .collect();
+    assert_eq!(
+        codes,
+        [
+            ("A0102", position(1, 0)),
+            // An assertion's end is where its text ends, less trailing spaces.
+            ("A0201", position(6, 22)),
+            ("A0201", position(6, 27)),
+        ],
+        "{published}"
+    );
+    assert!(
+        published["diagnostics"][2]["message"]
+            .as_str()
+            .is_some_and(|m| m.ends_with("help: did you mean `eventually`?")),
+        "{published}"
+    );
+
+    let items = s.request(
+        "textDocument/completion",
+        json!({"textDocument": {"uri": test}, "position": position(6, 23)}),
+    );
+    let lines: Vec<(String, String)> = items["result"]["items"]
+        .as_array()
+        .expect("a list")
+        .iter()
+        .map(|i| {
+            (
+                i["label"].as_str().unwrap_or("").to_string(),
+                i["detail"].as_str().unwrap_or("").to_string(),
+            )
+        })
+        .collect();
+    assert_eq!(
+        lines,
+        [
+            ("1".to_string(), "speed(0.4)".to_string()),
+            ("2".to_string(), "goahead(1.2)".to_string()),
+            ("3".to_string(), "m=goahead(0.7)".to_string()),
+            ("4".to_string(), "wait(m)".to_string()),
+        ]
+    );
+    let words = s.request(
+        "textDocument/completion",
+        json!({"textDocument": {"uri": test}, "position": position(6, 32)}),
+    );
+    let first = &words["result"]["items"][0];
+    assert_eq!(first["label"], "eventually", "{words}");
+    assert_eq!(
+        first["textEdit"]["range"],
+        json!({"start": position(6, 27), "end": position(6, 32)}),
+        "the word being typed is replaced"
+    );
+
+    let hover = s.request(
+        "textDocument/hover",
+        json!({"textDocument": {"uri": test}, "position": position(0, 2)}),
+    );
+    assert!(
+        hover["result"]["contents"]["value"]
+            .as_str()
+            .is_some_and(|v| v.starts_with("`task`: the task file")),
+        "{hover}"
+    );
+
+    s.notify(
+        "textDocument/didClose",
+        json!({"textDocument": {"uri": test}}),
+    );
+    let cleared = s.diagnostics(&test);
+    assert_eq!(cleared["diagnostics"], json!([]));
+    s.shut_down();
+}

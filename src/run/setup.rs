@@ -3,33 +3,13 @@
 
 use ilmr_hal::Limits;
 use ilmr_model::RobotModel;
-use ilmr_sim::{RobotKind, SimProfile, SimRobot, World};
+use ilmr_sim::{RobotKind, SimProfile, SimRobot};
 
 use super::backend::{AnyRobot, NoRobot, Ros2, Simulated};
 use super::scenario::Scenario;
 use crate::ros2::Ros2Args;
 
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Backend {
-    /// No robot: only control flow, arithmetic, waits and skills.
-    None,
-    /// The deterministic scripted robot of `ilmr-hal`, driven by `--scenario`.
-    Scripted,
-    /// `ilmr-sim`'s robot with this body, in a world.
-    Sim(RobotKind),
-    /// A ROS 2 robot over DDS (`ilmr-ros2`), bounded by the model's limits.
-    Ros2,
-}
-
-/// A world and the text it was read from (the trace carries the text, so that
-/// `ilmrc replay` draws the same world).
-#[derive(Debug, Clone)]
-pub struct LoadedWorld {
-    pub world: World,
-    /// `office`, or the file's path.
-    pub name: String,
-    pub text: String,
-}
+pub use ilmr_testfile::place::{Backend, LoadedWorld};
 
 pub struct Setup {
     pub backend: Backend,
@@ -44,15 +24,6 @@ pub struct Setup {
     pub ros2: Option<ilmr_ros2::Ros2Config>,
 }
 
-/// Starts used instead of a shipped world's own `start`: the office's is beside the lab
-/// bench, where the Figure 52 task's left turn (radius 2 m) runs into the bench; south
-/// of the bench there is room for it. `--start` overrides both; Figure 20 starts in the
-/// office's north wing, in the robot's room facing its door (`--start 8,21,90`).
-const RUN_STARTS: [(&str, f64, f64, f64); 1] = [("office", 8.0, 5.0, 0.0)];
-
-/// The names `--robot` takes besides a ROBO.INI path.
-pub const ROBOT_NAMES: &str = "moro, workpartner, ros2, none, scripted";
-
 pub struct Choice<'a> {
     pub robot: &'a str,
     /// `--sim-profile`, when given.
@@ -63,13 +34,10 @@ pub struct Choice<'a> {
     pub ros2: &'a Ros2Args,
 }
 
+/// The robot, world and start as `ilmr_testfile::place` places them (a test file's are
+/// checked there too), with a ROS 2 robot's settings.
 pub fn choose(c: &Choice<'_>) -> Result<Setup, String> {
-    let backend = match c.robot.to_ascii_lowercase().as_str() {
-        "none" => Backend::None,
-        "scripted" => Backend::Scripted,
-        crate::ros2::ROBOT_NAME => Backend::Ros2,
-        _ => Backend::Sim(RobotKind::Moro),
-    };
+    let backend = Backend::of(c.robot);
     if backend != Backend::Ros2
         && let Some(flag) = c.ros2.given()
     {
@@ -78,129 +46,27 @@ pub fn choose(c: &Choice<'_>) -> Result<Setup, String> {
             c.robot
         ));
     }
-    if let Backend::Sim(_) = backend {
-        if c.model.is_some() {
-            return Err(format!(
-                "--model is for --robot ros2|none|scripted; the simulated robot `{}` is its own model",
-                c.robot
-            ));
-        }
-        let builtin = RobotModel::builtin(c.robot).is_some();
-        // A missing file is an error here, where `check` warns and uses the defaults:
-        // a run drives the body the file describes. Anything else wrong with the path
-        // (a directory, a device) is said as `check` says it.
-        if !builtin && c.robot.contains(['/', '\\', '.']) && !std::path::Path::new(c.robot).exists()
-        {
-            return Err(format!(
-                "cannot read robot model `{}`: no such file",
-                c.robot
-            ));
-        }
-        let loaded = crate::inputs::load_robot(c.robot).map_err(|e| {
-            if e.starts_with("unknown robot") {
-                format!(
-                    "unknown robot `{}`: use {ROBOT_NAMES} or a path to a ROBO.INI file",
-                    c.robot
-                )
-            } else {
-                e
-            }
-        })?;
-        crate::inputs::warn_about(c.robot, &loaded.warnings);
-        let kind = body_of(c.robot, &loaded.model);
-        let mut world = load_world(c.world.unwrap_or(default_world(kind)))?;
-        if let Some(text) = c.start {
-            world.world.start = parse_start(text, &world.world)?;
-        } else if let Some(&(_, x, y, h)) = RUN_STARTS.iter().find(|(n, ..)| *n == world.name) {
-            world.world.start = ilmr_sim::Pose::new(x, y, f64::to_radians(h));
-        }
-        return Ok(Setup {
-            backend: Backend::Sim(kind),
-            profile: c.profile.unwrap_or_default(),
-            model_spec: c.robot.to_string(),
-            model: loaded.model,
-            world: Some(world),
-            ros2: None,
-        });
-    }
-    if let Some(p) = c.profile {
-        return Err(format!(
-            "--sim-profile {p} sets a simulated robot's errors; --robot {} is not simulated",
-            c.robot
-        ));
-    }
-    for (flag, given) in [("--world", c.world), ("--start", c.start)] {
-        if given.is_some() {
-            return Err(format!(
-                "{flag} places a simulated robot; --robot {} has no world",
-                c.robot
-            ));
-        }
-    }
-    let model_spec = c.model.unwrap_or("moro").to_string();
-    let model = crate::inputs::load_robot_model(&model_spec)?;
-    let ros2 = match backend {
-        Backend::Ros2 => Some(c.ros2.config(&model)?),
+    let placed = ilmr_testfile::place::place(
+        &ilmr_testfile::place::Choice {
+            robot: c.robot,
+            profile: c.profile,
+            model: c.model,
+            world: c.world,
+            start: c.start,
+        },
+        &mut crate::inputs::warn_about,
+    )?;
+    let ros2 = match placed.backend {
+        Backend::Ros2 => Some(c.ros2.config(&placed.model)?),
         _ => None,
     };
     Ok(Setup {
-        backend,
-        profile: SimProfile::Basic,
-        model_spec,
-        model,
-        world: None,
+        backend: placed.backend,
+        profile: placed.profile,
+        model_spec: placed.model_spec,
+        model: placed.model,
+        world: placed.world,
         ros2,
-    })
-}
-
-/// The simulated body of a model: the shipped models name theirs; a ROBO.INI file gets
-/// Workpartner's when it describes a navigation subsystem (`nav_rate`), as Workpartner's
-/// model does, and MoRo's otherwise.
-pub fn body_of(spec: &str, model: &RobotModel) -> RobotKind {
-    if spec.eq_ignore_ascii_case("workpartner") || model.nav_rate().is_some() {
-        RobotKind::Workpartner
-    } else {
-        RobotKind::Moro
-    }
-}
-
-/// Where each robot feels at home: MoRo in the office (its test site at VTT), Workpartner
-/// in the yard (its test site outdoors).
-pub fn default_world(kind: RobotKind) -> &'static str {
-    match kind {
-        RobotKind::Moro => "office",
-        RobotKind::Workpartner => "yard",
-    }
-}
-
-/// A shipped world by name, or a world file.
-pub fn load_world(spec: &str) -> Result<LoadedWorld, String> {
-    if let Some((name, text)) = ilmr_sim::world::SHIPPED
-        .iter()
-        .find(|(n, _)| n.eq_ignore_ascii_case(spec))
-    {
-        let world = World::from_toml(text, &format!("<{name}>")).map_err(|e| e.to_string())?;
-        return Ok(LoadedWorld {
-            world,
-            name: (*name).to_string(),
-            text: (*text).to_string(),
-        });
-    }
-    let path = std::path::Path::new(spec);
-    if !spec.contains(['/', '\\', '.']) {
-        let names: Vec<&str> = ilmr_sim::world::SHIPPED.iter().map(|(n, _)| *n).collect();
-        return Err(format!(
-            "unknown world `{spec}`: use {} or a path to a world file (.toml)",
-            names.join(", ")
-        ));
-    }
-    let text = ilmr_files::read_text(path, ilmr_files::Kind::World)
-        .map_err(|e| format!("cannot read world `{spec}`: {e}"))?;
-    let world = World::from_toml(&text, spec).map_err(|e| format!("bad world file: {e}"))?;
-    Ok(LoadedWorld {
-        world,
-        name: spec.to_string(),
-        text,
     })
 }
 
@@ -227,32 +93,6 @@ pub fn check_faults(
         })?;
     }
     Ok(())
-}
-
-/// `X,Y,H`: metres and degrees in the world frame, inside the world's bounds.
-fn parse_start(text: &str, world: &World) -> Result<ilmr_sim::Pose, String> {
-    let bad =
-        || format!("--start `{text}`: expected X,Y,HEADING (metres, degrees), e.g. 19.5,5.5,0");
-    let parts: Vec<f64> = text
-        .split(',')
-        .map(|p| p.trim().parse::<f64>())
-        .collect::<Result<_, _>>()
-        .map_err(|_| bad())?;
-    let [x, y, h] = parts[..] else {
-        return Err(bad());
-    };
-    if !(x.is_finite() && y.is_finite() && h.is_finite()) {
-        return Err(bad());
-    }
-    let at = ilmr_sim::Vec2::new(x, y);
-    if !world.bounds.contains(at) {
-        let b = world.bounds;
-        return Err(format!(
-            "--start ({x}, {y}) is outside the world `{}`, which spans ({}, {})..({}, {})",
-            world.name, b.min.x, b.min.y, b.max.x, b.max.y
-        ));
-    }
-    Ok(ilmr_sim::Pose::new(x, y, h.to_radians()))
 }
 
 /// Opens the robot of a run. `seed` seeds every noise source of a simulated robot; the

@@ -3,13 +3,9 @@
 //! pipeline, once per seed, on the machine's cores; its assertions are evaluated on the
 //! run's trace.
 
-mod assertion;
-pub mod codes;
 mod eval;
 mod execute;
-pub mod file;
 mod junit;
-mod problem;
 mod progress;
 mod render;
 mod snapshot;
@@ -23,7 +19,8 @@ use std::sync::mpsc;
 use std::time::{Duration, Instant};
 
 use execute::{Outcome, Verdict};
-use file::TestFile;
+use ilmr_testfile::file::{self, Note, TestFile};
+use ilmr_testfile::{assertion, codes, problem};
 use render::Style;
 
 use crate::{EXIT_ERRORS, EXIT_USAGE};
@@ -47,7 +44,7 @@ macro_rules! say {
 }
 
 /// The suffix that makes a file a test file when a folder is searched.
-pub const SUFFIX: &str = ".test.toml";
+pub use ilmr_testfile::SUFFIX;
 /// Failing seeds of one test reported in full; the others are counted.
 const SEEDS_SHOWN: usize = 3;
 
@@ -92,7 +89,14 @@ pub fn run(args: TestArgs) -> ExitCode {
                 continue;
             }
         };
-        match file::read(path, text.clone()) {
+        let read = file::check(path, text.clone());
+        for note in &read.notes {
+            match note {
+                Note::Model { spec, warnings } => crate::inputs::warn_about(spec, warnings),
+                Note::SkillsIgnored { dir, files } => crate::inputs::note_ignored(dir, files),
+            }
+        }
+        match read.file {
             Ok(f) => files.push(f),
             Err(ps) => {
                 problems += ps.len();

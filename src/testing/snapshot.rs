@@ -4,70 +4,16 @@
 //! for, and paths are named by their file name: the same task, robot, world and seed
 //! give the same bytes wherever the test is run from.
 
-use std::ops::Range;
 use std::path::{Path, PathBuf};
 
 use ilmr_trace::{Event, Num, Record};
 
-/// A snapshot's precision when the test gives none: a millimetre (and a milliradian,
-/// a millimetre a second).
-pub const PRECISION: f64 = 0.001;
+pub use ilmr_testfile::snapshot::{Snapshot, file_stem};
+
 /// The file a run that differs from its snapshot is written to, beside it.
 pub const PENDING: &str = ".new";
 /// Lines of a difference `--review` shows on each side.
 const SHOWN: usize = 20;
-
-/// A test's snapshot: how it is made, and where it is kept.
-#[derive(Debug, Clone)]
-pub struct Snapshot {
-    pub precision: f64,
-    pub scans: bool,
-    /// The `snapshot` key's value in the test file.
-    pub span: Range<usize>,
-    /// The stored file of seed N is this with `__seedN.jsonl` added.
-    pub stem: PathBuf,
-}
-
-impl Snapshot {
-    pub fn path(&self, seed: u64) -> PathBuf {
-        let mut name = self.stem.file_name().unwrap_or_default().to_os_string();
-        name.push(format!("__seed{seed}.jsonl"));
-        self.stem.with_file_name(name)
-    }
-}
-
-/// Where a test file's snapshots live: `snapshots/` beside it, named by the file and
-/// the test.
-pub fn stem(test_file: &Path, test: &str) -> PathBuf {
-    let dir = test_file
-        .parent()
-        .unwrap_or(Path::new("."))
-        .join("snapshots");
-    dir.join(format!("{}__{}", file_stem(test_file), slug(test)))
-}
-
-fn file_stem(test_file: &Path) -> String {
-    let name = test_file
-        .file_name()
-        .map(|n| n.to_string_lossy().into_owned())
-        .unwrap_or_default();
-    name.strip_suffix(super::SUFFIX)
-        .unwrap_or(&name)
-        .to_string()
-}
-
-/// A test's name as a file name: letters and digits, `_` between words.
-fn slug(name: &str) -> String {
-    let mut out = String::new();
-    for c in name.chars() {
-        if c.is_ascii_alphanumeric() {
-            out.push(c.to_ascii_lowercase());
-        } else if !out.ends_with('_') {
-            out.push('_');
-        }
-    }
-    out.trim_matches('_').to_string()
-}
 
 fn round(x: f64, p: f64) -> f64 {
     if !x.is_finite() {

@@ -49,6 +49,8 @@ async function start(): Promise<void> {
       { scheme: 'file', language: 'ilmr' },
       { scheme: 'untitled', language: 'ilmr' },
       { scheme: 'file', pattern: '**/{ROBO,robo,Robo}.{INI,ini}' },
+      // Test files of `ilmrc test`, whatever language the editor gives TOML.
+      { scheme: 'file', pattern: '**/*.test.toml' },
     ],
     // The concurrency lens (inlay hints), the "run in simulator" code lens and its
     // `ilmr.run` command come from the server: the client shows hints and lenses and

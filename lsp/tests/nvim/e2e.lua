@@ -150,6 +150,39 @@ if run then
     'the lens tells how the last run ended', again)
 end
 
+-- A test file (run.sh writes it): its problems as `ilmrc test` reports them, and
+-- completion of assertions from the grammar and the task's lines.
+vim.cmd('edit ' .. ws .. '/lens.test.toml')
+local test_buf = vim.api.nvim_get_current_buf()
+vim.lsp.buf_attach_client(test_buf, client_id)
+vim.wait(10000, function() return #vim.diagnostic.get(test_buf) > 0 end, 50)
+local unknown_key
+for _, d in ipairs(vim.diagnostic.get(test_buf)) do
+  if d.code == 'A0102' then unknown_key = d end
+end
+check(unknown_key and unknown_key.lnum == 1 and unknown_key.col == 0
+    and unknown_key.message:find('did you mean `seeds`?', 1, true),
+  'a test file gets its problems with their codes and spans', vim.diagnostic.get(test_buf))
+
+local assert_line = vim.api.nvim_buf_get_lines(test_buf, 5, 6, false)[1]
+local function complete_test(after)
+  local _, col = assert_line:find(after, 1, true)
+  local got = ask(test_buf, 'textDocument/completion', {
+    textDocument = { uri = vim.uri_from_bufnr(test_buf) },
+    position = { line = 5, character = col },
+  }) or {}
+  local found = {}
+  for _, item in ipairs(got.items or got) do found[item.label] = item.detail or true end
+  return found
+end
+local lines_offered = complete_test('"eventually: line ')
+check(lines_offered['1'] == 'm = goahead(0.5)' and lines_offered['7'] == 'break(followw)'
+    and lines_offered['5'] == nil,
+  'completion of a line reference offers the task\'s statements', lines_offered)
+local words = complete_test('"ev')
+check(words['eventually'] and words['never'] and not words['always'],
+  'completion of an assertion\'s first word', words)
+
 vim.lsp.stop_client(client_id)
 io.stdout:write(string.format('%d failed\n', failures))
 if failures > 0 then vim.cmd('cquit 1') else vim.cmd('qall!') end

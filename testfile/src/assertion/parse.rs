@@ -2,14 +2,15 @@
 //! variables, world objects) are resolved against the test's task and world as they are
 //! read, so that a mistake is said where it was written, with a suggestion.
 
+use std::cell::RefCell;
 use std::ops::Range;
 
 use ilmr_trace::How;
 
 use super::lex::{Tok, Token, lex};
 use super::*;
-use crate::testing::codes::Code;
-use crate::testing::problem::Problem;
+use crate::codes::Code;
+use crate::problem::Problem;
 
 /// What names in an assertion can refer to.
 pub struct Context<'a> {
@@ -25,12 +26,31 @@ pub struct Context<'a> {
     pub scans: bool,
 }
 
+/// What could come next where an assertion's text ends: what an editor completes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Want {
+    /// A keyword (or a sign such as `:`), as the grammar spells it.
+    Word(&'static str),
+    /// The number of a line of the task that holds a statement (after `line`).
+    Line,
+    /// A statement's text in backticks.
+    Text,
+    /// A variable the task assigns.
+    Variable,
+    /// A field of a variable (after `.`).
+    Field,
+    /// A named thing of the world.
+    Object,
+    /// A comparison.
+    Cmp,
+}
+
 /// The words an assertion starts with.
-const STARTS: [&str; 6] = ["eventually", "always", "never", "before", "during", "at"];
+pub const STARTS: [&str; 6] = ["eventually", "always", "never", "before", "during", "at"];
 /// What can follow `never:` besides a state.
-const HAPPENINGS: [&str; 6] = ["refused", "broken", "overrun", "error", "fault", "contact"];
+pub const HAPPENINGS: [&str; 6] = ["refused", "broken", "overrun", "error", "fault", "contact"];
 /// What `always:` and `never:` can say of the robot.
-const STATES: [&str; 3] = ["speed", "clearance", "robot"];
+pub const STATES: [&str; 3] = ["speed", "clearance", "robot"];
 
 /// Reads `text`, which is at `base` in the test file when its bytes are there as
 /// written (`None`: the string had escapes, and problems point at `whole`).
@@ -52,6 +72,7 @@ pub fn parse(
         end: at(end..end),
         at: &at,
         ctx,
+        wants: RefCell::new(Vec::new()),
     };
     let kind = p.assertion()?;
     if let Some((tok, span)) = p.toks.get(p.pos) {
@@ -68,7 +89,39 @@ pub fn parse(
     })
 }
 
+/// What the grammar allows after `text` (an assertion cut where an editor's cursor is,
+/// less the word being typed), given what names mean in `ctx`. Empty when `text` is no
+/// assertion's beginning.
+pub fn wants(text: &str, ctx: &Context<'_>) -> Vec<Want> {
+    let Ok(toks) = lex(text) else {
+        return Vec::new();
+    };
+    let at = |r: Range<usize>| r;
+    let mut p = Parser {
+        toks,
+        pos: 0,
+        end: text.len()..text.len(),
+        at: &at,
+        ctx,
+        wants: RefCell::new(Vec::new()),
+    };
+    let _ = p.assertion();
+    let mut out = p.wants.into_inner();
+    let mut seen = Vec::new();
+    out.retain(|w| {
+        let new = !seen.contains(w);
+        seen.push(*w);
+        new
+    });
+    out
+}
+
+/// What follows `line`, as messages name it.
+const LINE_NUMBER: &str = "a line number";
+
 struct Parser<'a, 'c> {
+    /// What was looked for at the end of the text (completion).
+    wants: RefCell<Vec<Want>>,
     toks: Vec<Token>,
     pos: usize,
     /// Where the end of the text is, for "expected ..., found the end".
@@ -78,6 +131,28 @@ struct Parser<'a, 'c> {
 }
 
 impl Parser<'_, '_> {
+    /// Notes that `what` would be read here, when here is the end of the text.
+    fn want(&self, what: impl IntoIterator<Item = Want>) {
+        if self.pos >= self.toks.len() {
+            self.wants.borrow_mut().extend(what);
+        }
+    }
+
+    /// The happenings a trace records: `contact` is a word of the grammar only to be
+    /// refused with a reason (A0206), so it is never offered.
+    fn happenings(&self) {
+        self.want(
+            HAPPENINGS
+                .iter()
+                .filter(|h| **h != "contact")
+                .map(|h| Want::Word(h)),
+        );
+    }
+
+    fn words(&self, words: &[&'static str]) {
+        self.want(words.iter().map(|w| Want::Word(w)));
+    }
+
     fn peek(&self) -> Option<&Tok> {
         self.toks.get(self.pos).map(|(t, _)| t)
     }
@@ -113,7 +188,8 @@ impl Parser<'_, '_> {
     }
 
     /// The next token is the keyword `word` (any case); takes it.
-    fn eat(&mut self, word: &str) -> bool {
+    fn eat(&mut self, word: &'static str) -> bool {
+        self.words(&[word]);
         let yes = matches!(self.peek(), Some(Tok::Word(w)) if w.eq_ignore_ascii_case(word))
             || matches!(self.peek(), Some(Tok::Sign(s)) if *s == word);
         if yes {
@@ -122,7 +198,7 @@ impl Parser<'_, '_> {
         yes
     }
 
-    fn expect(&mut self, word: &str) -> Result<(), Problem> {
+    fn expect(&mut self, word: &'static str) -> Result<(), Problem> {
         if self.eat(word) {
             Ok(())
         } else {
@@ -139,6 +215,9 @@ impl Parser<'_, '_> {
     }
 
     fn number(&mut self, what: &str) -> Result<f64, Problem> {
+        if what == LINE_NUMBER {
+            self.want([Want::Line]);
+        }
         match self.peek() {
             Some(Tok::Number(n)) => {
                 let n = *n;
@@ -173,6 +252,7 @@ impl Parser<'_, '_> {
     }
 
     fn assertion(&mut self) -> Result<Kind, Problem> {
+        self.words(&STARTS);
         let Some(first) = self.word() else {
             return Err(
                 self.expected("`eventually`, `always`, `never`, `before`, `during` or `at end`")
@@ -254,6 +334,13 @@ impl Parser<'_, '_> {
     }
 
     fn goal(&mut self) -> Result<Goal, Problem> {
+        // Keywords first: a task's texts and variables may be many.
+        self.words(&["line"]);
+        if self.ctx.poses {
+            self.words(&["robot"]);
+        }
+        self.happenings();
+        self.want([Want::Variable, Want::Text]);
         match self.peek() {
             Some(Tok::Quoted(_)) => self.ends(),
             Some(Tok::Word(w)) if w.eq_ignore_ascii_case("line") => self.ends(),
@@ -279,6 +366,7 @@ impl Parser<'_, '_> {
             Some("refused") => Some(How::Refused),
             _ => None,
         };
+        self.words(&["completed", "broken", "refused"]);
         if how.is_some() {
             self.pos += 1;
         } else if self.peek().is_some() {
@@ -292,6 +380,7 @@ impl Parser<'_, '_> {
 
     fn command(&mut self) -> Result<Command, Problem> {
         let from = self.pos;
+        self.want([Want::Text]);
         let statements = self.ctx.statements;
         if let Some(Tok::Quoted(q)) = self.peek() {
             let q = q.clone();
@@ -319,7 +408,7 @@ impl Parser<'_, '_> {
             return Err(self.expected("a command: `line N` or its text in backticks"));
         }
         let span = self.span();
-        let n = self.number("a line number")?;
+        let n = self.number(LINE_NUMBER)?;
         let statement = statements.iter().find(|(l, _)| f64::from(*l) == n);
         let Some((line, text)) = statement else {
             let mut p = Problem::new(
@@ -346,6 +435,7 @@ impl Parser<'_, '_> {
     }
 
     fn cmp(&mut self) -> Result<Cmp, Problem> {
+        self.want([Want::Cmp]);
         if let Some(Tok::Sign(s)) = self.peek()
             && let Some((_, c)) = Cmp::ALL.iter().find(|(sym, _)| sym == s)
         {
@@ -356,6 +446,7 @@ impl Parser<'_, '_> {
     }
 
     fn var_check(&mut self) -> Result<VarCheck, Problem> {
+        self.want([Want::Variable]);
         let span = self.span();
         let Some(Tok::Word(name)) = self.peek().cloned() else {
             return Err(self.expected("a variable"));
@@ -376,6 +467,7 @@ impl Parser<'_, '_> {
             .suggest(&name, names));
         };
         let field = if self.eat(".") {
+            self.want([Want::Field]);
             let Some(f) = self.word() else {
                 return Err(self.expected("a field of the variable"));
             };
@@ -449,6 +541,9 @@ impl Parser<'_, '_> {
             self.expect(")")?;
             return Ok(Place::Point(x, y));
         }
+        if self.ctx.objects.is_some() {
+            self.want([Want::Object]);
+        }
         let span = self.span();
         let Some(Tok::Word(name)) = self.peek().cloned() else {
             return Err(self.expected("a point `(x, y)` or the name of an object of the world"));
@@ -485,6 +580,12 @@ impl Parser<'_, '_> {
     }
 
     fn state(&mut self) -> Result<State, Problem> {
+        if self.ctx.poses {
+            self.words(&["speed", "robot"]);
+        }
+        if self.ctx.scans {
+            self.words(&["clearance"]);
+        }
         let Some(w) = self.word() else {
             return Err(self.expected("`speed`, `clearance` or `robot`"));
         };
@@ -506,6 +607,9 @@ impl Parser<'_, '_> {
             }
             "robot" => {
                 self.robot_needed()?;
+                self.pos += 1;
+                self.words(&["inside"]);
+                self.pos -= 1;
                 if matches!(self.toks.get(self.pos + 1), Some((Tok::Word(w), _)) if w.eq_ignore_ascii_case("inside"))
                 {
                     self.pos += 2;
@@ -533,6 +637,7 @@ impl Parser<'_, '_> {
     }
 
     fn never(&mut self) -> Result<Never, Problem> {
+        self.happenings();
         let w = self.word().unwrap_or_default();
         let happening = match w.as_str() {
             "refused" => Happening::Refused,
@@ -572,6 +677,11 @@ impl Parser<'_, '_> {
     }
 
     fn final_check(&mut self) -> Result<Final, Problem> {
+        if self.ctx.poses {
+            self.words(&["robot", "heading"]);
+        }
+        self.words(&["completed", "broken", "refused"]);
+        self.want([Want::Variable]);
         let Some(w) = self.word() else {
             return Err(
                 self.expected("`robot`, `heading`, `completed`, `broken`, `refused` or a variable")

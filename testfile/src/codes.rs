@@ -1,6 +1,6 @@
 //! The stable codes of `ilmrc test`: problems in a test file (`A01xx`), in an
 //! assertion (`A02xx`), and a test's failures (`A03xx`). Never renumber: tools match on
-//! them. docs/testing.md lists them, kept in step by `tests/testing.rs`.
+//! them. docs/testing.md lists them, kept in step by `src/testing/tests.rs`.
 
 macro_rules! codes {
     ($($variant:ident = $code:literal, $title:literal;)*) => {
@@ -9,7 +9,6 @@ macro_rules! codes {
 
         impl Code {
             /// Every code, for the test that keeps docs/testing.md in step.
-            #[cfg(test)]
             pub const ALL: &'static [Code] = &[$(Code::$variant,)*];
 
             pub fn as_str(self) -> &'static str {

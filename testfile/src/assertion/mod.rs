@@ -6,7 +6,8 @@ mod parse;
 
 use std::ops::Range;
 
-pub use parse::{Context, parse};
+pub use lex::Tok as Token;
+pub use parse::{Context, HAPPENINGS, STARTS, STATES, Want, parse, wants};
 
 #[derive(Debug, Clone, PartialEq)]
 pub struct Assertion {
@@ -141,6 +142,16 @@ pub fn canonical(text: &str) -> String {
         .filter(|c| !c.is_whitespace())
         .flat_map(char::to_lowercase)
         .collect()
+}
+
+/// The words of an assertion with their bytes, or `None` where it does not lex.
+pub fn tokens(text: &str) -> Option<Vec<(Token, Range<usize>)>> {
+    lex::lex(text).ok()
+}
+
+/// `wanted` (canonical) names the statement `text` (as a statement by text does).
+pub fn names_statement(wanted: &str, text: &str) -> bool {
+    same_statement(wanted, text)
 }
 
 /// `wanted` (canonical) names the traced statement `text`, with or without the

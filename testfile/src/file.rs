@@ -2,17 +2,22 @@
 //! defaults. Read with every value's span, so that each problem is said where it is;
 //! all of a file's problems are found, not just the first.
 
+use std::collections::HashMap;
 use std::ops::Range;
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 
 use toml::Spanned;
 use toml::de::{DeTable, DeValue};
 
-use super::assertion::{self, Assertion, Context, Place, is_name};
-use super::codes::Code;
-use super::problem::Problem;
-use super::snapshot::{self, Snapshot};
-use crate::run::scenario::{Line, Scenario};
+use ilmr_model::ModelWarning;
+
+use crate::assertion::{self, Assertion, Context, Place, is_name};
+use crate::codes::Code;
+use crate::place::{self, Backend};
+use crate::problem::Problem;
+use crate::scenario::{Line, Scenario};
+use crate::snapshot::{self, Snapshot};
 
 /// Every key of a test and what it takes (docs/testing.md lists them from here).
 pub const KEYS: [(&str, &str); 15] = [
@@ -98,8 +103,84 @@ pub struct Test {
     pub snapshot: Option<Snapshot>,
 }
 
+/// What reading a test file says besides its problems, which `ilmrc test` prints on
+/// stderr as `ilmrc run` does.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Note {
+    /// A robot model file's warnings (a value out of range: the default stands in).
+    Model {
+        spec: String,
+        warnings: Vec<ModelWarning>,
+    },
+    /// Files of a skill directory that hold no skills by their extension.
+    SkillsIgnored { dir: PathBuf, files: Vec<PathBuf> },
+}
+
+/// A test file read: the tests when it has no problem, else every problem; what the
+/// reader noted; and what each `[[test]]` table's assertions can name, for an editor.
+pub struct Read {
+    pub file: Result<TestFile, Vec<Problem>>,
+    pub notes: Vec<Note>,
+    pub outlines: Vec<Outline>,
+}
+
+/// One `[[test]]` table as an editor sees it: where it is, where its assertions are,
+/// and what they can name (as far as its task and robot could be read).
+#[derive(Debug, Clone, Default)]
+pub struct Outline {
+    /// The table, from its header.
+    pub span: Range<usize>,
+    /// Each string of its `assert`: the string's span, and where its content starts
+    /// when the bytes there are the content as read (no escapes).
+    pub asserts: Vec<(Range<usize>, Option<usize>)>,
+    /// The task's statements, line and text; empty when it could not be read. Shared
+    /// by the tests of one task.
+    pub statements: Arc<Vec<(u32, String)>>,
+    pub variables: Vec<String>,
+    /// The world's named places, for a simulated robot.
+    pub objects: Option<Vec<Place>>,
+    /// The robot's model's name or file, when the robot could be placed.
+    pub model: Option<String>,
+    pub poses: bool,
+    pub scans: bool,
+}
+
+impl Outline {
+    /// The names an assertion of this test can use.
+    pub fn context(&self) -> Context<'_> {
+        Context {
+            statements: &self.statements,
+            variables: &self.variables,
+            objects: self.objects.as_deref(),
+            poses: self.poses,
+            scans: self.scans,
+        }
+    }
+}
+
 /// Reads a test file; `Err` holds every problem found.
 pub fn read(path: &Path, text: String) -> Result<TestFile, Vec<Problem>> {
+    check(path, text).file
+}
+
+/// Reads a test file, with what an editor needs besides its problems.
+pub fn check(path: &Path, text: String) -> Read {
+    let mut notes = Vec::new();
+    let mut outlines = Vec::new();
+    let file = read_into(path, text, &mut notes, &mut outlines);
+    Read {
+        file,
+        notes,
+        outlines,
+    }
+}
+
+fn read_into(
+    path: &Path,
+    text: String,
+    notes: &mut Vec<Note>,
+    outlines: &mut Vec<Outline>,
+) -> Result<TestFile, Vec<Problem>> {
     let mut problems = Vec::new();
     let (root, errors) = DeTable::parse_recoverable(&text);
     for e in errors {
@@ -147,6 +228,7 @@ pub fn read(path: &Path, text: String) -> Result<TestFile, Vec<Problem>> {
         return Err(problems);
     };
     let mut names: Vec<(String, Range<usize>)> = Vec::new();
+    let mut tasks = Tasks::new();
     for item in array.iter() {
         let Some(table) = item.get_ref().as_table() else {
             problems.push(Problem::new(
@@ -190,8 +272,16 @@ pub fn read(path: &Path, text: String) -> Result<TestFile, Vec<Problem>> {
             keys,
             header: header.clone(),
             problems: &mut problems,
+            notes,
+            tasks: &mut tasks,
+            outline: Outline {
+                span: header.clone(),
+                ..Outline::default()
+            },
         };
-        if let Some(test) = reader.test() {
+        let test = reader.test();
+        outlines.push(reader.outline);
+        if let Some(test) = test {
             tests.push(test);
         }
     }
@@ -227,7 +317,13 @@ struct Reader<'a, 'p> {
     keys: Vec<Key<'a>>,
     header: Range<usize>,
     problems: &'p mut Vec<Problem>,
+    notes: &'p mut Vec<Note>,
+    /// Each task's statements, read once for all the tests of the file.
+    tasks: &'p mut Tasks,
+    outline: Outline,
 }
+
+type Tasks = HashMap<PathBuf, Result<Arc<Vec<(u32, String)>>, String>>;
 
 impl<'a> Reader<'a, '_> {
     fn get(&self, key: &str) -> Option<&'a Spanned<DeValue<'a>>> {
@@ -340,7 +436,7 @@ impl<'a> Reader<'a, '_> {
         let unplaced = self.problems.len();
         let robot = self.name_or_path("robot");
         if let Some((r, span)) = &robot
-            && r.eq_ignore_ascii_case(crate::ros2::ROBOT_NAME)
+            && r.eq_ignore_ascii_case(place::ROS2_ROBOT)
         {
             self.problems.push(Problem::new(
                 Code::BadValue,
@@ -405,17 +501,24 @@ impl<'a> Reader<'a, '_> {
         let snap = self.snapshot();
         // The robot, world and start together, as `ilmrc run` takes them: the message
         // names the flag, so the problem goes to the key it is about.
-        let ros2 = crate::ros2::Ros2Args::default();
-        let choice = crate::run::setup::Choice {
+        let choice = place::Choice {
             robot: robot.as_ref().map_or("moro", |r| r.0.as_str()),
             profile: profile.as_ref().map(|p| p.0),
             model: model.as_ref().map(|m| m.0.as_str()),
             world: world.as_ref().map(|w| w.0.as_str()),
             start: start.as_ref().map(|s| s.0.as_str()),
-            ros2: &ros2,
+        };
+        let notes = &mut *self.notes;
+        let mut warn = |spec: &str, warnings: &[ModelWarning]| {
+            if !warnings.is_empty() {
+                notes.push(Note::Model {
+                    spec: spec.to_string(),
+                    warnings: warnings.to_vec(),
+                });
+            }
         };
         let setup = if placed {
-            match crate::run::setup::choose(&choice) {
+            match place::place(&choice, &mut warn) {
                 Ok(setup) => Some(setup),
                 Err(e) => {
                     let profile = profile
@@ -439,10 +542,14 @@ impl<'a> Reader<'a, '_> {
         } else {
             None
         };
+        if let Some(setup) = &setup {
+            self.outline.model = Some(setup.model_spec.clone());
+            self.outline.poses = setup.backend != Backend::None;
+            self.outline.scans = setup.world.is_some();
+            self.outline.objects = setup.world.as_ref().map(|w| places(&w.world));
+        }
         let assertions = match (&task, &setup) {
-            (Some((task, _)), Some(setup)) => {
-                self.assertions(task, skills.as_deref(), setup, &lines)
-            }
+            (Some((task, _)), Some(_)) => self.assertions(task, skills.as_deref(), &lines),
             _ => Vec::new(),
         };
         if let Some((task, _)) = task {
@@ -650,13 +757,7 @@ impl<'a> Reader<'a, '_> {
         out
     }
 
-    fn assertions(
-        &mut self,
-        task: &Path,
-        skills: Option<&Path>,
-        setup: &crate::run::setup::Setup,
-        lines: &[Line],
-    ) -> Vec<Assertion> {
+    fn assertions(&mut self, task: &Path, skills: Option<&Path>, lines: &[Line]) -> Vec<Assertion> {
         let Some(value) = self.get("assert") else {
             self.problems.push(
                 Problem::new(
@@ -675,18 +776,44 @@ impl<'a> Reader<'a, '_> {
                 return Vec::new();
             }
         };
-        let source = match crate::inputs::read_source(task) {
-            Ok(s) => s.text,
+        self.outline.asserts = items
+            .iter()
+            .map(|item| {
+                let span = item.span();
+                let base = item
+                    .get_ref()
+                    .as_str()
+                    .and_then(|t| content_offset(self.text, span.clone(), t));
+                (span, base)
+            })
+            .collect();
+        let read = self
+            .tasks
+            .entry(task.to_path_buf())
+            .or_insert_with(|| {
+                crate::sources::read_source(task).map(|s| Arc::new(statements(&s.text)))
+            })
+            .clone();
+        let statements = match read {
+            Ok(s) => s,
             Err(e) => {
                 self.problems
                     .push(Problem::new(Code::MissingFile, self.header.clone(), e));
                 return Vec::new();
             }
         };
-        let statements = statements(&source);
         // A skill's variables are the task's too: its statements run in the task.
         let skills: Vec<String> = skills
-            .and_then(|dir| crate::inputs::read_skill_dir(dir).ok())
+            .and_then(|dir| {
+                let read = crate::sources::read_skill_dir(dir).ok()?;
+                if !read.ignored.is_empty() {
+                    self.notes.push(Note::SkillsIgnored {
+                        dir: dir.to_path_buf(),
+                        files: read.ignored,
+                    });
+                }
+                read.sources.ok()
+            })
             .into_iter()
             .flatten()
             .flat_map(|s| self::statements(&s.text))
@@ -697,18 +824,14 @@ impl<'a> Reader<'a, '_> {
             .map(|(_, t)| t)
             .chain(&skills)
             .chain(lines.iter().map(|l| &l.text))
-            .filter_map(|t| assigned(t))
+            .filter_map(|t| assigns(t))
             .collect();
         variables.sort_by_key(|v| v.to_ascii_lowercase());
         variables.dedup_by(|a, b| a.eq_ignore_ascii_case(b));
-        let objects = setup.world.as_ref().map(|w| places(&w.world));
-        let ctx = Context {
-            statements: &statements,
-            variables: &variables,
-            objects: objects.as_deref(),
-            poses: setup.backend != crate::run::setup::Backend::None,
-            scans: setup.world.is_some(),
-        };
+        self.outline.statements = statements;
+        self.outline.variables = variables;
+        let outline = std::mem::take(&mut self.outline);
+        let ctx = outline.context();
         let mut out = Vec::new();
         for item in items {
             let Some(text) = item.get_ref().as_str() else {
@@ -722,6 +845,7 @@ impl<'a> Reader<'a, '_> {
                 Err(p) => self.problems.push(p),
             }
         }
+        self.outline = outline;
         out
     }
 }
@@ -770,7 +894,7 @@ pub fn statements(source: &str) -> Vec<(u32, String)> {
 }
 
 /// The variable a statement assigns (`m=goahead(0.7)`, `cnt = cnt + 1`).
-fn assigned(statement: &str) -> Option<String> {
+pub fn assigns(statement: &str) -> Option<String> {
     let (name, rest) = statement.split_once('=')?;
     let name = name.trim();
     (is_name(name) && !rest.starts_with('=')).then(|| name.to_string())
