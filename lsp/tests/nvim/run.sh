@@ -13,5 +13,7 @@ printf '%s\n' 'käännös = turn(left)' 'wait(käännös)' 'kääntö = followwa
 printf '%s\n' 'KIERROS:' 'speed(0.3)' > "$ws/skills.ilms"
 printf '%s\n' 'm = goahead(0.5)' 'turn(d=20,c=0.5)' 'wait(m)' 'speed(0.3)' '' \
   'f = followwall(left,1)' 'break(followw)' > "$ws/lens.ilmr"
+printf '%s\n' 'followwall(left)' '' 'd = sensor(battery)' 'if(d < 10)' 'priority = highest' \
+  'speed(0)' 'endif' '' 'break' > "$ws/enders.ilmr"
 ILMR_LSP="$repo/target/debug/ilmr-lsp" ILMR_WS="$ws" \
   timeout 120 nvim --headless --clean -u NONE -S "$here/e2e.lua"
