@@ -127,6 +127,16 @@ struct Owners<'a, 's> {
     moments: Vec<Moment>,
 }
 
+/// The settings of one thing at one moment, as far as whether they can meet.
+struct Group {
+    /// The first record's block and value.
+    strand: u32,
+    value: u64,
+    /// Whether another block, another value, is among them.
+    strands: bool,
+    values: bool,
+}
+
 /// What starts a list of sibling blocks.
 #[derive(Debug, Clone, Copy)]
 enum Opening {
@@ -710,15 +720,25 @@ impl<'s> Owners<'_, 's> {
 
     fn report(&mut self, diags: &mut Vec<Diagnostic>) {
         let mut records = std::mem::take(&mut self.records);
-        // Only settings of a thing that more than one block sets at one moment can
-        // meet: most are alone, and are left out before sorting.
-        let mut groups: FxHashMap<(u64, u32), (u32, bool)> = FxHashMap::default();
+        // Only settings of a thing that more than one block sets at one moment, to
+        // more than one value, can meet: most are alone (or agree, as copies of one
+        // block do), and are left out before sorting.
+        let mut groups: FxHashMap<(u64, u32), Group> = FxHashMap::default();
         groups.reserve(records.len());
         for r in &records {
-            let g = groups.entry((r.target, r.key)).or_insert((r.strand, false));
-            g.1 |= g.0 != r.strand;
+            let g = groups.entry((r.target, r.key)).or_insert(Group {
+                strand: r.strand,
+                value: r.value,
+                strands: false,
+                values: false,
+            });
+            g.strands |= g.strand != r.strand;
+            g.values |= g.value != r.value;
         }
-        records.retain(|r| groups[&(r.target, r.key)].1);
+        records.retain(|r| {
+            let g = &groups[&(r.target, r.key)];
+            g.strands && g.values
+        });
         records.sort_unstable_by_key(|r| (r.target, r.key, r.strand, r.order));
         // The last setting of each block in each tick.
         let mut last: Vec<Record> = Vec::new();
