@@ -142,21 +142,39 @@ fn scratch(name: &str) -> Scratch {
 /// The trace of `task` run for `max_time` seconds on a simulated Workpartner in the
 /// empty world.
 fn traced(dir: &std::path::Path, name: &str, task: &str, max_time: &str) -> String {
+    traced_with(dir, name, task, "", max_time)
+}
+
+/// `traced`, with a skill file beside the task when `skills` is not empty.
+fn traced_with(
+    dir: &std::path::Path,
+    name: &str,
+    task: &str,
+    skills: &str,
+    max_time: &str,
+) -> String {
     let path = dir.join(format!("{name}.ilmr"));
     let trace = dir.join(format!("{name}.jsonl"));
+    let library = dir.join(format!("{name}.ilms"));
     std::fs::write(&path, task).unwrap();
-    let (code, out, err) = ilmrc(&[
-        "run",
-        "--robot",
-        "workpartner",
-        "--world",
-        "empty",
-        "--max-time",
-        max_time,
-        "--trace",
-        trace.to_str().unwrap(),
-        path.to_str().unwrap(),
-    ]);
+    let mut args = vec![
+        "run".to_string(),
+        "--robot".into(),
+        "workpartner".into(),
+        "--world".into(),
+        "empty".into(),
+        "--max-time".into(),
+        max_time.into(),
+        "--trace".into(),
+        trace.to_str().unwrap().into(),
+    ];
+    if !skills.is_empty() {
+        std::fs::write(&library, skills).unwrap();
+        args.extend(["--skills".into(), library.to_str().unwrap().into()]);
+    }
+    args.push(path.to_str().unwrap().into());
+    let args: Vec<&str> = args.iter().map(String::as_str).collect();
+    let (code, out, err) = ilmrc(&args);
     assert!(code == 0 || code == 5, "{task}\n{out}{err}");
     std::fs::read_to_string(&trace).unwrap()
 }
@@ -292,8 +310,14 @@ fn approach_takes_an_object_of_the_model() {
 
 /// The time each of `lines` of `task` was first issued, from the trace of a run on a
 /// simulated Workpartner in the empty world.
-fn issued_at(dir: &std::path::Path, name: &str, task: &str, lines: &[u64]) -> Vec<f64> {
-    let text = traced(dir, name, task, "20");
+fn issued_at(
+    dir: &std::path::Path,
+    name: &str,
+    task: &str,
+    skills: &str,
+    lines: &[u64],
+) -> Vec<f64> {
+    let text = traced_with(dir, name, task, skills, "20");
     let events: Vec<serde_json::Value> = text
         .lines()
         .map(|l| serde_json::from_str(l).unwrap())
@@ -303,7 +327,8 @@ fn issued_at(dir: &std::path::Path, name: &str, task: &str, lines: &[u64]) -> Ve
         .map(|line| {
             events
                 .iter()
-                .find(|e| e["event"] == "issue" && e["line"] == *line)
+                // The task's own line: a skill's statements name their file.
+                .find(|e| e["event"] == "issue" && e["line"] == *line && e["file"].is_null())
                 .and_then(|e| e["t"].as_f64())
                 .unwrap_or_else(|| panic!("line {line} never issued in\n{text}"))
         })
@@ -317,39 +342,78 @@ fn issued_at(dir: &std::path::Path, name: &str, task: &str, lines: &[u64]) -> Ve
 fn settings_said_to_meet_are_issued_in_one_tick() {
     let dir = scratch("settings");
     let m = model("workpartner");
-    // (task, the two setting lines, whether W0905 is said)
-    let cases: [(&str, [u64; 2], bool); 5] = [
-        ("speed(0.4)\ngoahead(1)\n\nspeed(0.5)\n", [1, 4], true),
+    // (task, its skills, the two setting lines of the task, whether W0905 is said)
+    let cases: [(&str, &str, [u64; 2], bool); 10] = [
+        ("speed(0.4)\ngoahead(1)\n\nspeed(0.5)\n", "", [1, 4], true),
+        // Guards of one condition issued at one moment fire in one tick.
+        (
+            "m = goahead(0.5)\nif(m)\nspeed(0.3)\nendif\n\nw = wait(3)\nif(w)\nspeed(0.5)\nendif\n",
+            "",
+            [3, 8],
+            false,
+        ),
+        (
+            "m = goahead(0.5)\nif(m)\nspeed(0.3)\nendif\n\nIF(M)\nspeed(0.5)\nendif\n",
+            "",
+            [3, 7],
+            true,
+        ),
+        // A skill call that waits lets its caller go when the wait does.
+        (
+            "m = goahead(0.5)\nPause\nspeed(0.3)\n\nwait(m)\nspeed(0.5)\n",
+            "Pause:\nwait(m)\n",
+            [3, 6],
+            true,
+        ),
+        (
+            "speed(0.2)\nHold\nspeed(0.3)\n\nwait(1)\nwait(0.5)\nspeed(0.5)\n",
+            "Hold:\nHalf\nwait(0.5)\n\nHalf:\nwait(1)\n",
+            [3, 7],
+            true,
+        ),
+        (
+            "speed(0.2)\nHold\nspeed(0.3)\n\nwait(1)\nspeed(0.5)\n",
+            "Hold:\nwait(1)\nwait(0.5)\n",
+            [3, 6],
+            false,
+        ),
         (
             "m = goahead(0.5)\nwait(m)\nspeed(0.3)\n\nwait(m)\nspeed(0.5)\n",
+            "",
             [3, 6],
             true,
         ),
         (
             "speed(0.2)\nwait(1)\nspeed(0.3)\n\nwait(1)\nspeed(0.5)\n",
+            "",
             [3, 6],
             true,
         ),
         (
             "speed(0.4)\ngoahead(1)\n\nwait(0.5)\nspeed(0.5)\n",
+            "",
             [1, 5],
             false,
         ),
         (
             "m = goahead(0.5)\nwait(m)\nspeed(0.3)\n\nwait(5)\nwait(m)\nspeed(0.5)\n",
+            "",
             [3, 7],
             false,
         ),
     ];
-    for (i, (task, lines, warned)) in cases.iter().enumerate() {
-        let sources = vec![Source::new("t.ilmr", task.to_string())];
+    for (i, (task, skills, lines, warned)) in cases.iter().enumerate() {
+        let mut sources = vec![Source::new("t.ilmr", task.to_string())];
+        if !skills.is_empty() {
+            sources.push(Source::library("t.ilms", skills.to_string()));
+        }
         let analysis = analyze(&sources, &m);
         let said = analysis
             .diagnostics
             .iter()
             .any(|d| d.code == Code::SettingRace);
         assert_eq!(said, *warned, "{task}\n{:?}", analysis.diagnostics);
-        let t = issued_at(&dir, &format!("case{i}"), task, lines);
+        let t = issued_at(&dir, &format!("case{i}"), task, skills, lines);
         assert_eq!(t[0] == t[1], *warned, "{task}: issued at {t:?}");
     }
 }

@@ -26,36 +26,96 @@ const QUOTED_CHARS: usize = 32;
 /// counted.
 const BLOCKS_NAMED: u32 = 3;
 
+/// Bare breaks named one by one in "ended by break at line 9, line 20"; more are
+/// counted.
+const BREAKS_NAMED: usize = 2;
+
 /// Statements a break's hover lists; more are counted.
 pub const ENDED_LISTED: usize = 20;
 
-/// A `break(pattern)` of the program, with its needle (`check::needle`).
+/// What ends statements that are running when it is issued.
+#[derive(Debug, Clone)]
+pub enum Ender {
+    /// `break(pattern)`, with its needle (`check::needle`): the statements whose text
+    /// contains it, and what stands inside a matched `if` or `while`.
+    Pattern(String),
+    /// A bare `break`: every command of the program.
+    All,
+    /// `priority = highest`, first in a block: when the block starts, every command
+    /// that is neither inside the block nor an `if`, `while` or skill call around it.
+    /// The lens names it at the statements of its own unit only: whether a statement
+    /// of another unit stands inside the block (a skill called from it) or around it
+    /// (the call that runs the block's skill) the text alone does not say.
+    Priority {
+        /// The task's blocks (`None`) or the skill (its index in the file).
+        unit: Option<usize>,
+        /// The block it opens.
+        block: Span,
+        /// The `if`s and `while`s the block stands in, which it does not end.
+        around: Vec<Span>,
+    },
+}
+
+/// A `break`, `break(pattern)` or `priority = highest` of the program.
 #[derive(Debug, Clone)]
 pub struct BreakAt {
     pub file: FileId,
     pub span: Span,
-    pub needle: String,
+    pub ender: Ender,
 }
 
-/// Every `break(pattern)` in the program's files that an editor can open.
+/// Every `break`, `break(pattern)` and `priority = highest` in the program's files that
+/// an editor can open, leaving out what stands between `check` and `checkend` (which
+/// never runs).
 pub fn breaks(program: &Program) -> Vec<BreakAt> {
     let mut out = Vec::new();
-    for (i, entry) in program.analysis().files.iter().enumerate() {
+    for i in 0..program.analysis().files.len() {
         let file = FileId(i as u32);
-        if !entry.break_patterns || program.uri(file).is_none() {
+        if program.uri(file).is_none() {
             continue;
         }
-        entry.tree.for_each_stmt(&mut |stmt: &Stmt<'_>| {
-            if let StmtKind::Break { pattern: Some(p) } = &stmt.kind {
-                out.push(BreakAt {
-                    file,
-                    span: stmt.span,
-                    needle: needle(p).to_string(),
-                });
-            }
-        });
+        let tree = program.tree(file);
+        let mut around = Vec::new();
+        enders(file, None, &tree.blocks, &mut around, &mut out);
+        for (s, skill) in tree.skills.iter().enumerate() {
+            enders(file, Some(s), &skill.blocks, &mut around, &mut out);
+        }
     }
     out
+}
+
+fn enders(
+    file: FileId,
+    unit: Option<usize>,
+    blocks: &[Block<'_>],
+    around: &mut Vec<Span>,
+    out: &mut Vec<BreakAt>,
+) {
+    for block in blocks {
+        for stmt in &block.stmts {
+            let ender = match &stmt.kind {
+                StmtKind::Break { pattern: Some(p) } => Ender::Pattern(needle(p).to_string()),
+                StmtKind::Break { pattern: None } => Ender::All,
+                StmtKind::Priority => Ender::Priority {
+                    unit,
+                    block: block.span,
+                    around: around.clone(),
+                },
+                StmtKind::If(c) | StmtKind::While { body: c, .. } => {
+                    around.push(stmt.span);
+                    enders(file, unit, &c.body, around, out);
+                    around.pop();
+                    continue;
+                }
+                _ => continue,
+            };
+            out.push(BreakAt {
+                file,
+                span: stmt.span,
+                ender,
+            });
+        }
+    }
 }
 
 /// One statement's label, at the end of its line.
@@ -83,10 +143,10 @@ impl FileLens<'_> {
         let tree = self.program.tree(self.file);
         let mut out = Vec::new();
         let mut around = Vec::new();
-        self.blocks(&tree.blocks, range, &mut around, &mut out);
-        for skill in &tree.skills {
+        self.blocks(&tree.blocks, None, range, &mut around, &mut out);
+        for (s, skill) in tree.skills.iter().enumerate() {
             if overlaps(skill.span, range) {
-                self.blocks(&skill.blocks, range, &mut around, &mut out);
+                self.blocks(&skill.blocks, Some(s), range, &mut around, &mut out);
             }
         }
         out
@@ -95,18 +155,19 @@ impl FileLens<'_> {
     fn blocks<'t>(
         &self,
         blocks: &'t [Block<'t>],
+        unit: Option<usize>,
         range: Span,
         around: &mut Vec<Span>,
         out: &mut Vec<Label>,
     ) {
         for stmt in statements_reaching(blocks, range) {
             if stmt.span.start >= range.start {
-                self.label(stmt, around, out);
+                self.label(stmt, unit, around, out);
             }
             match &stmt.kind {
                 StmtKind::If(c) | StmtKind::While { body: c, .. } => {
                     around.push(stmt.span);
-                    self.blocks(&c.body, range, around, out);
+                    self.blocks(&c.body, unit, range, around, out);
                     around.pop();
                 }
                 // Never runs: nothing to say of when.
@@ -116,7 +177,7 @@ impl FileLens<'_> {
         }
     }
 
-    fn label(&self, stmt: &Stmt<'_>, around: &[Span], out: &mut Vec<Label>) {
+    fn label(&self, stmt: &Stmt<'_>, unit: Option<usize>, around: &[Span], out: &mut Vec<Label>) {
         let mut parts = Vec::new();
         let mut tips = Vec::new();
         if let Some(m) = self.moment(stmt.span) {
@@ -134,35 +195,8 @@ impl FileLens<'_> {
                 ));
             }
         }
-        if !matches!(stmt.kind, StmtKind::Break { .. }) {
-            let text = stmt.span.slice(self.text);
-            for b in self.breaks {
-                let through = if matches(text, &b.needle) {
-                    Some(None)
-                } else {
-                    around
-                        .iter()
-                        .rev()
-                        .find(|s| matches(s.slice(self.text), &b.needle))
-                        .map(Some)
-                };
-                let Some(through) = through else { continue };
-                let at = self.place(b.file, b.span);
-                parts.push(format!("ended by break at {at}"));
-                tips.push(match through {
-                    None => format!(
-                        "`{}` at {at} ends it if it is running then: its text contains `{}`.",
-                        self.program_quote(b.file, b.span),
-                        b.needle
-                    ),
-                    Some(s) => format!(
-                        "`{}` at {at} ends `{}` (line {}) and so everything inside it.",
-                        self.program_quote(b.file, b.span),
-                        self.quote(*s),
-                        self.line(*s)
-                    ),
-                });
-            }
+        if !matches!(stmt.kind, StmtKind::Break { .. } | StmtKind::Priority) {
+            self.enders(stmt, unit, around, &mut parts, &mut tips);
         }
         if !parts.is_empty() {
             out.push(Label {
@@ -170,6 +204,90 @@ impl FileLens<'_> {
                 text: parts.join(" · "),
                 tooltip: tips.join("\n\n"),
             });
+        }
+    }
+
+    /// What ends `stmt` if it is running then: the breaks whose pattern it (or an `if`
+    /// or `while` around it) contains, the program's bare breaks, and the priority
+    /// blocks of its unit that it stands outside of.
+    fn enders(
+        &self,
+        stmt: &Stmt<'_>,
+        unit: Option<usize>,
+        around: &[Span],
+        parts: &mut Vec<String>,
+        tips: &mut Vec<String>,
+    ) {
+        let text = stmt.span.slice(self.text);
+        let mut bare = Vec::new();
+        for b in self.breaks {
+            let needle = match &b.ender {
+                Ender::Pattern(needle) => needle,
+                Ender::All => {
+                    bare.push(b);
+                    continue;
+                }
+                Ender::Priority {
+                    unit: u,
+                    block,
+                    around: holders,
+                } => {
+                    let inside = block.start <= stmt.span.start && stmt.span.end <= block.end;
+                    if b.file != self.file || *u != unit || inside || holders.contains(&stmt.span) {
+                        continue;
+                    }
+                    let line = self.line(b.span);
+                    parts.push(format!(
+                        "ended when the priority block at line {line} starts"
+                    ));
+                    tips.push(format!(
+                        "The block at line {line} starts with `priority = highest`: when it starts, it ends every running command that is neither inside it nor an `if`, a `while` or a skill call around it, and runs alone."
+                    ));
+                    continue;
+                }
+            };
+            let through = if matches(text, needle) {
+                Some(None)
+            } else {
+                around
+                    .iter()
+                    .rev()
+                    .find(|s| matches(s.slice(self.text), needle))
+                    .map(Some)
+            };
+            let Some(through) = through else { continue };
+            let at = self.place(b.file, b.span);
+            parts.push(format!("ended by break at {at}"));
+            tips.push(match through {
+                None => format!(
+                    "`{}` at {at} ends it if it is running then: its text contains `{needle}`.",
+                    self.program_quote(b.file, b.span),
+                ),
+                Some(s) => format!(
+                    "`{}` at {at} ends `{}` (line {}) and so everything inside it.",
+                    self.program_quote(b.file, b.span),
+                    self.quote(*s),
+                    self.line(*s)
+                ),
+            });
+        }
+        if let Some(first) = bare.first() {
+            let named: Vec<String> = bare
+                .iter()
+                .take(BREAKS_NAMED)
+                .map(|b| self.place(b.file, b.span))
+                .collect();
+            let more = bare.len().saturating_sub(BREAKS_NAMED);
+            let more = if more > 0 {
+                format!(" and {more} more")
+            } else {
+                String::new()
+            };
+            parts.push(format!("ended by break at {}{more}", named.join(", ")));
+            tips.push(format!(
+                "A bare `break` (the first at {}) stops the robot and ends every command of the program: this one too, if it is running then.",
+                self.place(first.file, first.span)
+            ));
         }
     }
 

@@ -98,6 +98,32 @@ fn every_statement_says_when_it_starts_and_what_ends_it() {
     insta::assert_snapshot!(hints(&[(TASK, FIGURE)]));
 }
 
+const ENDERS: &str = "\
+followwall(left)
+
+d = sensor(battery)
+if(d < 10)
+priority = highest
+speed(0)
+endif
+
+wait(30)
+break
+";
+
+#[test]
+fn a_bare_break_ends_everything_and_a_priority_block_what_stands_outside_it() {
+    insta::assert_snapshot!(hints(&[(TASK, ENDERS)]));
+}
+
+#[test]
+fn a_priority_block_ends_only_its_own_units_statements_and_breaks_in_check_end_nothing() {
+    let task = "Patrol\nfollowwall(left)\n\ncheck\nbreak\ncheckend\n";
+    let skills = "Patrol:\ngoahead()\n\npriority = highest\nspeed(0)\n";
+    insta::assert_snapshot!(hints(&[(TASK, task), (SKILLS, skills)]));
+    insta::assert_snapshot!(hints(&[(SKILLS, skills), (TASK, task)]));
+}
+
 #[test]
 fn a_skills_statements_start_when_it_is_called_and_a_holding_call_holds() {
     let task = "Takeoff\ngoahead(1)\n";

@@ -11,8 +11,10 @@
 //! same tick until a `wait`, an `init`, or a call of a skill whose first block holds
 //! (the call holds the caller until that block has issued its last statement).
 //! `wait(v)` is woken in one tick for every block that waits on `v`; `wait(2)` from
-//! one tick ends in one tick; anything else (an `init`, a holding skill call, a guard's
-//! or a loop's body) is a moment of its own. Two statements with the same chain are
+//! one tick ends in one tick; a holding skill call lets its caller go when its first
+//! block has gone through its waits, which are followed into the skill; the bodies of
+//! guards of one condition issued at one moment start in one tick; anything else (an
+//! `init`, a loop's body) is a moment of its own. Two statements with the same chain are
 //! issued in the same tick. Only the last setting of each block in that tick
 //! matters, so a conflict is two blocks whose last settings of one thing in one tick
 //! differ. Statements are grouped by what they set and when, so the check is linear
@@ -55,6 +57,9 @@ enum Step {
     Woken(u64),
     /// A `wait(seconds)` of a number written out.
     Delay(u64),
+    /// The body of an `if` whose condition hashes so: guards of one condition issued at
+    /// one moment are evaluated in the same ticks, so their bodies run in one tick.
+    Guard(u64),
     /// A moment of its own, met by nothing else: after an `init` or a holding skill
     /// call, a guard's or a loop's body.
     Own,
@@ -111,6 +116,8 @@ struct Owners<'a, 's> {
     /// Per skill: whether a call of it holds its caller, and its settings at start.
     holds: FxHashMap<u32, bool>,
     starts: FxHashMap<u32, Rc<Vec<SkillSet>>>,
+    /// Per holding skill: the waits its caller goes through (`skill_exit`).
+    exits: FxHashMap<u32, Option<Rc<Vec<Step>>>>,
     /// The commands that set something or hold their block: the others matter here
     /// only as not being skills.
     relevant: Vec<(&'static [u8], Command)>,
@@ -118,6 +125,16 @@ struct Owners<'a, 's> {
     /// The file whose statements' moments are written down (`schedule.rs`), if any.
     recording: Option<FileId>,
     moments: Vec<Moment>,
+}
+
+/// The settings of one thing at one moment, as far as whether they can meet.
+struct Group {
+    /// The first record's block and value.
+    strand: u32,
+    value: u64,
+    /// Whether another block, another value, is among them.
+    strands: bool,
+    values: bool,
 }
 
 /// What starts a list of sibling blocks.
@@ -211,6 +228,7 @@ impl<'a, 's> Owners<'a, 's> {
             origins: 0,
             holds: FxHashMap::default(),
             starts: FxHashMap::default(),
+            exits: FxHashMap::default(),
             relevant: Command::all()
                 .filter(|c| c.spec().sets != Sets::Nothing || c.spec().holds_block)
                 .map(|c| (c.name().as_bytes(), c))
@@ -333,7 +351,9 @@ impl<'s> Owners<'_, 's> {
                 _ => key,
             },
             StmtKind::If(c) => {
-                let body = own(self);
+                let mut h = FxHasher::default();
+                hash_expr(&c.cond, &mut h);
+                let body = self.key(key, Step::Guard(h.finish()));
                 self.blocks(file, &c.body, body, slot, Opening::Guard(stmt.span));
                 key
             }
@@ -436,11 +456,75 @@ impl<'s> Owners<'_, 's> {
                 });
             }
         }
-        if self.skill_holds(id, &mut Vec::new()) {
-            self.key(key, Step::Own)
-        } else {
-            key
+        if !self.skill_holds(id, &mut Vec::new()) {
+            return key;
         }
+        match self.skill_exit(id, &mut Vec::new()) {
+            Some(steps) => steps.iter().fold(key, |k, &step| self.key(k, step)),
+            None => self.key(key, Step::Own),
+        }
+    }
+
+    /// The waits a call of a holding skill goes through before it lets its caller go:
+    /// the steps of every statement of the skill's first block that holds, through the
+    /// skills it calls, so that what follows the call meets what follows the same waits
+    /// elsewhere. `None` when one of them is a moment of its own (an `init`, a `wait`
+    /// on a parameter, a chain too deep).
+    fn skill_exit(&mut self, id: SkillId, open: &mut Vec<u32>) -> Option<Rc<Vec<Step>>> {
+        if let Some(e) = self.exits.get(&id.0) {
+            return e.clone();
+        }
+        if open.contains(&id.0) || open.len() >= max_call_depth() {
+            return None;
+        }
+        open.push(id.0);
+        let info = self.skills.get(id);
+        let file = info.file;
+        let files = self.files;
+        let skill = &files[file.0 as usize].tree.skills[info.index];
+        let mut steps = Some(Vec::new());
+        for stmt in skill.blocks.first().map_or(&[][..], |b| &b.stmts) {
+            let Some(out) = steps.as_mut() else { break };
+            let (name, args) = match &stmt.kind {
+                StmtKind::Call { call, .. } => (call.name.text, call.args.as_ref()),
+                StmtKind::Assign { value, .. } => match &value.kind {
+                    ExprKind::Name(n) => (n.text, None),
+                    _ => continue,
+                },
+                _ => continue,
+            };
+            match self.resolve(name, stmt.span, file, info.index as u32 + 1) {
+                Called::Other => {}
+                Called::Command(c) if !c.spec().holds_block => {}
+                Called::Command(c) => {
+                    let waited = args.and_then(|a| match &a.items[..] {
+                        [Arg::Positional(e)] => Some(&e.kind),
+                        _ => None,
+                    });
+                    match (c, waited) {
+                        (Command::Wait, Some(ExprKind::Name(n))) if !is_param(skill, n.text) => {
+                            out.push(Step::Woken(hash_str(n.text)))
+                        }
+                        (Command::Wait, Some(ExprKind::Number(s))) => {
+                            out.push(Step::Delay(s.to_bits()))
+                        }
+                        _ => steps = None,
+                    }
+                }
+                Called::Skill(inner) => {
+                    if self.skill_holds(inner, open) {
+                        match self.skill_exit(inner, open) {
+                            Some(inner) => out.extend(inner.iter().copied()),
+                            None => steps = None,
+                        }
+                    }
+                }
+            }
+        }
+        open.pop();
+        let steps = steps.map(Rc::new);
+        self.exits.insert(id.0, steps.clone());
+        steps
     }
 
     /// What a statement of `command` sets, and a value that is equal for statements
@@ -636,15 +720,25 @@ impl<'s> Owners<'_, 's> {
 
     fn report(&mut self, diags: &mut Vec<Diagnostic>) {
         let mut records = std::mem::take(&mut self.records);
-        // Only settings of a thing that more than one block sets at one moment can
-        // meet: most are alone, and are left out before sorting.
-        let mut groups: FxHashMap<(u64, u32), (u32, bool)> = FxHashMap::default();
+        // Only settings of a thing that more than one block sets at one moment, to
+        // more than one value, can meet: most are alone (or agree, as copies of one
+        // block do), and are left out before sorting.
+        let mut groups: FxHashMap<(u64, u32), Group> = FxHashMap::default();
         groups.reserve(records.len());
         for r in &records {
-            let g = groups.entry((r.target, r.key)).or_insert((r.strand, false));
-            g.1 |= g.0 != r.strand;
+            let g = groups.entry((r.target, r.key)).or_insert(Group {
+                strand: r.strand,
+                value: r.value,
+                strands: false,
+                values: false,
+            });
+            g.strands |= g.strand != r.strand;
+            g.values |= g.value != r.value;
         }
-        records.retain(|r| groups[&(r.target, r.key)].1);
+        records.retain(|r| {
+            let g = &groups[&(r.target, r.key)];
+            g.strands && g.values
+        });
         records.sort_unstable_by_key(|r| (r.target, r.key, r.strand, r.order));
         // The last setting of each block in each tick.
         let mut last: Vec<Record> = Vec::new();
@@ -764,6 +858,21 @@ impl<'s> Queue<'s> {
 /// would recurse as deep as they go.
 fn max_call_depth() -> usize {
     usize::from(ilmr_vm::Config::default().max_call_depth)
+}
+
+/// Whether `name` is one of a parameterized skill's parameters, whose value each call
+/// gives (`Corner(d, side=left/right):`).
+fn is_param(skill: &crate::ast::Skill<'_>, name: &str) -> bool {
+    skill.params.as_ref().is_some_and(|p| {
+        p.items.iter().any(|a| match a {
+            Arg::Positional(Expr {
+                kind: ExprKind::Name(n),
+                ..
+            }) => n.is(name),
+            Arg::Setting { key, .. } => key.is(name),
+            _ => false,
+        })
+    })
 }
 
 /// Device targets apart from settings of the same name.

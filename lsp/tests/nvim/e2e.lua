@@ -95,9 +95,10 @@ local function ask(b, method, params, timeout)
   return nil
 end
 
-local function hints()
-  local got = ask(lens_buf, 'textDocument/inlayHint', {
-    textDocument = { uri = vim.uri_from_bufnr(lens_buf) },
+local function hints(b)
+  b = b or lens_buf
+  local got = ask(b, 'textDocument/inlayHint', {
+    textDocument = { uri = vim.uri_from_bufnr(b) },
     range = { start = { line = 0, character = 0 }, ['end'] = { line = 100, character = 0 } },
   }) or {}
   local by_line = {}
@@ -118,6 +119,18 @@ check(has(before, 1, 'starts at t=0 with block 2') and has(before, 1, '|m')
     and has(before, 4, 'held until `wait(m)` at line 3') and has(before, 4, '|m/s')
     and has(before, 6, 'ended by break at line 7'),
   'inlay hints: when each statement starts, what ends it, units', before)
+
+-- A bare `break` and a `priority = highest` block, in a file of their own (never run).
+vim.cmd('edit ' .. ws .. '/enders.ilmr')
+local enders_buf = vim.api.nvim_get_current_buf()
+vim.lsp.buf_attach_client(enders_buf, client_id)
+local ended = hints(enders_buf)
+check(has(ended, 1, 'ended when the priority block at line 5 starts')
+    and has(ended, 1, 'ended by break at line 9')
+    and has(ended, 6, 'ended by break at line 9')
+    and not has(ended, 6, 'priority block'),
+  'inlay hints: what a bare break and a priority block end', ended)
+vim.cmd('buffer ' .. lens_buf)
 
 local lenses = ask(lens_buf, 'textDocument/codeLens',
   { textDocument = { uri = vim.uri_from_bufnr(lens_buf) } }) or {}

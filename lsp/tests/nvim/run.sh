@@ -16,5 +16,7 @@ printf '%s\n' 'm = goahead(0.5)' 'turn(d=20,c=0.5)' 'wait(m)' 'speed(0.3)' '' \
 # A test file of lens.ilmr with a misspelt key and two assertions being typed.
 printf '%s\n' 'task = "lens.ilmr"' 'seed = 1' '' '[[test]]' 'name = "lens"' \
   'assert = ["eventually: line ", "ev"]' > "$ws/lens.test.toml"
+printf '%s\n' 'followwall(left)' '' 'd = sensor(battery)' 'if(d < 10)' 'priority = highest' \
+  'speed(0)' 'endif' '' 'break' > "$ws/enders.ilmr"
 ILMR_LSP="$repo/target/debug/ilmr-lsp" ILMR_WS="$ws" \
   timeout 120 nvim --headless --clean -u NONE -S "$here/e2e.lua"
