@@ -109,6 +109,16 @@ impl<H: Hal, C: Clock> Vm<H, C> {
                 return;
             }
             n.queued = false;
+            // A frame, the common entry, without copying its node's kind.
+            if let Kind::Frame(_) = n.kind {
+                if self.run_frame(r.idx) {
+                    self.nodes.get_mut(r.idx).queued = true;
+                    self.ready.push_front(entry);
+                    self.overrun(r.idx);
+                    return;
+                }
+                continue;
+            }
             let kind = n.kind;
             match kind {
                 Kind::Block(_) => {
@@ -118,12 +128,6 @@ impl<H: Hal, C: Clock> Vm<H, C> {
                         self.overrun(at.idx);
                         return;
                     }
-                }
-                Kind::Frame(_) if self.run_frame(r.idx) => {
-                    self.nodes.get_mut(r.idx).queued = true;
-                    self.ready.push_front(entry);
-                    self.overrun(r.idx);
-                    return;
                 }
                 Kind::If { .. } => self.check_guard(r.idx),
                 Kind::While { .. } => self.check_while(r.idx),

@@ -197,7 +197,7 @@ impl<H: Hal, C: Clock> Vm<H, C> {
             end_code: None,
         };
         vm.decoded.grow(&vm.module);
-        vm.frames.grow(&vm.module, vm.cfg.period);
+        vm.frames.grow(&vm.module, &vm.decoded.all, vm.cfg.period);
         let main = vm.module.main.index();
         let blocks = vm.module.units[main].blocks.clone();
         for b in blocks {
@@ -469,7 +469,8 @@ impl<H: Hal, C: Clock> Vm<H, C> {
     fn joined(&mut self, start: impl Iterator<Item = u32>) {
         self.vars.grow(self.module.globals.len());
         self.decoded.grow(&self.module);
-        self.frames.grow(&self.module, self.cfg.period);
+        self.frames
+            .grow(&self.module, &self.decoded.all, self.cfg.period);
         self.lower.extend(
             self.module.stmts[self.lower.len()..]
                 .iter()
