@@ -19,7 +19,7 @@ use ilmr_stdlib::Field;
 use super::Vm;
 use super::clock::Clock;
 use super::decode::{Bin, Decoded, Operand, Shape};
-use super::exec::Ready;
+use super::exec::{Packed, Ready};
 use super::nodes::{Class, Kind, NodeRef};
 use super::timers::Alarm;
 use super::trace::EventKind;
@@ -613,7 +613,7 @@ impl<H: Hal, C: Clock> Vm<H, C> {
                     // What `assign` does after its evaluation, with the trace off.
                     vars.assign(var, v);
                     if vars.queue_wake(var) {
-                        ready.push_back(Ready::Wake(var));
+                        ready.push_back(Ready::Wake(var).into());
                     }
                     f.pc += 1;
                     step(next);
@@ -625,7 +625,7 @@ impl<H: Hal, C: Clock> Vm<H, C> {
                     *ops_left = (*ops_left - 1).saturating_sub(1);
                     vars.assign(var, k);
                     if vars.queue_wake(var) {
-                        ready.push_back(Ready::Wake(var));
+                        ready.push_back(Ready::Wake(var).into());
                     }
                     f.pc += 1;
                     step(next);
@@ -692,7 +692,7 @@ impl<H: Hal, C: Clock> Vm<H, C> {
         }
         if queue && !node.queued {
             node.queued = true;
-            ready.push_back(Ready::Node(NodeRef { idx, epoch }));
+            ready.push_back(Ready::Node(NodeRef { idx, epoch }).into());
         }
         result
     }
@@ -745,7 +745,7 @@ impl<H: Hal, C: Clock> Vm<H, C> {
         }
         f.asleep = false;
         n.queued = true;
-        self.ready.push_back(Ready::Node(a.node));
+        self.ready.push_back(Ready::Node(a.node).into());
         let sleep = &mut self.nodes.classes[Class::Sleep as usize];
         *sleep = sleep.saturating_sub(1);
         self.nodes.sleepers = self.nodes.sleepers.saturating_sub(1);
@@ -831,11 +831,11 @@ impl<H: Hal, C: Clock> Vm<H, C> {
             if self.nodes.get(idx).queued {
                 // The tree's queued body or loop is gone: its entry wakes nothing.
                 for e in self.ready.iter_mut() {
-                    if *e == Ready::Node(self.nodes.at(idx)) {
-                        *e = Ready::Node(NodeRef {
+                    if Ready::from(*e) == Ready::Node(self.nodes.at(idx)) {
+                        *e = Packed::from(Ready::Node(NodeRef {
                             idx: NONE,
                             epoch: 0,
-                        });
+                        }));
                     }
                 }
                 self.nodes.get_mut(idx).queued = false;

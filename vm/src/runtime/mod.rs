@@ -65,7 +65,7 @@ pub struct Vm<H: Hal, C: Clock> {
     vars: Vars,
     nodes: Nodes,
     root: u32,
-    ready: VecDeque<exec::Ready>,
+    ready: VecDeque<exec::Packed>,
     /// Reused buffer of the subscribers of a woken variable.
     woken: Vec<vars::Woken>,
     /// Nodes stepped every tick (sensors, searches, asynchronous operations).
@@ -200,6 +200,10 @@ impl<H: Hal, C: Clock> Vm<H, C> {
         vm.frames.grow(&vm.module, &vm.decoded.all, vm.cfg.period);
         let main = vm.module.main.index();
         let blocks = vm.module.units[main].blocks.clone();
+        // Every top-level block starts now and is queued: room for exactly them,
+        // where growing by doubling would leave up to half of it unused.
+        vm.nodes.all.reserve_exact(blocks.len());
+        vm.ready.reserve_exact(blocks.len());
         for b in blocks {
             vm.start_block(root, b.0, 0);
         }
@@ -339,7 +343,7 @@ impl<H: Hal, C: Clock> Vm<H, C> {
             ("variables", self.vars.footprint()),
             (
                 "ready queue",
-                self.ready.capacity() * size_of::<exec::Ready>(),
+                self.ready.capacity() * size_of::<exec::Packed>(),
             ),
             ("timers", self.timers.footprint()),
             (
