@@ -47,7 +47,7 @@ impl Gen {
         let v = self.rng.pick(&VARS);
         let w = self.rng.pick(&VARS);
         let t = self.tag();
-        match self.rng.below(7) {
+        match self.rng.below(8) {
             0 => a.assign(
                 &format!("{v}={v}+1 #{t};"),
                 v,
@@ -70,6 +70,12 @@ impl Gen {
                 ],
             ),
             3 => a.assign(&format!("{v}=0 #{t};"), v, &[X::N(0.0)]),
+            // A subtraction, which the trace-off path runs with its operands inline.
+            7 => a.assign(
+                &format!("{v}={w}-3 #{t};"),
+                v,
+                &[X::V(w), X::N(3.0), X::Op(ExprOp::Sub)],
+            ),
             4 => a.wait(&format!("wait(0.01) #{t};"), 0.01),
             5 => a.wait(&format!("wait(0.03) #{t};"), 0.03),
             _ => a.wait_bound(&format!("z{t}=wait(0.02)"), 0.02, &format!("z{t}")),

@@ -38,6 +38,48 @@ pub(crate) enum Ready {
     Wake(u32),
 }
 
+/// The index of a [`Packed`] wake: no node has it (the arena would be 256 GB).
+const WAKE: u32 = NONE - 1;
+
+/// A [`Ready`] as the queue holds it: 8 bytes where the enum takes 12 (every live
+/// block is queued at once when a task starts). A node is its index and
+/// generation; a wake has the index [`WAKE`] and its variable for the generation.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) struct Packed {
+    idx: u32,
+    word: u32,
+}
+
+impl From<Ready> for Packed {
+    #[inline]
+    fn from(r: Ready) -> Packed {
+        match r {
+            Ready::Node(n) => Packed {
+                idx: n.idx,
+                word: n.epoch,
+            },
+            Ready::Wake(var) => Packed {
+                idx: WAKE,
+                word: var,
+            },
+        }
+    }
+}
+
+impl From<Packed> for Ready {
+    #[inline]
+    fn from(p: Packed) -> Ready {
+        if p.idx == WAKE {
+            Ready::Wake(p.word)
+        } else {
+            Ready::Node(NodeRef {
+                idx: p.idx,
+                epoch: p.word,
+            })
+        }
+    }
+}
+
 impl<H: Hal, C: Clock> Vm<H, C> {
     pub(super) fn start_block(&mut self, parent: u32, block: u32, depth: u16) -> NodeRef {
         if let Some(r) = self.start_frame(parent, block) {
@@ -74,19 +116,19 @@ impl<H: Hal, C: Clock> Vm<H, C> {
                 idx,
                 epoch: n.epoch,
             };
-            self.ready.push_back(Ready::Node(r));
+            self.ready.push_back(Ready::Node(r).into());
         }
     }
 
     /// Runs ready nodes in FIFO order until the queue is empty or the budget is spent.
     pub(super) fn run_ready(&mut self) {
         self.ops_left = self.cfg.budget_ops;
-        while let Some(entry) = self.ready.pop_front() {
+        while let Some(entry) = self.ready.pop_front().map(Ready::from) {
             let r = match entry {
                 Ready::Node(r) => r,
                 Ready::Wake(var) => {
                     if self.ops_left == 0 {
-                        self.ready.push_front(entry);
+                        self.ready.push_front(entry.into());
                         self.overrun(NONE);
                         return;
                     }
@@ -104,26 +146,30 @@ impl<H: Hal, C: Clock> Vm<H, C> {
                 continue;
             }
             if self.ops_left == 0 {
-                self.ready.push_front(entry);
+                self.ready.push_front(entry.into());
                 self.overrun(r.idx);
                 return;
             }
             n.queued = false;
+            // A frame, the common entry, without copying its node's kind.
+            if let Kind::Frame(_) = n.kind {
+                if self.run_frame(r.idx) {
+                    self.nodes.get_mut(r.idx).queued = true;
+                    self.ready.push_front(entry.into());
+                    self.overrun(r.idx);
+                    return;
+                }
+                continue;
+            }
             let kind = n.kind;
             match kind {
                 Kind::Block(_) => {
                     if let Some(at) = self.run_strand(r) {
                         self.nodes.get_mut(at.idx).queued = true;
-                        self.ready.push_front(Ready::Node(at));
+                        self.ready.push_front(Ready::Node(at).into());
                         self.overrun(at.idx);
                         return;
                     }
-                }
-                Kind::Frame(_) if self.run_frame(r.idx) => {
-                    self.nodes.get_mut(r.idx).queued = true;
-                    self.ready.push_front(entry);
-                    self.overrun(r.idx);
-                    return;
                 }
                 Kind::If { .. } => self.check_guard(r.idx),
                 Kind::While { .. } => self.check_while(r.idx),
@@ -156,7 +202,7 @@ impl<H: Hal, C: Clock> Vm<H, C> {
                     if self.waiting(later) && !self.nodes.get(later.node).queued {
                         self.nodes.get_mut(later.node).queued = true;
                         let r = self.nodes.at(later.node);
-                        self.ready.push_front(Ready::Node(r));
+                        self.ready.push_front(Ready::Node(r).into());
                     }
                 }
                 self.overrun(w.node);
@@ -774,7 +820,7 @@ impl<H: Hal, C: Clock> Vm<H, C> {
             );
         }
         if self.vars.queue_wake(var) {
-            self.ready.push_back(Ready::Wake(var));
+            self.ready.push_back(Ready::Wake(var).into());
         }
     }
 

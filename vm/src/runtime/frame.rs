@@ -18,10 +18,13 @@ use ilmr_stdlib::Field;
 
 use super::Vm;
 use super::clock::Clock;
-use super::exec::Ready;
+use super::decode::{Bin, Decoded, Operand, Shape};
+use super::exec::{Packed, Ready};
 use super::nodes::{Class, Kind, NodeRef};
+use super::timers::Alarm;
 use super::trace::EventKind;
 use super::vars::{FieldMask, How, NONE};
+use super::watch::Cmp;
 use crate::bytecode::{BlockId, ExprId, ExprOp, Module, Op, StmtId};
 
 /// Loops a frame can hold open at once (a loop in the block, a loop in its body).
@@ -87,19 +90,163 @@ pub(crate) struct FInstr {
     pub loops: u8,
 }
 
+/// An arithmetic operator of [`Quick::SetVK`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Arith {
+    Add,
+    Sub,
+    Mul,
+}
+
+/// How the counts of what a frame stands for (`Nodes::live` and the issuing
+/// blocks) move when it goes from one pc to another: worked out when the code is
+/// compiled, so that a step does not look the two pcs up.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) struct Moved {
+    live: i8,
+    issuing: i8,
+}
+
+impl Moved {
+    fn between(code: &[FInstr], from: usize, to: usize) -> Moved {
+        let of = |pc: usize| {
+            code.get(pc)
+                .map_or((0, 0), |i| (i.live as i8, i8::from(i.issuing)))
+        };
+        let ((l0, i0), (l1, i1)) = (of(from), of(to));
+        Moved {
+            live: l1 - l0,
+            issuing: i1 - i0,
+        }
+    }
+}
+
+/// The trace-off form of a frame instruction, one per pc beside [`FInstr`]: the
+/// common shapes with their operands inline, as Lua's `OP_ADDK` and `OP_LTI` carry
+/// theirs, so that a step reads no expression table and copies no instruction. Each
+/// does exactly what its [`FOp`] does with the trace off (the budget charged the
+/// same ops, the same variable written the same way, the same counts moved);
+/// anything else is [`Quick::Slow`], the general path.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) enum Quick {
+    /// `var = src.field op k` (`c=c+1`): an `ASSIGN` of three expression ops.
+    SetVK {
+        var: u32,
+        src: u32,
+        field: Field,
+        op: Arith,
+        next: Moved,
+        k: f64,
+    },
+    /// `var = k`: an `ASSIGN` of one expression op.
+    SetK {
+        var: u32,
+        next: Moved,
+        k: f64,
+    },
+    /// A `wait` of a constant number of ticks that binds nothing.
+    Sleep {
+        next: Moved,
+        ticks: u32,
+    },
+    /// A loop's check `src.field cmp k` (`while(c<100)`) that binds nothing: true
+    /// moves to the body (`next`), false to `exit` (`out`).
+    CheckVK {
+        src: u32,
+        field: Field,
+        cmp: Cmp,
+        level: u8,
+        next: Moved,
+        out: Moved,
+        exit: u32,
+        k: f64,
+    },
+    /// [`FOp::EndBody`].
+    EndBody {
+        check: u32,
+        back: Moved,
+    },
+    Slow,
+}
+
+impl Quick {
+    fn of(code: &[FInstr], pc: usize, decoded: &[Decoded]) -> Quick {
+        let shape = |e: u32| decoded.get(e as usize).map(|d| (d.shape, d.len));
+        let next = Moved::between(code, pc, pc + 1);
+        match code[pc].op {
+            FOp::Assign { var, expr } => match shape(expr) {
+                Some((Shape::Two(Operand::Field(src, field), Operand::Const(k), bin), 3)) => {
+                    let op = match bin {
+                        Bin::Add => Arith::Add,
+                        Bin::Sub => Arith::Sub,
+                        Bin::Mul => Arith::Mul,
+                        Bin::Cmp(_) => return Quick::Slow,
+                    };
+                    Quick::SetVK {
+                        var,
+                        src,
+                        field,
+                        op,
+                        next,
+                        k,
+                    }
+                }
+                Some((Shape::One(Operand::Const(k)), 1)) => Quick::SetK { var, next, k },
+                _ => Quick::Slow,
+            },
+            FOp::Wait {
+                bind: NONE, ticks, ..
+            } if ticks != 0 => match u32::try_from(ticks) {
+                Ok(ticks) => Quick::Sleep { next, ticks },
+                Err(_) => Quick::Slow,
+            },
+            FOp::Check {
+                cond,
+                bind: NONE,
+                level,
+                exit,
+            } => match shape(cond) {
+                Some((
+                    Shape::Two(Operand::Field(src, field), Operand::Const(k), Bin::Cmp(cmp)),
+                    3,
+                )) => Quick::CheckVK {
+                    src,
+                    field,
+                    cmp,
+                    level,
+                    next,
+                    out: Moved::between(code, pc, exit as usize),
+                    exit,
+                    k,
+                },
+                _ => Quick::Slow,
+            },
+            FOp::EndBody { check } => Quick::EndBody {
+                check,
+                back: Moved::between(code, pc, check as usize),
+            },
+            _ => Quick::Slow,
+        }
+    }
+}
+
 /// The flat code of every frame-shaped block of a module.
 #[derive(Debug, Default)]
 pub(crate) struct Frames {
     pub code: Vec<FInstr>,
+    /// Per pc, the trace-off form of `code`'s instruction.
+    pub quick: Vec<Quick>,
     /// Per block: the pc its frame starts at, or NONE when it keeps the tree.
     entry: Vec<u32>,
     period: f64,
 }
 
 impl Frames {
-    /// Compiles the blocks the module gained since the last call.
-    pub fn grow(&mut self, m: &Module, period: f64) {
+    /// Compiles the blocks the module gained since the last call (`decoded`: the
+    /// module's expressions, decoded).
+    pub fn grow(&mut self, m: &Module, decoded: &[Decoded], period: f64) {
         self.period = period;
+        let from = self.code.len();
         for b in self.entry.len()..m.blocks.len() {
             let start = self.code.len();
             let mut checks = [NONE; MAX_LOOPS];
@@ -111,6 +258,10 @@ impl Frames {
                 NONE
             };
             self.entry.push(entry);
+        }
+        for pc in from..self.code.len() {
+            let q = Quick::of(&self.code, pc, decoded);
+            self.quick.push(q);
         }
     }
 
@@ -288,6 +439,11 @@ impl<H: Hal, C: Clock> Vm<H, C> {
     /// Returns true when the budget ran out before an instruction: the frame stays
     /// first in the queue.
     pub(super) fn run_frame(&mut self, idx: u32) -> bool {
+        if !self.tracing()
+            && let Some(overrun) = self.run_quick(idx)
+        {
+            return overrun;
+        }
         let Kind::Frame(mut f) = self.nodes.get(idx).kind else {
             return false;
         };
@@ -336,15 +492,7 @@ impl<H: Hal, C: Clock> Vm<H, C> {
                         ticks
                     };
                     self.bind_issue(bind, stmt);
-                    f.nap = f.nap.wrapping_add(1);
-                    f.asleep = true;
-                    self.nodes.classes[Class::Sleep as usize] += 1;
-                    self.nodes.sleepers += 1;
-                    let node = self.nodes.at(idx);
-                    self.timers.set(
-                        self.tick.saturating_add(ticks),
-                        super::timers::Alarm { node, nap: f.nap },
-                    );
+                    self.frame_sleep(idx, &mut f, ticks);
                     self.frame_store(idx, f, from);
                     return false;
                 }
@@ -405,6 +553,163 @@ impl<H: Hal, C: Clock> Vm<H, C> {
         }
     }
 
+    /// A visit of frame `idx` with the trace off, on the instructions' [`Quick`]
+    /// forms, as Lua's `luaV_execute` runs: a dense array, a `match`, the state in
+    /// locals, nothing allocated. Returns what [`Vm::run_frame`] returns, or `None`
+    /// at a [`Quick::Slow`] instruction, the frame's state stored, for the general
+    /// loop to go on from.
+    #[inline]
+    fn run_quick(&mut self, idx: u32) -> Option<bool> {
+        let Vm {
+            nodes,
+            vars,
+            ready,
+            timers,
+            frames,
+            ops_left,
+            end_code,
+            tick,
+            ..
+        } = self;
+        let super::nodes::Nodes {
+            all,
+            live,
+            classes,
+            sleepers,
+            ..
+        } = nodes;
+        let node = all.get_mut(idx as usize)?;
+        let epoch = node.epoch;
+        let Kind::Frame(f) = &mut node.kind else {
+            return None;
+        };
+        let (mut moved_live, mut moved_issuing) = (0i8, 0i8);
+        let mut step = |m: Moved| {
+            moved_live += m.live;
+            moved_issuing += m.issuing;
+        };
+        let mut queue = false;
+        let result = loop {
+            match frames.quick.get(f.pc as usize) {
+                Some(&Quick::SetVK {
+                    var,
+                    src,
+                    field,
+                    op,
+                    next,
+                    k,
+                }) => {
+                    if *ops_left == 0 {
+                        break Some(true);
+                    }
+                    // The statement's op and its expression's three.
+                    *ops_left = (*ops_left - 1).saturating_sub(3);
+                    let a = vars.field(src, field);
+                    let v = match op {
+                        Arith::Add => a + k,
+                        Arith::Sub => a - k,
+                        Arith::Mul => a * k,
+                    };
+                    // What `assign` does after its evaluation, with the trace off.
+                    vars.assign(var, v);
+                    if vars.queue_wake(var) {
+                        ready.push_back(Ready::Wake(var).into());
+                    }
+                    f.pc += 1;
+                    step(next);
+                }
+                Some(&Quick::SetK { var, next, k }) => {
+                    if *ops_left == 0 {
+                        break Some(true);
+                    }
+                    *ops_left = (*ops_left - 1).saturating_sub(1);
+                    vars.assign(var, k);
+                    if vars.queue_wake(var) {
+                        ready.push_back(Ready::Wake(var).into());
+                    }
+                    f.pc += 1;
+                    step(next);
+                }
+                Some(&Quick::Sleep { next, ticks }) => {
+                    if *ops_left == 0 {
+                        break Some(true);
+                    }
+                    // The statement's op and its constant's.
+                    *ops_left = (*ops_left - 1).saturating_sub(1);
+                    f.pc += 1;
+                    step(next);
+                    f.nap = f.nap.wrapping_add(1);
+                    f.asleep = true;
+                    classes[Class::Sleep as usize] += 1;
+                    *sleepers += 1;
+                    let node = NodeRef { idx, epoch };
+                    timers.set(
+                        tick.saturating_add(u64::from(ticks)),
+                        Alarm { node, nap: f.nap },
+                    );
+                    break Some(false);
+                }
+                Some(&Quick::CheckVK {
+                    src,
+                    field,
+                    cmp,
+                    level,
+                    next,
+                    out,
+                    exit,
+                    k,
+                }) => {
+                    // The check's op and its expression's three.
+                    *ops_left = ops_left.saturating_sub(1 + 3);
+                    if cmp.holds(vars.field(src, field), k) {
+                        if let Some(i) = f.iters.get_mut(usize::from(level)) {
+                            *i = i.wrapping_add(1);
+                        }
+                        f.pc += 1;
+                        step(next);
+                        queue = true;
+                        break Some(false);
+                    }
+                    // `end_in_place` with the trace off and nothing bound.
+                    *end_code = None;
+                    f.pc = exit;
+                    step(out);
+                }
+                Some(&Quick::EndBody { check, back }) => {
+                    *end_code = None;
+                    f.pc = check;
+                    step(back);
+                    queue = true;
+                    break Some(false);
+                }
+                _ => break None,
+            }
+        };
+        if moved_live != 0 || moved_issuing != 0 {
+            *live = live.saturating_add_signed(isize::from(moved_live));
+            let n = &mut classes[Class::Issuing as usize];
+            *n = n.saturating_add_signed(isize::from(moved_issuing));
+        }
+        if queue && !node.queued {
+            node.queued = true;
+            ready.push_back(Ready::Node(NodeRef { idx, epoch }).into());
+        }
+        result
+    }
+
+    /// Frame `idx` (its state `f`) goes to sleep for `ticks`: a wheel alarm names it
+    /// and this sleep.
+    #[inline]
+    fn frame_sleep(&mut self, idx: u32, f: &mut FrameState, ticks: u64) {
+        f.nap = f.nap.wrapping_add(1);
+        f.asleep = true;
+        self.nodes.classes[Class::Sleep as usize] += 1;
+        self.nodes.sleepers += 1;
+        let node = self.nodes.at(idx);
+        self.timers
+            .set(self.tick.saturating_add(ticks), Alarm { node, nap: f.nap });
+    }
+
     #[inline]
     fn frame_store(&mut self, idx: u32, f: FrameState, from: u32) {
         self.nodes.get_mut(idx).kind = Kind::Frame(f);
@@ -418,7 +723,7 @@ impl<H: Hal, C: Clock> Vm<H, C> {
     /// look at its node. Returns false for any other alarm, which takes the
     /// general path.
     #[inline]
-    pub(super) fn wake_frame(&mut self, a: &super::timers::Alarm) -> bool {
+    pub(super) fn wake_frame(&mut self, a: &Alarm) -> bool {
         if self.tracing() {
             return false;
         }
@@ -433,14 +738,14 @@ impl<H: Hal, C: Clock> Vm<H, C> {
         }
         let unbound =
             f.pc.checked_sub(1)
-                .and_then(|pc| self.frames.code.get(pc as usize))
-                .is_some_and(|w| matches!(w.op, FOp::Wait { bind: NONE, .. }));
+                .and_then(|pc| self.frames.quick.get(pc as usize))
+                .is_some_and(|w| matches!(w, Quick::Sleep { .. }));
         if !unbound || n.queued {
             return false;
         }
         f.asleep = false;
         n.queued = true;
-        self.ready.push_back(Ready::Node(a.node));
+        self.ready.push_back(Ready::Node(a.node).into());
         let sleep = &mut self.nodes.classes[Class::Sleep as usize];
         *sleep = sleep.saturating_sub(1);
         self.nodes.sleepers = self.nodes.sleepers.saturating_sub(1);
@@ -526,11 +831,11 @@ impl<H: Hal, C: Clock> Vm<H, C> {
             if self.nodes.get(idx).queued {
                 // The tree's queued body or loop is gone: its entry wakes nothing.
                 for e in self.ready.iter_mut() {
-                    if *e == Ready::Node(self.nodes.at(idx)) {
-                        *e = Ready::Node(NodeRef {
+                    if Ready::from(*e) == Ready::Node(self.nodes.at(idx)) {
+                        *e = Packed::from(Ready::Node(NodeRef {
                             idx: NONE,
                             epoch: 0,
-                        });
+                        }));
                     }
                 }
                 self.nodes.get_mut(idx).queued = false;
@@ -602,4 +907,166 @@ impl<H: Hal, C: Clock> Vm<H, C> {
 pub(crate) enum FrameHit {
     Loop { frame: NodeRef, level: usize },
     Sleep { frame: NodeRef, nap: u32 },
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn at(op: FOp, live: u8, issuing: bool) -> FInstr {
+        FInstr {
+            op,
+            stmt: 0,
+            live,
+            issuing,
+            checks: [NONE; MAX_LOOPS],
+            loops: 0,
+        }
+    }
+
+    #[test]
+    fn the_counting_loop_runs_on_quick_forms_but_its_while() {
+        // `c=0` / `while(c<100)` / `c=c+1` / `wait(0.01)` / `endwhile`, as
+        // `Frames::block` lays it out; expressions 0 `0`, 1 `c<100`, 2 `c+1`, 3 `0.01`.
+        let c = Operand::Field(0, Field::Value);
+        let decoded = [
+            Decoded {
+                shape: Shape::One(Operand::Const(0.0)),
+                len: 1,
+            },
+            Decoded {
+                shape: Shape::Two(c, Operand::Const(100.0), Bin::Cmp(Cmp::Lt)),
+                len: 3,
+            },
+            Decoded {
+                shape: Shape::Two(c, Operand::Const(1.0), Bin::Add),
+                len: 3,
+            },
+            Decoded {
+                shape: Shape::One(Operand::Const(0.01)),
+                len: 1,
+            },
+        ];
+        let code = [
+            at(FOp::Assign { var: 0, expr: 0 }, 0, true),
+            at(
+                FOp::While {
+                    bind: NONE,
+                    level: 0,
+                },
+                0,
+                true,
+            ),
+            at(
+                FOp::Check {
+                    cond: 1,
+                    bind: NONE,
+                    level: 0,
+                    exit: 6,
+                },
+                1,
+                false,
+            ),
+            at(FOp::Assign { var: 0, expr: 2 }, 2, true),
+            at(
+                FOp::Wait {
+                    seconds: 3,
+                    bind: NONE,
+                    ticks: 1,
+                },
+                2,
+                true,
+            ),
+            at(FOp::EndBody { check: 2 }, 2, true),
+            at(FOp::End, 0, true),
+        ];
+        let quick: Vec<Quick> = (0..code.len())
+            .map(|pc| Quick::of(&code, pc, &decoded))
+            .collect();
+        let same = Moved {
+            live: 0,
+            issuing: 0,
+        };
+        assert_eq!(
+            quick[0],
+            Quick::SetK {
+                var: 0,
+                next: same,
+                k: 0.0
+            }
+        );
+        assert_eq!(quick[1], Quick::Slow);
+        assert_eq!(
+            quick[2],
+            Quick::CheckVK {
+                src: 0,
+                field: Field::Value,
+                cmp: Cmp::Lt,
+                level: 0,
+                // Into the body: its loop and body live, a block issuing again.
+                next: Moved {
+                    live: 1,
+                    issuing: 1,
+                },
+                // Out of the loop: the block's end.
+                out: Moved {
+                    live: -1,
+                    issuing: 1,
+                },
+                exit: 6,
+                k: 100.0,
+            }
+        );
+        assert_eq!(
+            quick[3],
+            Quick::SetVK {
+                var: 0,
+                src: 0,
+                field: Field::Value,
+                op: Arith::Add,
+                next: same,
+                k: 1.0,
+            }
+        );
+        assert_eq!(
+            quick[4],
+            Quick::Sleep {
+                next: same,
+                ticks: 1
+            }
+        );
+        assert_eq!(
+            quick[5],
+            Quick::EndBody {
+                check: 2,
+                back: Moved {
+                    live: -1,
+                    issuing: -1,
+                },
+            }
+        );
+        assert_eq!(quick[6], Quick::Slow);
+        // A bound wait, a division and a wait whose time is computed keep the
+        // general path.
+        let bound = at(
+            FOp::Wait {
+                seconds: 3,
+                bind: 1,
+                ticks: 1,
+            },
+            0,
+            true,
+        );
+        assert_eq!(Quick::of(&[bound], 0, &decoded), Quick::Slow);
+        let computed = at(
+            FOp::Wait {
+                seconds: 2,
+                bind: NONE,
+                ticks: 0,
+            },
+            0,
+            true,
+        );
+        assert_eq!(Quick::of(&[computed], 0, &decoded), Quick::Slow);
+    }
 }

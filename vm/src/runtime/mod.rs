@@ -65,7 +65,7 @@ pub struct Vm<H: Hal, C: Clock> {
     vars: Vars,
     nodes: Nodes,
     root: u32,
-    ready: VecDeque<exec::Ready>,
+    ready: VecDeque<exec::Packed>,
     /// Reused buffer of the subscribers of a woken variable.
     woken: Vec<vars::Woken>,
     /// Nodes stepped every tick (sensors, searches, asynchronous operations).
@@ -197,9 +197,13 @@ impl<H: Hal, C: Clock> Vm<H, C> {
             end_code: None,
         };
         vm.decoded.grow(&vm.module);
-        vm.frames.grow(&vm.module, vm.cfg.period);
+        vm.frames.grow(&vm.module, &vm.decoded.all, vm.cfg.period);
         let main = vm.module.main.index();
         let blocks = vm.module.units[main].blocks.clone();
+        // Every top-level block starts now and is queued: room for exactly them,
+        // where growing by doubling would leave up to half of it unused.
+        vm.nodes.all.reserve_exact(blocks.len());
+        vm.ready.reserve_exact(blocks.len());
         for b in blocks {
             vm.start_block(root, b.0, 0);
         }
@@ -339,7 +343,7 @@ impl<H: Hal, C: Clock> Vm<H, C> {
             ("variables", self.vars.footprint()),
             (
                 "ready queue",
-                self.ready.capacity() * size_of::<exec::Ready>(),
+                self.ready.capacity() * size_of::<exec::Packed>(),
             ),
             ("timers", self.timers.footprint()),
             (
@@ -469,7 +473,8 @@ impl<H: Hal, C: Clock> Vm<H, C> {
     fn joined(&mut self, start: impl Iterator<Item = u32>) {
         self.vars.grow(self.module.globals.len());
         self.decoded.grow(&self.module);
-        self.frames.grow(&self.module, self.cfg.period);
+        self.frames
+            .grow(&self.module, &self.decoded.all, self.cfg.period);
         self.lower.extend(
             self.module.stmts[self.lower.len()..]
                 .iter()

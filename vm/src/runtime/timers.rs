@@ -53,6 +53,7 @@ impl Default for Timers {
 
 impl Timers {
     /// Sets a timer for tick `due`, which must be later than the current tick.
+    #[inline]
     pub(crate) fn set(&mut self, due: u64, node: Alarm) {
         if due < self.horizon {
             self.slot(due).push(node);

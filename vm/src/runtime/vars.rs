@@ -141,6 +141,9 @@ pub(crate) struct Woken {
 #[derive(Debug, Default)]
 pub(crate) struct Vars {
     pub records: Vec<VarRecord>,
+    /// The subscription lists of the variables up to the last one anything has
+    /// subscribed to or watched ([`Vars::head`]): a variable past them has none, and
+    /// a program of many variables that nothing waits on keeps none.
     heads: Vec<Head>,
     subs: Vec<Sub>,
     free_subs: u32,
@@ -157,7 +160,7 @@ impl Vars {
         watches.grow(n);
         Vars {
             records: vec![VarRecord::default(); n],
-            heads: vec![EMPTY; n],
+            heads: Vec::new(),
             subs: Vec::new(),
             free_subs: NONE,
             watches,
@@ -178,9 +181,21 @@ impl Vars {
     pub fn grow(&mut self, n: usize) {
         if n > self.records.len() {
             self.records.resize(n, VarRecord::default());
-            self.heads.resize(n, EMPTY);
             self.watches.grow(n);
         }
+    }
+
+    /// The subscription list of `var`, made (with those before it) on first use;
+    /// None for a variable out of range.
+    fn head(&mut self, var: u32) -> Option<&mut Head> {
+        let v = var as usize;
+        if v >= self.records.len() {
+            return None;
+        }
+        if v >= self.heads.len() {
+            self.heads.resize(v + 1, EMPTY);
+        }
+        self.heads.get_mut(v)
     }
 
     pub fn get(&self, v: u32) -> VarRecord {
@@ -272,6 +287,8 @@ impl Vars {
             node,
             epoch,
         };
+        // A watched variable's wake is queued through its head.
+        self.head(shape.var)?;
         let list = self.watches.add(shape, entry, is_live)?;
         self.seq += 1;
         Some(WATCH | list)
@@ -332,7 +349,7 @@ impl Vars {
     /// Subscribes `node` to changes of `var`; `node_head` is the node's list head,
     /// `cond` the guard's condition (NONE for a wait).
     pub fn subscribe(&mut self, node: u32, cond: u32, var: u32, node_head: &mut u32) {
-        let Some(tail) = self.heads.get(var as usize).map(|h| h.last) else {
+        let Some(tail) = self.head(var).map(|h| h.last) else {
             return;
         };
         if self.free_subs == NONE && self.subs.len() >= WATCH as usize {

@@ -164,17 +164,17 @@ const COMPACT_AT: u32 = 64;
 #[derive(Debug, Default)]
 pub(crate) struct Watches {
     lists: Vec<List>,
-    /// Per variable: its first list, and how many live guards its lists hold.
+    /// Per variable: its first list, and how many live guards its lists hold; only
+    /// up to the last variable watched (a variable past them has no list).
     first: Vec<u32>,
     live: Vec<u32>,
+    /// The variables there are.
+    vars: usize,
 }
 
 impl Watches {
     pub fn grow(&mut self, n: usize) {
-        if n > self.first.len() {
-            self.first.resize(n, NONE);
-            self.live.resize(n, 0);
-        }
+        self.vars = self.vars.max(n);
     }
 
     pub fn footprint(&self) -> usize {
@@ -228,7 +228,15 @@ impl Watches {
     }
 
     fn list_for(&mut self, shape: Shape) -> Option<u32> {
-        let mut id = *self.first.get(shape.var as usize)?;
+        let v = shape.var as usize;
+        if v >= self.vars {
+            return None;
+        }
+        if v >= self.first.len() {
+            self.first.resize(v + 1, NONE);
+            self.live.resize(v + 1, 0);
+        }
+        let mut id = self.first[v];
         while id != NONE {
             let l = &self.lists[id as usize];
             if l.field == shape.field && l.op == shape.op {
