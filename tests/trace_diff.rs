@@ -48,9 +48,10 @@ fn one_task_run_twice_with_one_seed_is_the_same_run() {
 
 #[test]
 fn a_changed_task_shows_where_it_parts_ways_and_which_ends_moved() {
-    // From (8, 5) in the office's lab: `goahead(1)` then `turn(left)` now ends held
-    // by the supervisor beside the bench's end (issue 15 item 4's turn check lets
-    // the turn begin 2 cm from its bound), so the runs start half a metre later.
+    // From (8, 5) in the office's lab, `goahead(1)` then `turn(left)` now ends held by
+    // the supervisor beside the bench's end (issue 15 item 4's turn check lets the
+    // turn begin where the old one did not; left open), so these runs go half a
+    // metre further first.
     let a = traced("task-a", "goahead(1.5)\nturn(left)\n", &[]);
     let b = traced("task-b", "goahead(2)\nturn(left)\n", &[]);
     let (code, out, err) = diff(&a, &b);
