@@ -373,24 +373,28 @@ fn refusals_are_told_as_they_happen_and_end_the_run_with_exit_3() {
 
 #[test]
 fn a_hold_that_does_not_clear_ends_the_run_at_the_hold_limit_with_exit_4() {
-    // Figure 24's wall following in the office runs into a corner at 11.84 s.
-    let (code, out, err) = run_task("held", "followwall(left)\n", &["--hold-limit", "5"]);
+    // With avoidance off, straight on towards the lab's cabinet in the office: the
+    // supervisor holds the robot short of it at 7.73 s. (Figure 24's wall following
+    // used to run into a corner here and stay held; it now stops its leg short of
+    // the wall ahead.)
+    let held = "obsavoid(off)\ngoahead(10)\n";
+    let (code, out, err) = run_task("held", held, &["--hold-limit", "5"]);
     assert_eq!(code, 4, "{out}{err}");
     assert!(
-        err.contains("[t=11.84] held (R0206 obstacle_near): an obstacle"),
+        err.contains("[t=7.73] held (R0206 obstacle_near): an obstacle"),
         "{err}"
     );
     assert!(
-        out.contains("held: gave up after --hold-limit 5 s of a supervisor hold, R0206 obstacle_near since t=11.84 (5 s)"),
+        out.contains("held: gave up after --hold-limit 5 s of a supervisor hold, R0206 obstacle_near since t=7.73 (5 s)"),
         "{out}"
     );
-    assert!(out.contains("simulated time  16.84 s"), "{out}");
+    assert!(out.contains("simulated time  12.73 s"), "{out}");
     assert!(out.contains("  holds           1\n"), "{out}");
     // Without a limit the run waits for the hold to clear, and says at the end that
     // it was held.
     let (code, out, _) = run_task(
         "held-long",
-        "followwall(left)\n",
+        held,
         &["--hold-limit", "inf", "--max-time", "20"],
     );
     assert_eq!(code, 4, "{out}");
@@ -783,8 +787,8 @@ fn a_run_that_cannot_start_leaves_valid_files_that_say_why() {
 
 /// The published JSON Schema (docs/trace-schema.json) holds for the traces `ilmrc run`
 /// writes, checked by a validator this project did not write (Python's `jsonschema`,
-/// which CI installs): a simulated run with marks, scans, paths and avoidance, and a
-/// run whose variable overflows to infinity.
+/// which CI installs): a simulated run with marks, scans and paths, one the avoider
+/// blocks, and a run whose variable overflows to infinity.
 #[test]
 fn traces_validate_against_the_published_schema() {
     let dir = scratch("schema");
@@ -795,8 +799,16 @@ fn traces_validate_against_the_published_schema() {
         "x=1\nz=0\nwhile(z<400)\nx=x*1000\nz=z+1\nendwhile\n",
     )
     .unwrap();
-    let runs: [(&str, Vec<&str>); 2] = [
+    // Figure 58's run no longer meets the avoider (its turns and legs keep clear of
+    // the walls ahead): a robot sent straight at the lab's east wall does.
+    let blocked = dir.join("blocked.ilmr");
+    std::fs::write(&blocked, "obsavoid(on)\ngoahead(10)\n").unwrap();
+    let runs: [(&str, Vec<&str>); 3] = [
         ("way_out", vec!["--max-time", "60", "examples/way_out.ilmr"]),
+        (
+            "blocked",
+            vec!["--max-time", "10", blocked.to_str().unwrap()],
+        ),
         (
             "overflow",
             vec!["--robot", "none", overflow.to_str().unwrap()],

@@ -1,7 +1,6 @@
 //! `ilmrc run` on the simulated robots and `ilmrc replay`, as a user runs them: the
-//! dissertation's Figure 52 on MoRo in the office, Figure 58 in the lab world of
-//! `robots/sim/tests/worlds/lab.toml` (to the end: the door found, out and into the
-//! lobby), and test 1's turn on Workpartner in the yard (trace snapshots,
+//! dissertation's Figure 52 on MoRo in the office, Figure 58 in the office too (to
+//! the end: the door found, out into its 2 m corridor and into the lobby), and test 1's turn on Workpartner in the yard (trace snapshots,
 //! byte-identical per seed, plot, MCAP read back), and every failure a user can cause
 //! with its message and exit code.
 
@@ -79,7 +78,9 @@ const CASES: [(&str, &[&str]); 3] = [
         "fig58_way_out",
         &[
             "--world",
-            "robots/sim/tests/worlds/lab.toml",
+            "office",
+            "--start",
+            "4,6,0",
             "--max-time",
             "120",
             "--pose-every",
@@ -248,7 +249,8 @@ fn a_queued_movement_is_linked_and_wait_stops_on_the_point() {
 #[test]
 fn the_mcap_log_says_what_each_refusal_and_fault_was_at_its_level() {
     let task = scratch("mcap-held.ilmr");
-    std::fs::write(&task, "gotoxy(8.1,5.5)\nfollowwall(left)\n").unwrap();
+    // A refusal, then, with avoidance off, straight on at the lab's cabinet: a hold.
+    std::fs::write(&task, "gotoxy(8.1,5.5)\nobsavoid(off)\ngoahead(10)\n").unwrap();
     let run = run_with_outputs("mcap-held", &["--hold-limit", "2", task.to_str().unwrap()]);
     let _ = std::fs::remove_file(&task);
     let logs = run.foxglove["/commands"]["logs"]

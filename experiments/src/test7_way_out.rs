@@ -1,8 +1,12 @@
 //! Test 7 (section 5.6.6, Figures 58-59): MoRo learns the way out of the laboratory
 //! from an abstract description (`examples/way_out.ilmr`, compiled as `ilmrc run`
-//! compiles it) in `lab.toml` (the office's lab with 3 m corridors): two left turns
-//! round the bench, the lab door found on the right by the scanner, through it, two
-//! left turns, 5 m along the lab wall, left into the lobby and 1 m on. The path
+//! compiles it) in the shipped `office` world, whose corridors are 2 m wide as the
+//! dissertation's laboratory's: two left turns round the bench, the lab door found on
+//! the right by the scanner, through it, two left turns (into the corridor straight
+//! from the door, then into the west corridor at its end), 5 m along the lab wall,
+//! left into the lobby and 1 m on. Each `turn(left)` is a quarter circle at 1 m
+//! radius (three quarters of MoRo's full lock), begun where the robot's outline and
+//! the avoider's band have room along it (section 4.5.3). The path
 //! recorded on the way (`record(path_1)`) is then driven again from the start with
 //! `followpath(path_1)`.
 //!
@@ -14,11 +18,12 @@ use ilmr_plot::{Colour, Corner, Figure, Mark, Reference, Sample, Scenery, Track}
 use ilmr_sim::World;
 use ilmr_stdlib::Command;
 
-use crate::harness::{self, A, Task, compile_example, distance_to_polyline, length, moro, world};
+use crate::harness::{self, A, Task, compile_example, distance_to_polyline, length, moro};
 use crate::picture::{self, Hits, Marks};
 
 pub const SEED: u64 = 7;
-pub const WORLD: &str = "lab.toml";
+/// The shipped world (`robots/worlds/office.toml`).
+pub const WORLD: &str = "office";
 /// The lab door's middle (corridor_south at y = 11.5, x = 5.0), and how near the
 /// door variable must be to it, metres.
 pub const DOOR: (f64, f64) = (5.0, 11.5);
@@ -153,7 +158,7 @@ fn replay(w: World, path: &[(f64, f64)]) -> Result<Replay, String> {
 }
 
 pub fn run() -> Result<Test7, String> {
-    let w = world(WORLD)?;
+    let w = harness::shipped(WORLD)?;
     let way_out = way_out(w.clone())?;
     let replay = replay(w.clone(), &way_out.path_1)?;
     Ok(Test7 {

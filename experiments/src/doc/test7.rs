@@ -27,11 +27,14 @@ pub fn section(t: &Test7) -> String {
     format!(
         "## Test 7: the way out of the laboratory (Figures 58-59)
 
-`{WORLD}`, MoRo, seed {SEED}: `examples/way_out.ilmr` verbatim. The lab, bench, door
-(1.2 m, middle at x = 5 in the lab's north wall) and start are the shipped `office`
-world's; its corridors are 3 m wide instead of 2 m, because after lining up in the
-door MoRo needs about 2.5 m to `turn(left)` at 1 m radius with the margin the turn
-check keeps (in the office's 2 m corridor it stands in the doorway looking for room).
+`{WORLD}`, MoRo, seed {SEED}: `examples/way_out.ilmr` verbatim, in the shipped office
+world, whose corridors are 2 m wide as the laboratory's in Figure 59. Each `turn(left)`
+is a quarter circle at 1 m radius (three quarters of full lock, which leaves the
+controller steering in reserve), begun where MoRo's outline (1.2 x 0.6 m about its
+rear axle, grown by a 0.2 m margin) and the avoider's 0.72 m band have room along it
+and on after it (section 4.5.3): out of the door it turns at once, into the west
+corridor it follows the wall until the corner is passed, its leg stopping short of
+the corridor's end wall rather than driving into the avoider's area.
 Then `followpath(path_1)` is driven again from the start on a fresh robot (seed {}).
 
 | | dissertation | this simulator | asserted |

@@ -6,8 +6,13 @@ use ilmr_hal::BodyOffsets;
 use ilmr_model::RobotModel;
 
 /// `turn(left|right)` on a known body: three quarters of full lock, so the
-/// controller keeps steering in reserve (the setting the dissertation's tests were
-/// reproduced with, docs/experiments.md).
+/// controller keeps steering in reserve. At full lock it cannot catch up with
+/// the arc's start, and at its end it takes the time of a full curinc ramp to
+/// straighten: MoRo came out of test 2's corner 8 degrees past north, its
+/// commanded arc into the side corridor's wall, and stood held (the clipping
+/// of Figure 48 that "requires some modification to the code of ILMR"). The
+/// room the turn needs is checked with the robot's outline on this arc
+/// (`ilmr_motion::wall::turn_space_free`, section 4.5.3).
 pub const TURN_SHARE: f64 = 0.75;
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -63,6 +63,25 @@ pub fn route_turn(reference: &Path, k: usize, travel: &Pose, curvature: f64, rea
     most
 }
 
+/// True when `p`, found in the checked area, lies on the way the robot at
+/// `pose` goes: within `half` of its `route` over the `reach` metres from
+/// index `k`, widened by how far the robot is off the route now. The area of
+/// equations (11) and (12) reaches straight on past where its bend ends,
+/// while the route may turn on (round the end of Figure 58's lab bench) or
+/// away (into a 2 m corridor from a door) or end (short of the wall at a
+/// corridor's end): what lies there is not in the robot's way.
+pub fn on_the_way(
+    route: &Path,
+    k: usize,
+    pose: &Pose,
+    p: &Point2<f64>,
+    reach: f64,
+    half: f64,
+) -> bool {
+    let off = route.distance_to_stretch(&pose.position(), k, 0.0);
+    route.distance_to_stretch(p, k, reach) <= half + off
+}
+
 /// A map point inside the area, in the area's own coordinates.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Hit {
@@ -390,6 +409,48 @@ impl AreaTester {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn only_what_lies_along_the_route_is_in_the_way() {
+        // Out of a door heading north, a quarter turn left at 1 m radius:
+        // the far wall of the 2 m corridor lies straight ahead, not on the way.
+        let door = Pose::new(5.0, 11.5, std::f64::consts::FRAC_PI_2);
+        let spec = crate::path::TurnSpec::degrees(90.0, 1.0);
+        let route = crate::path::turn(door, &spec, Direction::Forward, 0.05).expect("a turn");
+        let far_wall = Point2::new(5.0, 13.5);
+        assert!(!on_the_way(&route, 0, &door, &far_wall, 2.55, 0.36));
+        // A box on the arc, or beside it within the half width, is.
+        assert!(on_the_way(
+            &route,
+            0,
+            &door,
+            &Point2::new(4.0, 12.5),
+            2.55,
+            0.36
+        ));
+        assert!(on_the_way(
+            &route,
+            0,
+            &door,
+            &Point2::new(4.3, 12.2),
+            2.55,
+            0.36
+        ));
+        // Beyond the reach it is not yet.
+        assert!(!on_the_way(
+            &route,
+            0,
+            &door,
+            &Point2::new(4.0, 12.5),
+            0.5,
+            0.36
+        ));
+        // A robot 0.5 m off its route (round an obstacle) widens the band.
+        let off = Pose::new(5.5, 11.5, std::f64::consts::FRAC_PI_2);
+        let beside = Point2::new(5.8, 11.6);
+        assert!(!on_the_way(&route, 0, &door, &beside, 2.55, 0.36));
+        assert!(on_the_way(&route, 0, &off, &beside, 2.55, 0.36));
+    }
 
     const MORO: AreaParams = AreaParams {
         max_curvature: 1.0 / 0.75,

@@ -9,7 +9,9 @@ mod grid;
 mod side;
 mod state;
 
-pub use area::{AreaParams, AreaTester, CheckArea, Hit, check_length, check_width, route_turn};
+pub use area::{
+    AreaParams, AreaTester, CheckArea, Hit, check_length, check_width, on_the_way, route_turn,
+};
 pub use bounds::Bounds;
 pub use grid::{PointGrid, grid_of};
 pub use side::{Detour, SideParams, corridor_is_free, detour_path, find_free_side};

@@ -3,7 +3,7 @@
 //! position controller brings the robot back to its route) and back to
 //! NORMAL after a security wait; plus BLOCKED, where the robot stands.
 
-use super::area::{AreaParams, CheckArea, check_length, route_turn};
+use super::area::{AreaParams, CheckArea, check_length, on_the_way, route_turn};
 use super::grid::PointGrid;
 use super::side::{Detour, SideParams, corridor_is_free, detour_path, find_free_side};
 use crate::path::{Direction, Path};
@@ -213,10 +213,14 @@ impl Avoider {
             &self.params.area,
             max_turn,
         );
-        let hits = match grid {
+        let mut hits = match grid {
             Some(g) => area.hits_near(obs.points, g),
             None => area.hits(obs.points),
         };
+        if self.state != AvoidState::Avoiding {
+            let (route, half) = (obs.reference, 0.5 * area.width);
+            hits.retain(|h| on_the_way(route, obs.k, &obs.pose, &obs.points[h.index], reach, half));
+        }
         let next = match (self.mode, self.state) {
             (AvoidMode::Off, _) => {
                 self.reset();

@@ -304,6 +304,24 @@ impl Path {
             .fold(f64::INFINITY, f64::min)
     }
 
+    /// Shortest distance from `p` to the stretch of the path from index `k`
+    /// to `reach` metres on (to the end if that comes first).
+    pub fn distance_to_stretch(&self, p: &Point2<f64>, k: usize, reach: f64) -> f64 {
+        let k = self.clamp_index(k);
+        let s_end = self.points[k].s + reach.max(0.0);
+        let stretch = &self.points[k..];
+        let n = stretch.iter().take_while(|q| q.s <= s_end).count().max(1);
+        // One point past the reach closes the last segment.
+        let stretch = &stretch[..(n + 1).min(stretch.len())];
+        if stretch.len() == 1 {
+            return (stretch[0].position() - p).norm();
+        }
+        stretch
+            .windows(2)
+            .map(|w| segment_distance(p, &w[0].position(), &w[1].position()))
+            .fold(f64::INFINITY, f64::min)
+    }
+
     /// True once `p` lies at or beyond the end, measured along the final
     /// travel direction: the test that ends a movement command even when
     /// the robot passes beside the last point rather than over it.

@@ -7,4 +7,4 @@ mod space;
 
 pub use fit::{WallError, WallLine, WallParams, fit_wall};
 pub use goal::{FOLLOWWALL_AHEAD, FOLLOWWALL_REPLAN, followwall_goal, middle_goal};
-pub use space::{path_is_free, turn_space_free};
+pub use space::{Outline, TurnRoom, leg_short_of_wall, path_is_free, turn_space_free};

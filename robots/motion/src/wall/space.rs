@@ -1,59 +1,143 @@
 //! "When turn(left) or turn(right) is given, the space for turning is first
-//! checked" (section 4.5.3).
+//! checked. If there is space, the trajectory is generated and executed"
+//! (section 4.5.3): the space is the floor the robot's outline sweeps on the
+//! quarter circle it will drive, at its own turning radius, and the way on
+//! after it that the avoider will look along.
 
 use crate::arc::Arc;
-use crate::obstacle::{Bounds, check_width};
-use crate::path::{Path, segment_distance};
+use crate::path::Path;
 use crate::pose::{Pose, Side};
-use nalgebra::Point2;
-use std::f64::consts::{FRAC_PI_2, FRAC_PI_4};
+use nalgebra::{Point2, Vector2};
+use std::f64::consts::FRAC_PI_2;
 
 /// True when no map point lies within `half_width` of the path.
 pub fn path_is_free(path: &Path, points: &[Point2<f64>], half_width: f64) -> bool {
     points.iter().all(|p| path.distance_to(p) > half_width)
 }
 
-/// True when a quarter turn to `side` at `curvature` from `pose`, and the
-/// `lead_out` metres the robot then drives straight on, keep every map
-/// point further than half the checked width (equation (12)) plus `margin`
-/// from the robot's centre line.
-///
-/// The straight after the arc matters at the end of a wall the robot turns
-/// round: the arc alone clears the corner as soon as the corner lies beyond
-/// the arc's end, but the robot goes on past it with the avoider's area
-/// ahead, and that area would then find the corner.
-pub fn turn_space_free(
-    pose: &Pose,
-    side: Side,
-    curvature: f64,
-    robot_width: f64,
-    margin: f64,
-    lead_out: f64,
+/// A leg of wall following that runs into a wall ahead (the end of a
+/// corridor), cut where the robot's front, `stop` metres ahead of a point of
+/// the leg along it, first comes within `half_width` of a map point (or the
+/// leg itself does); `None` when the leg is clear. Driven whole, the leg would
+/// lead the robot into the avoider's area, which finds the wall with no way
+/// round it: the robot stood blocked while the leg kept pointing into it.
+pub fn leg_short_of_wall(
+    leg: &Path,
     points: &[Point2<f64>],
-) -> bool {
-    if !(curvature.is_finite() && curvature > 0.0 && lead_out.is_finite()) {
+    half_width: f64,
+    stop: f64,
+) -> Option<Path> {
+    let pts = leg.points();
+    let start = pts[0].position();
+    let reach = leg.length() + stop.max(0.0) + half_width;
+    let near: Vec<&Point2<f64>> = points
+        .iter()
+        .filter(|p| (*p - start).norm() <= reach)
+        .collect();
+    let blocked = |q: Point2<f64>| near.iter().any(|p| (*p - q).norm() < half_width);
+    let hit = pts.iter().find(|q| {
+        let h = q.travel_heading();
+        let front = q.position() + stop.max(0.0) * Vector2::new(h.cos(), h.sin());
+        blocked(q.position()) || blocked(front)
+    })?;
+    let (head, _) = leg.split_at_remaining(leg.length() - hit.s);
+    Some(head)
+}
+
+/// The robot's outline about its reference point (the point whose pose it
+/// reports), metres: to its front, to its rear, and half its width.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Outline {
+    pub front: f64,
+    pub rear: f64,
+    pub half_width: f64,
+}
+
+/// What a quarter turn needs room for.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TurnRoom {
+    /// Of the quarter circle the reference point drives, 1/m (unsigned).
+    pub curvature: f64,
+    pub outline: Outline,
+    /// Kept clear round the outline all the way, m.
+    pub margin: f64,
+    /// How far ahead of the reference point the way must be clear after the
+    /// turn, m: where the avoider's area reaches (equation (11) from the
+    /// front), so the turn is not begun only to be blocked at its end.
+    pub lead_out: f64,
+    /// Half the width of the avoider's area (equation (12)), which runs
+    /// along the reference point's circle and on along the way after it:
+    /// that band is kept clear too, or the avoider (or, with avoidance off,
+    /// the supervisor) would stop the robot in the turn it has begun.
+    pub lead_half_width: f64,
+}
+
+/// True when the robot's outline, grown by the margin, sweeps no map point
+/// on a quarter turn to `side` from `pose`, nor on the straight after it, and
+/// none lies in the avoider's band round the reference point's circle.
+///
+/// The sweep is the outline turned about the turn's centre. It is checked at
+/// poses so close that the outline's farthest corner moves at most half the
+/// margin between two of them: a point the outline itself would touch between
+/// them lies within a quarter margin of the grown outline at one of them, so
+/// the outline keeps at least three quarters of the margin everywhere.
+pub fn turn_space_free(pose: &Pose, side: Side, room: &TurnRoom, points: &[Point2<f64>]) -> bool {
+    let TurnRoom {
+        curvature,
+        outline,
+        margin,
+        lead_out,
+        lead_half_width,
+    } = *room;
+    let sizes = [outline.front, outline.rear, outline.half_width, margin];
+    if !(curvature.is_finite()
+        && curvature > 0.0
+        && lead_out.is_finite()
+        && lead_half_width.is_finite()
+        && sizes.iter().all(|v| v.is_finite() && *v >= 0.0))
+    {
         return false;
     }
-    let arc = Arc {
+    let radius = 1.0 / curvature;
+    // In the start pose's frame (x ahead, y to the left) the turn's centre is
+    // a radius to the side; turning by `a` carries the outline round it.
+    let centre = Vector2::new(0.0, side.sign() * radius);
+    let (ahead, behind) = (outline.front + margin, outline.rear + margin);
+    let half = outline.half_width + margin;
+    let reach = ahead.max(behind).hypot(radius + half);
+    let inner = radius - half;
+    let steps = ((FRAC_PI_2 * reach / (0.5 * margin).max(1e-3)).ceil() as usize).max(1);
+    let turned: Vec<(f64, f64)> = (0..=steps)
+        .map(|i| (side.sign() * FRAC_PI_2 * i as f64 / steps as f64).sin_cos())
+        .collect();
+    let end = pose.advance(FRAC_PI_2 * radius, side.sign() * curvature);
+    let band = Arc {
         start: *pose,
         curvature: side.sign() * curvature,
-        length: FRAC_PI_2 / curvature,
+        length: FRAC_PI_2 * radius,
     };
-    let end = arc.end();
-    let beyond = end.advance(lead_out.max(0.0), 0.0).position();
-    let clearance = 0.5 * check_width(robot_width) + margin;
-    // Every point of a quarter circle lies within its sagitta of the chord:
-    // a point outside this box is further than the clearance from both, and
-    // is passed over without the arc's trigonometry.
-    let sagitta = (1.0 - FRAC_PI_4.cos()) / curvature;
-    let near = Bounds::around(
-        &[(pose.x, pose.y), (end.x, end.y), (beyond.x, beyond.y)],
-        clearance + sagitta,
-    );
+    let way_half = lead_half_width.max(outline.half_width) + margin;
+    let way_ahead = lead_out.max(outline.front) + margin;
+    let swept = |l: Point2<f64>| {
+        let from_centre = l.coords - centre;
+        let r = from_centre.norm();
+        if r > reach || r < inner {
+            return false;
+        }
+        // The point as the outline sees it once turned by `a`: turned back
+        // by `a` about the centre.
+        turned.iter().any(|&(s, c)| {
+            let q = Vector2::new(
+                c * from_centre.x + s * from_centre.y,
+                -s * from_centre.x + c * from_centre.y,
+            ) + centre;
+            (-behind..=ahead).contains(&q.x) && q.y.abs() <= half
+        })
+    };
     points.iter().all(|p| {
-        near.excludes((p.x, p.y))
-            || (arc.distance_to(p) > clearance
-                && segment_distance(p, &end.position(), &beyond) > clearance)
+        let on_way = end.to_local(p);
+        let blocks_way = (-behind..=way_ahead).contains(&on_way.x) && on_way.y.abs() <= way_half;
+        !blocks_way && band.distance_to(p) > way_half && !swept(pose.to_local(p))
     })
 }
 
@@ -61,22 +145,184 @@ pub fn turn_space_free(
 mod tests {
     use super::*;
 
+    /// MoRo (docs/robot-model.md): 0.95 m ahead of the rear axle to its
+    /// front, 0.25 m behind it, 0.6 m wide, turning at 0.75 m.
+    const MORO: Outline = Outline {
+        front: 0.95,
+        rear: 0.25,
+        half_width: 0.3,
+    };
+
+    fn room(curvature: f64, margin: f64, lead_out: f64) -> TurnRoom {
+        TurnRoom {
+            curvature,
+            outline: MORO,
+            margin,
+            lead_out,
+            lead_half_width: 0.36,
+        }
+    }
+
+    fn wall(from: (f64, f64), to: (f64, f64)) -> Vec<Point2<f64>> {
+        let n = ((to.0 - from.0).hypot(to.1 - from.1) / 0.05).ceil() as usize;
+        (0..=n)
+            .map(|i| {
+                let t = i as f64 / n as f64;
+                Point2::new(from.0 + t * (to.0 - from.0), from.1 + t * (to.1 - from.1))
+            })
+            .collect()
+    }
+
+    /// The office's lab door (robots/worlds/office.toml): 1.2 m wide in the
+    /// south wall of the 2 m corridor, middle at x = 5, the corridor running
+    /// west to the wall at x = 0.5.
+    fn office_door() -> Vec<Point2<f64>> {
+        [
+            wall((0.5, 11.5), (4.4, 11.5)),
+            wall((5.6, 11.5), (12.0, 11.5)),
+            wall((0.5, 13.5), (12.0, 13.5)),
+            wall((0.5, 11.5), (0.5, 13.5)),
+        ]
+        .concat()
+    }
+
     #[test]
-    fn passing_over_far_points_changes_no_answer() {
-        // The check over every point with the arc's own distances, as it was
-        // before far points were passed over.
-        let every_point = |pose: &Pose, side: Side, c: f64, lead_out: f64, pts: &[Point2<f64>]| {
-            let arc = Arc {
-                start: *pose,
-                curvature: side.sign() * c,
-                length: FRAC_PI_2 / c,
-            };
-            let end = arc.end();
-            let beyond = end.advance(lead_out, 0.0).position();
-            let clearance = 0.5 * check_width(0.6) + 0.1;
-            pts.iter().all(|p| {
-                arc.distance_to(p) > clearance
-                    && segment_distance(p, &end.position(), &beyond) > clearance
+    fn figure_58_turns_left_out_of_the_door_into_the_2_m_corridor() {
+        let pts = office_door();
+        let door = Pose::new(5.0, 11.5, FRAC_PI_2);
+        let moro = room(1.0 / 0.75, 0.2, 2.55);
+        assert!(turn_space_free(&door, Side::Left, &moro, &pts));
+        // The far wall is 2 m ahead: a turn at 1.5 m radius sweeps into it.
+        assert!(!turn_space_free(
+            &door,
+            Side::Left,
+            &room(1.0 / 1.5, 0.2, 2.55),
+            &pts
+        ));
+        // To the right the corridor is as wide, but 5 m of the avoider's
+        // way ahead after the turn would reach the far end.
+        assert!(turn_space_free(&door, Side::Right, &moro, &pts));
+        assert!(!turn_space_free(
+            &door,
+            Side::Left,
+            &room(1.0 / 0.75, 0.2, 5.0),
+            &pts
+        ));
+        // Half a metre short of the door, the door's posts are in the way.
+        let short = Pose::new(5.0, 11.0, FRAC_PI_2);
+        assert!(!turn_space_free(&short, Side::Left, &moro, &pts));
+    }
+
+    #[test]
+    fn left_turn_is_free_only_past_the_corner() {
+        // A corridor 2 m wide along x, its left wall ending at x = 4.
+        let pts = [
+            wall((0.0, 1.0), (4.0, 1.0)),
+            wall((0.0, -1.0), (12.0, -1.0)),
+        ]
+        .concat();
+        let moro = room(1.0 / 0.75, 0.2, 0.0);
+        assert!(!turn_space_free(
+            &Pose::new(2.0, 0.0, 0.0),
+            Side::Left,
+            &moro,
+            &pts
+        ));
+        // The reference point is the rear axle, which drives the innermost
+        // circle: it may turn a little before the wall's end, as a driver does.
+        assert!(!turn_space_free(
+            &Pose::new(3.6, 0.0, 0.0),
+            Side::Left,
+            &moro,
+            &pts
+        ));
+        assert!(turn_space_free(
+            &Pose::new(4.0, 0.0, 0.0),
+            Side::Left,
+            &moro,
+            &pts
+        ));
+        // The right side is a wall all along.
+        assert!(!turn_space_free(
+            &Pose::new(4.6, 0.0, 0.0),
+            Side::Right,
+            &moro,
+            &pts
+        ));
+        assert!(!turn_space_free(
+            &Pose::new(4.6, 0.0, 0.0),
+            Side::Left,
+            &room(0.0, 0.2, 0.0),
+            &pts
+        ));
+        assert!(!turn_space_free(
+            &Pose::new(4.6, 0.0, 0.0),
+            Side::Left,
+            &room(f64::NAN, 0.2, 0.0),
+            &pts
+        ));
+    }
+
+    #[test]
+    fn the_way_on_after_the_turn_must_be_clear_too() {
+        // The side corridor the robot turns into ends 2.5 m on in a wall:
+        // the turn fits, but the avoider's area would find the wall at once.
+        let pts = [
+            wall((0.0, 1.0), (4.0, 1.0)),
+            wall((0.0, -1.0), (12.0, -1.0)),
+            wall((4.0, 3.0), (6.0, 3.0)),
+        ]
+        .concat();
+        let at = Pose::new(4.0, 0.0, 0.0);
+        assert!(turn_space_free(
+            &at,
+            Side::Left,
+            &room(1.0 / 0.75, 0.2, 0.0),
+            &pts
+        ));
+        assert!(!turn_space_free(
+            &at,
+            Side::Left,
+            &room(1.0 / 0.75, 0.2, 2.55),
+            &pts
+        ));
+        assert!(turn_space_free(
+            &at,
+            Side::Left,
+            &room(1.0 / 0.75, 0.2, 1.8),
+            &pts
+        ));
+    }
+
+    #[test]
+    fn a_leg_into_a_wall_ahead_stops_with_its_front_short_of_it() {
+        let leg = crate::path::straight(Pose::new(4.0, 0.0, std::f64::consts::PI), 3.0, 0.05)
+            .expect("a straight leg");
+        let end_wall = wall((0.5, -1.0), (0.5, 1.0));
+        let cut = leg_short_of_wall(&leg, &end_wall, 0.36, 1.15).expect("cut short");
+        // The front (1.15 m on) stops 0.36 m short of the wall at x = 0.5.
+        let end = cut.end_pose();
+        assert!((end.x - 2.01).abs() < 0.06, "ends at {end:?}");
+        assert!(leg_short_of_wall(&leg, &end_wall, 0.36, 0.1).is_none());
+        // A wall alongside, further than the half width, is no reason to stop.
+        let side = wall((0.0, 0.5), (5.0, 0.5));
+        assert!(leg_short_of_wall(&leg, &side, 0.36, 1.15).is_none());
+    }
+
+    #[test]
+    fn the_checked_poses_are_dense_enough_to_keep_most_of_the_margin() {
+        // Against the outline swept at a thousand poses: a point the coarse
+        // check lets pass is never within three quarters of the margin of
+        // the outline at any pose, and one it stops at is in the outline's
+        // way, the avoider's band or the way on.
+        let dense = |pose: &Pose, side: Side, c: f64, margin: f64, p: &Point2<f64>| {
+            let r = 1.0 / c;
+            (0..=1000).any(|i| {
+                let a = side.sign() * FRAC_PI_2 * f64::from(i) / 1000.0;
+                let at = pose.advance(a * r * side.sign(), side.sign() * c);
+                let l = at.to_local(p);
+                (-MORO.rear - margin..=MORO.front + margin).contains(&l.x)
+                    && l.y.abs() <= MORO.half_width + margin
             })
         };
         let mut state = 5u64;
@@ -87,118 +333,43 @@ mod tests {
             (state >> 11) as f64 / (1u64 << 53) as f64
         };
         let (mut free, mut blocked) = (0, 0);
-        for round in 0..3000 {
-            let pose = Pose::new(4.0 * next() - 2.0, 4.0 * next() - 2.0, 7.0 * next() - 3.5);
+        for round in 0..4000 {
             let side = if round % 2 == 0 {
                 Side::Left
             } else {
                 Side::Right
             };
-            let c = [1.0, 0.25, 1.0 / 0.75][round % 3];
-            let lead_out = [0.0, 1.5][round % 2];
-            // A few points, most a little way off the arc's band.
-            let pts: Vec<Point2<f64>> = (0..6)
-                .map(|_| Point2::new(pose.x + 10.0 * next() - 5.0, pose.y + 10.0 * next() - 5.0))
-                .collect();
-            let want = every_point(&pose, side, c, lead_out, &pts);
-            assert_eq!(
-                turn_space_free(&pose, side, c, 0.6, 0.1, lead_out, &pts),
-                want,
-                "round {round}"
-            );
-            if want { free += 1 } else { blocked += 1 }
+            let c = [1.0 / 0.75, 0.25, 1.0][round % 3];
+            let margin = 0.2;
+            let p = Point2::new(5.0 * next() - 2.5, 5.0 * next() - 2.5);
+            let pose = Pose::new(0.0, 0.0, 0.0);
+            let coarse = turn_space_free(&pose, side, &room(c, margin, 0.0), &[p]);
+            let end = pose.advance(FRAC_PI_2 / c, side.sign() * c).to_local(&p);
+            let on_way = (-MORO.rear - margin..=MORO.front + margin).contains(&end.x)
+                && end.y.abs() <= 0.36 + margin;
+            let band = Arc {
+                start: pose,
+                curvature: side.sign() * c,
+                length: FRAC_PI_2 / c,
+            };
+            let in_band = band.distance_to(&p) <= 0.36 + margin;
+            if coarse {
+                assert!(
+                    !dense(&pose, side, c, 0.75 * margin, &p),
+                    "round {round}: {p}"
+                );
+                free += 1;
+            } else {
+                assert!(
+                    on_way || in_band || dense(&pose, side, c, margin, &p),
+                    "round {round}: {p}"
+                );
+                blocked += 1;
+            }
         }
         assert!(
-            free > 300 && blocked > 300,
+            free > 500 && blocked > 500,
             "{free} free, {blocked} blocked"
         );
-    }
-
-    /// A corridor 2 m wide along x with its left wall ending at x = 4 (a
-    /// corner to the left).
-    fn corridor() -> Vec<Point2<f64>> {
-        let mut pts = vec![];
-        for i in 0..=100 {
-            let x = i as f64 * 0.1;
-            if x < 4.0 {
-                pts.push(Point2::new(x, 1.0));
-            }
-            pts.push(Point2::new(x, -1.0));
-        }
-        pts
-    }
-
-    #[test]
-    fn left_turn_is_free_only_past_the_corner() {
-        let pts = corridor();
-        assert!(!turn_space_free(
-            &Pose::new(2.0, 0.0, 0.0),
-            Side::Left,
-            1.0,
-            0.6,
-            0.1,
-            0.0,
-            &pts
-        ));
-        assert!(turn_space_free(
-            &Pose::new(4.3, 0.0, 0.0),
-            Side::Left,
-            1.0,
-            0.6,
-            0.1,
-            0.0,
-            &pts
-        ));
-        // The right side is a wall all along.
-        assert!(!turn_space_free(
-            &Pose::new(4.3, 0.0, 0.0),
-            Side::Right,
-            1.0,
-            0.6,
-            0.1,
-            0.0,
-            &pts
-        ));
-        assert!(!turn_space_free(
-            &Pose::new(4.3, 0.0, 0.0),
-            Side::Left,
-            0.0,
-            0.6,
-            0.1,
-            0.0,
-            &pts
-        ));
-    }
-
-    #[test]
-    fn the_straight_after_the_turn_must_clear_the_corner_too() {
-        // The end of a bench on the left (Figure 58): its corner lies just
-        // beyond the arc's end, closer than the clearance to the line the
-        // robot drives on after the turn.
-        let bench: Vec<Point2<f64>> = (0..=20)
-            .map(|i| Point2::new(4.5 + 0.25 * f64::from(i), 7.1))
-            .chain((0..=8).map(|i| Point2::new(9.5, 7.1 + 0.1 * f64::from(i))))
-            .collect();
-        let at = Pose::new(8.955, 6.0, 0.0);
-        assert!(turn_space_free(&at, Side::Left, 1.0, 0.6, 0.1, 0.0, &bench));
-        assert!(!turn_space_free(
-            &at,
-            Side::Left,
-            1.0,
-            0.6,
-            0.1,
-            1.4,
-            &bench
-        ));
-        let later = Pose::new(9.1, 6.0, 0.0);
-        assert!(turn_space_free(
-            &later,
-            Side::Left,
-            1.0,
-            0.6,
-            0.1,
-            1.4,
-            &bench
-        ));
     }
 }

@@ -7,7 +7,7 @@ use ilmr_motion::path::straight;
 use ilmr_motion::wall::{FOLLOWWALL_REPLAN, turn_space_free};
 use ilmr_motion::{Path, Pose};
 
-use super::plan::{ENDLESS_LEG, SPACING, TURN_MARGIN};
+use super::plan::{ENDLESS_LEG, SPACING};
 use super::{Mode, WallSide};
 use crate::runtime::Vm;
 use crate::runtime::clock::Clock;
@@ -26,7 +26,11 @@ impl<H: Hal, C: Clock> Vm<H, C> {
             return Ok(());
         };
         let s = run.path.points()[run.path.clamp_index(run.k)].s;
-        let next: Option<(Path, Mode)> = match run.mode {
+        // Within a turning diameter of the end of a leg cut short of a wall
+        // ahead: where the corner turn can begin.
+        let near_wall =
+            run.walled && run.path.remaining(run.k) <= 2.0 / self.cfg.turn_curvature.max(1e-9);
+        let next: Option<(Path, Mode, bool)> = match run.mode {
             Mode::Path => None,
             Mode::Endless => {
                 if run.path.remaining(run.k) < ENDLESS_MARGIN {
@@ -39,30 +43,39 @@ impl<H: Hal, C: Clock> Vm<H, C> {
                         .tail_from(run.k)
                         .concat(&more, ilmr_motion::path::JOIN_TOLERANCE)
                         .map_err(|e| e.to_string())?;
-                    Some((path, Mode::Endless))
+                    Some((path, Mode::Endless, false))
                 } else {
                     None
                 }
             }
-            Mode::Wall { side, distance } => (s >= FOLLOWWALL_REPLAN)
-                .then(|| self.wall_leg(pose, side, distance).map(|p| (p, run.mode)))
+            Mode::Wall {
+                side: WallSide::Side(wall),
+                ..
+            } if near_wall => {
+                // The corner at a corridor's end: the wall ahead is followed
+                // on, round the corner away from the wall kept so far, as
+                // soon as the turn has room; until then the leg goes on, and
+                // at its end the robot stands short of the wall.
+                let away = wall.opposite();
+                let room = self.turn_room();
+                turn_space_free(&pose, away, &room, self.motion.map.points())
+                    .then(|| self.quarter_turn(pose, away).map(|p| (p, run.mode, false)))
+                    .transpose()?
+            }
+            // A corner turn is followed by a fresh leg as it ends.
+            Mode::Wall { side, distance } => (s >= FOLLOWWALL_REPLAN
+                || (!run.walled && run.path.remaining(run.k) < self.cfg.link_distance))
+                .then(|| {
+                    self.wall_leg(pose, side, distance)
+                        .map(|leg| (leg.path, run.mode, leg.walled))
+                })
                 .transpose()?,
             Mode::TurnSide { side, distance } => {
-                if turn_space_free(
-                    &pose,
-                    side,
-                    self.cfg.turn_curvature,
-                    self.cfg.robot_width,
-                    TURN_MARGIN,
-                    self.turn_lead_out(),
-                    self.motion.map.points(),
-                ) {
-                    Some((self.quarter_turn(pose, side)?, Mode::Path))
+                if turn_space_free(&pose, side, &self.turn_room(), self.motion.map.points()) {
+                    Some((self.quarter_turn(pose, side)?, Mode::Path, false))
                 } else if s >= FOLLOWWALL_REPLAN {
-                    Some((
-                        self.wall_leg(pose, WallSide::Side(side), distance)?,
-                        run.mode,
-                    ))
+                    let leg = self.wall_leg(pose, WallSide::Side(side), distance)?;
+                    Some((leg.path, run.mode, leg.walled))
                 } else {
                     None
                 }
@@ -93,7 +106,7 @@ impl<H: Hal, C: Clock> Vm<H, C> {
                         // A target too close or too sharply placed for a
                         // Bezier is followed by the old path until it moves.
                         match self.approach_target(pose, x, y, distance) {
-                            Ok(p) => Some((p, mode)),
+                            Ok(p) => Some((p, mode, false)),
                             Err(_) => {
                                 self.set_mode(mode);
                                 None
@@ -112,9 +125,10 @@ impl<H: Hal, C: Clock> Vm<H, C> {
                 }
             }
         };
-        if let (Some((path, mode)), Some(run)) = (next, self.motion.run.as_mut()) {
+        if let (Some((path, mode, walled)), Some(run)) = (next, self.motion.run.as_mut()) {
             run.replan(path, &pose.position());
             run.mode = mode;
+            run.walled = walled;
             if mode == Mode::Path {
                 self.motion.goal = super::hpose(run.path.end_pose());
             }

@@ -160,7 +160,7 @@ impl<H: Hal, C: Clock> Vm<H, C> {
             (0.0, None)
         } else {
             // Behaviours re-plan before their leg ends: never brake for it.
-            let drive_through = linked || !run.ends();
+            let drive_through = linked || !(run.ends() || run.walled);
             (
                 target_speed,
                 stop_in(&run.path, run.k, &pose, run.advance, drive_through),

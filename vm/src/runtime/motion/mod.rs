@@ -75,6 +75,8 @@ pub(crate) struct Run {
     /// `advancestop(d)` in force for this movement, m.
     pub advance: f64,
     pub mode: Mode,
+    /// A behaviour's leg that ends short of a wall ahead: braked for.
+    pub walled: bool,
     /// The avoider's path round an obstacle and its own index.
     pub detour: Option<(Path, usize)>,
 }
@@ -362,6 +364,7 @@ impl<H: Hal, C: Clock> Vm<H, C> {
             base: 0.0,
             advance,
             mode: planned.mode,
+            walled: planned.walled,
             detour: None,
         });
         Ok(())

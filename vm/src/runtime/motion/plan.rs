@@ -9,10 +9,11 @@
 use std::f64::consts::FRAC_PI_2;
 
 use ilmr_hal::Hal;
-use ilmr_motion::obstacle::check_length;
+use ilmr_motion::obstacle::{check_length, check_width};
 use ilmr_motion::path::{TurnSpec, straight, taught, turn};
 use ilmr_motion::wall::{
-    FOLLOWWALL_AHEAD, WallParams, fit_wall, followwall_goal, middle_goal, turn_space_free,
+    FOLLOWWALL_AHEAD, Outline, TurnRoom, WallParams, fit_wall, followwall_goal, leg_short_of_wall,
+    middle_goal, turn_space_free,
 };
 use ilmr_motion::{Direction, Path, PlanError, PlanParams, Pose, Side, plan_with};
 use nalgebra::Point2;
@@ -28,12 +29,11 @@ use crate::runtime::safety::{Code, Refusal};
 pub(crate) const SPACING: f64 = 0.05;
 /// A `goahead` without a distance is planned this far and extended as it goes.
 pub(crate) const ENDLESS_LEG: f64 = 30.0;
-/// Clearance kept by `turn(left|right)` beyond half the checked width, m.
-/// It absorbs the controller catching up with the quarter circle (tighter
-/// than the path for a moment, so the avoider's area swings inside it) and
-/// the map's 5 cm cells at a wall's corner; with 0.1 m the turn round the
-/// end of Figure 58's lab bench began 1 cm too early and ended blocked.
-pub(crate) const TURN_MARGIN: f64 = 0.25;
+/// Clearance `turn(left|right)` keeps round the robot's outline, m: the
+/// controller, ramping its curvature at `curinc`, falls behind the quarter
+/// circle at its start before it catches up (MoRo at 0.3 m/s: a few
+/// centimetres), and the map's cells are 5 cm.
+pub(crate) const TURN_MARGIN: f64 = 0.2;
 /// `followpath` may join its path this many turning radii past the first
 /// point. A three-point turn at a path's end leaves the robot a radius
 /// back and a radius aside, facing across the path; the Bezier of
@@ -58,6 +58,9 @@ fn err(e: impl std::fmt::Display) -> String {
 pub(crate) struct Planned {
     pub path: Path,
     pub mode: Mode,
+    /// A behaviour's leg that ends short of a wall ahead: the robot brakes
+    /// for its end.
+    pub walled: bool,
 }
 
 impl Planned {
@@ -65,8 +68,15 @@ impl Planned {
         Planned {
             path,
             mode: Mode::Path,
+            walled: false,
         }
     }
+}
+
+/// A leg of wall following, and whether it was cut short of a wall ahead.
+pub(crate) struct Leg {
+    pub path: Path,
+    pub walled: bool,
 }
 
 impl<H: Hal, C: Clock> Vm<H, C> {
@@ -160,6 +170,7 @@ impl<H: Hal, C: Clock> Vm<H, C> {
             MoveSpec::Goahead { d } if d.is_nan() => Planned {
                 path: straight(start, dir.sign() * ENDLESS_LEG, SPACING).map_err(err)?,
                 mode: Mode::Endless,
+                walled: false,
             },
             MoveSpec::Goahead { d } => {
                 let d = f64::from(d);
@@ -174,30 +185,28 @@ impl<H: Hal, C: Clock> Vm<H, C> {
                 if !(c.is_finite() && c != 0.0) {
                     return Err("a turn needs a curvature other than 0".to_string().into());
                 }
-                let spec = TurnSpec::degrees(deg, c.abs());
+                // A curvature beyond the robot's is driven at the robot's: the
+                // arc is longer, but it turns through `d`. Planned as given, the
+                // controller's output is clipped (Figure 48) and the turn ended
+                // where the path did, up to half the angle short on Workpartner
+                // (maximum 0.25 1/m) at c = 1.
+                let spec = TurnSpec::degrees(deg, c.abs().min(self.cfg.max_curvature));
                 Planned::path(turn(start, &spec, dir, SPACING).map_err(err)?)
             }
             MoveSpec::TurnSide { left } => {
                 let s = if left { Side::Left } else { Side::Right };
-                let c = self.cfg.turn_curvature;
-                if turn_space_free(
-                    &start,
-                    s,
-                    c,
-                    self.cfg.robot_width,
-                    TURN_MARGIN,
-                    self.turn_lead_out(),
-                    self.motion.map.points(),
-                ) {
+                if turn_space_free(&start, s, &self.turn_room(), self.motion.map.points()) {
                     Planned::path(self.quarter_turn(start, s)?)
                 } else {
                     let kept = self.wall_distance(&start, s);
+                    let leg = self.wall_leg(start, WallSide::Side(s), kept)?;
                     Planned {
-                        path: self.wall_leg(start, WallSide::Side(s), kept)?,
+                        path: leg.path,
                         mode: Mode::TurnSide {
                             side: s,
                             distance: kept,
                         },
+                        walled: leg.walled,
                     }
                 }
             }
@@ -259,9 +268,11 @@ impl<H: Hal, C: Clock> Vm<H, C> {
                     WallMode::Side(s) => WallSide::Side(side(s)),
                     WallMode::Middle => WallSide::Middle,
                 };
+                let leg = self.wall_leg(start, side, d)?;
                 Planned {
-                    path: self.wall_leg(start, side, d)?,
+                    path: leg.path,
                     mode: Mode::Wall { side, distance: d },
+                    walled: leg.walled,
                 }
             }
             MoveSpec::FollowTarget { object, d } => {
@@ -278,16 +289,29 @@ impl<H: Hal, C: Clock> Vm<H, C> {
                         target,
                         since: 0.0,
                     },
+                    walled: false,
                 }
             }
         })
     }
 
-    /// How far past a `turn(left|right)` the way must be clear too: as far as
-    /// the avoider's area reaches ahead of the robot (equation (11) from
-    /// the front), so the turn is not begun only to be blocked at its end.
-    pub(crate) fn turn_lead_out(&self) -> f64 {
-        self.cfg.front_offset + check_length(self.cfg.obstacle_curvature, self.motion.speed)
+    /// The room `turn(left|right)` needs: the robot's outline swept round
+    /// its turning circle, and past the turn as far as the avoider's area
+    /// reaches ahead of it (equations (11) and (12) from the front), so the
+    /// turn is not begun only to be blocked at its end.
+    pub(crate) fn turn_room(&self) -> TurnRoom {
+        let front = self.cfg.front_offset;
+        TurnRoom {
+            curvature: self.cfg.turn_curvature,
+            outline: Outline {
+                front,
+                rear: (self.cfg.robot_length - front).max(0.0),
+                half_width: 0.5 * self.cfg.robot_width,
+            },
+            margin: TURN_MARGIN,
+            lead_out: front + check_length(self.cfg.obstacle_curvature, self.motion.speed),
+            lead_half_width: 0.5 * check_width(self.cfg.robot_width),
+        }
     }
 
     /// `turn(left|right)` once there is room: a quarter circle at the
@@ -308,7 +332,25 @@ impl<H: Hal, C: Clock> Vm<H, C> {
     /// One leg of wall following (section 4.5.3): project onto the fitted
     /// wall, take the point 3 m on at the distance, and plan a Bezier to it.
     /// Without a wall in the map the robot goes straight on and looks again.
-    pub(crate) fn wall_leg(&self, pose: Pose, side: WallSide, d: f64) -> Result<Path, String> {
+    /// At a corridor's end the leg stops `TURN_MARGIN` short of the wall ahead
+    /// (its front does), where the avoider, finding no way round the wall,
+    /// would otherwise hold the robot with the leg still pointing into it.
+    pub(crate) fn wall_leg(&self, pose: Pose, side: WallSide, d: f64) -> Result<Leg, String> {
+        let path = self.wall_leg_whole(pose, side, d)?;
+        let half = 0.5 * check_width(self.cfg.robot_width);
+        let stop = self.cfg.front_offset + TURN_MARGIN;
+        Ok(
+            match leg_short_of_wall(&path, self.motion.map.points(), half, stop) {
+                Some(path) => Leg { path, walled: true },
+                None => Leg {
+                    path,
+                    walled: false,
+                },
+            },
+        )
+    }
+
+    fn wall_leg_whole(&self, pose: Pose, side: WallSide, d: f64) -> Result<Path, String> {
         let pts = self.motion.map.points();
         let params = WallParams::default();
         let goal = match side {

@@ -6,7 +6,7 @@
 //! is what `sensor(supervisor)` reads.
 
 use ilmr_hal::{Hal, Pose};
-use ilmr_motion::obstacle::{AreaParams, AvoidMode, CheckArea, route_turn};
+use ilmr_motion::obstacle::{AreaParams, AvoidMode, CheckArea, on_the_way, route_turn};
 use ilmr_motion::{Direction, controller::braking_distance};
 use nalgebra::Point2;
 
@@ -318,6 +318,15 @@ impl<H: Hal, C: Clock> Vm<H, C> {
         scratch: &mut Scratch,
     ) -> (f64, f64) {
         let area = CheckArea::turning_at_most(pose, direction, c, v, params, turn);
+        // What the area finds off the route it bends away from is not in the way.
+        let (route, reach) = (
+            self.motion.running_path(),
+            area.length() + params.front_offset,
+        );
+        let half = 0.5 * area.width;
+        let on_route = |p: &Point2<f64>| {
+            route.is_none_or(|(path, k)| on_the_way(path, k, pose, p, reach, half))
+        };
         // Only the points near the area: the same hits as over every point.
         let tester = area.tester();
         let region = tester.bounds();
@@ -330,6 +339,7 @@ impl<H: Hal, C: Clock> Vm<H, C> {
                 .near
                 .iter()
                 .filter_map(|&i| tester.hit(i, &points[i]))
+                .filter(|h| on_route(&points[h.index]))
                 .map(|h| (h.index, h.s)),
         );
         let scanned = nearest(&mut scratch.hits);
@@ -348,6 +358,7 @@ impl<H: Hal, C: Clock> Vm<H, C> {
             scratch
                 .known
                 .iter()
+                .filter(|(_, p)| on_route(p))
                 .filter_map(|(i, p)| tester.hit(*i, p))
                 .map(|h| (h.index, h.s)),
         );
