@@ -347,7 +347,8 @@ fn refusals_are_told_as_they_happen_and_end_the_run_with_exit_3() {
     let (code, out, err) = run_task(
         "refused",
         "gotoxy(1,0)\ngotoxy(1,1)\ngotoxy(0,0)\n",
-        &["--world", "empty"],
+        // The notices' times are the light-noise robot's (a test of refusals).
+        &["--world", "empty", "--sim-profile", "basic"],
     );
     assert_eq!(code, 3, "{out}{err}");
     let notices: Vec<&str> = err.lines().filter(|l| l.starts_with("[t=")).collect();
@@ -374,7 +375,12 @@ fn refusals_are_told_as_they_happen_and_end_the_run_with_exit_3() {
 #[test]
 fn a_hold_that_does_not_clear_ends_the_run_at_the_hold_limit_with_exit_4() {
     // Figure 24's wall following in the office runs into a corner at 11.84 s.
-    let (code, out, err) = run_task("held", "followwall(left)\n", &["--hold-limit", "5"]);
+    // On the `basic` profile the time is exact (a test of the hold limit).
+    let (code, out, err) = run_task(
+        "held",
+        "followwall(left)\n",
+        &["--hold-limit", "5", "--sim-profile", "basic"],
+    );
     assert_eq!(code, 4, "{out}{err}");
     assert!(
         err.contains("[t=11.84] held (R0206 obstacle_near): an obstacle"),

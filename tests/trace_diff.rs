@@ -48,8 +48,10 @@ fn one_task_run_twice_with_one_seed_is_the_same_run() {
 
 #[test]
 fn a_changed_task_shows_where_it_parts_ways_and_which_ends_moved() {
-    let a = traced("task-a", "goahead(1)\nturn(left)\n", &[]);
-    let b = traced("task-b", "goahead(1.5)\nturn(left)\n", &[]);
+    // The ends' times quoted below are the `basic` profile's (a test of the diff).
+    let basic = ["--sim-profile", "basic"];
+    let a = traced("task-a", "goahead(1)\nturn(left)\n", &basic);
+    let b = traced("task-b", "goahead(1.5)\nturn(left)\n", &basic);
     let (code, out, err) = diff(&a, &b);
     assert_eq!(code, 1, "{out}{err}");
     assert!(out.contains("part ways at t=0 (event 1 of"), "{out}");

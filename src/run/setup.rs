@@ -5,6 +5,12 @@ use ilmr_hal::Limits;
 use ilmr_model::RobotModel;
 use ilmr_sim::{RobotKind, SimProfile, SimRobot, World};
 
+/// A simulated robot's errors when `--sim-profile` is not given: the dissertation's
+/// robots were imperfect, and the `calibrated` profile has their errors (fitted to its
+/// Table 10, docs/experiments.md). A trace names every profile but `basic`, whose
+/// traces were recorded before profiles existed.
+pub const DEFAULT_PROFILE: SimProfile = SimProfile::Calibrated;
+
 use super::backend::{AnyRobot, NoRobot, Ros2, Simulated};
 use super::scenario::Scenario;
 use crate::ros2::Ros2Args;
@@ -116,7 +122,7 @@ pub fn choose(c: &Choice<'_>) -> Result<Setup, String> {
         }
         return Ok(Setup {
             backend: Backend::Sim(kind),
-            profile: c.profile.unwrap_or_default(),
+            profile: c.profile.unwrap_or(DEFAULT_PROFILE),
             model_spec: c.robot.to_string(),
             model: loaded.model,
             world: Some(world),
