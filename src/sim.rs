@@ -42,8 +42,8 @@ pub struct SimArgs {
     /// Seed of the simulated robot's noise.
     #[arg(long, default_value_t = 0)]
     pub seed: u64,
-    /// The simulated robot's errors: `ideal`, `basic` (the default) or `calibrated`
-    /// (as `ilmrc run --sim-profile`).
+    /// The simulated robot's errors: `ideal`, `basic` or `calibrated` (the default; as
+    /// `ilmrc run --sim-profile`).
     #[arg(long, value_name = "PROFILE", value_parser = crate::run::parse_profile)]
     pub sim_profile: Option<ilmr_sim::SimProfile>,
     /// Publish `/clock` and stamp every message with simulated time (for nodes with

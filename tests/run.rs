@@ -347,7 +347,8 @@ fn refusals_are_told_as_they_happen_and_end_the_run_with_exit_3() {
     let (code, out, err) = run_task(
         "refused",
         "gotoxy(1,0)\ngotoxy(1,1)\ngotoxy(0,0)\n",
-        &["--world", "empty"],
+        // The notices' times are the light-noise robot's (a test of refusals).
+        &["--world", "empty", "--sim-profile", "basic"],
     );
     assert_eq!(code, 3, "{out}{err}");
     let notices: Vec<&str> = err.lines().filter(|l| l.starts_with("[t=")).collect();
@@ -376,9 +377,16 @@ fn a_hold_that_does_not_clear_ends_the_run_at_the_hold_limit_with_exit_4() {
     // With avoidance off, straight on towards the lab's cabinet in the office: the
     // supervisor holds the robot short of it at 7.73 s. (Figure 24's wall following
     // used to run into a corner here and stay held; it now stops its leg short of
-    // the wall ahead.)
-    let held = "obsavoid(off)\ngoahead(10)\n";
-    let (code, out, err) = run_task("held", held, &["--hold-limit", "5"]);
+    // the wall ahead.) On the `basic` profile the time is exact (a test of the hold
+    // limit).
+    let held = "obsavoid(off)
+goahead(10)
+";
+    let (code, out, err) = run_task(
+        "held",
+        held,
+        &["--hold-limit", "5", "--sim-profile", "basic"],
+    );
     assert_eq!(code, 4, "{out}{err}");
     assert!(
         err.contains("[t=7.73] held (R0206 obstacle_near): an obstacle"),

@@ -141,7 +141,7 @@ fn figure_52_completes_with_the_defaults() {
     assert_eq!(code, 0, "{out}{err}");
     for expected in [
         "finished: no command left",
-        "robot           moro in office",
+        "robot           moro (calibrated errors) in office",
         "7 completed, 0 broken, 0 refused",
         "contacts        0",
     ] {
@@ -212,11 +212,21 @@ fn movement_ends(trace: &[u8]) -> Vec<(u64, f64, f64, bool)> {
 
 #[test]
 fn a_queued_movement_is_linked_and_wait_stops_on_the_point() {
-    // The figures docs/language.md quotes, within a centimetre and a tick.
+    // The figures docs/language.md quotes, within a centimetre and a tick, on the
+    // `basic` profile it quotes them for (a test of linking, not of the errors).
     let run_of = |name: &str, text: &str| {
         let task = scratch(&format!("{name}.ilmr"));
         std::fs::write(&task, text).unwrap();
-        let run = run_with_outputs(name, &["--world", "empty", task.to_str().unwrap()]);
+        let run = run_with_outputs(
+            name,
+            &[
+                "--world",
+                "empty",
+                "--sim-profile",
+                "basic",
+                task.to_str().unwrap(),
+            ],
+        );
         let _ = std::fs::remove_file(&task);
         movement_ends(&run.trace)
     };
@@ -488,24 +498,22 @@ fn every_failure_a_user_can_cause_has_a_message_and_an_exit_code() {
     );
 }
 
-/// `--sim-profile` chooses the simulated robot's errors: the run says which in its
-/// summary and its trace's `run` line (left out for `basic`, the default, so earlier
-/// traces stay as they were); `ideal` and `calibrated` runs of one seed differ, each is
-/// the same run again; a robot that is not simulated refuses the flag.
+/// `--sim-profile` chooses the simulated robot's errors, `calibrated` when it is not
+/// given: the run says which in its summary and its trace's `run` line (left out for
+/// `basic`, so that the traces recorded before profiles existed read as they were);
+/// `ideal` and `calibrated` runs of one seed differ, each is the same run again; a
+/// robot that is not simulated refuses the flag.
 #[test]
 fn the_simulated_robots_errors_are_chosen_by_profile() {
     let run = |profile: &str| {
         let trace = scratch(&format!("profile-{profile}.jsonl"));
-        let (code, out, err) = ilmrc(&[
-            "run",
-            "--sim-profile",
-            profile,
-            "--seed",
-            "3",
-            "--trace",
-            trace.to_str().unwrap(),
-            "examples/short_task.ilmr",
-        ]);
+        let mut args = vec!["run"];
+        if !profile.is_empty() {
+            args.extend(["--sim-profile", profile]);
+        }
+        args.extend(["--seed", "3", "--trace", trace.to_str().unwrap()]);
+        args.push("examples/short_task.ilmr");
+        let (code, out, err) = ilmrc(&args);
         assert_eq!(code, 0, "{out}{err}");
         let text = std::fs::read_to_string(&trace).unwrap();
         let _ = std::fs::remove_file(&trace);
@@ -524,6 +532,12 @@ fn the_simulated_robots_errors_are_chosen_by_profile() {
     assert!(said.contains("(calibrated errors)"), "{said}");
     assert_ne!(ideal, calibrated, "the errors change the run");
     assert_eq!(run("calibrated").0, calibrated, "one seed, one run");
+    let (default, said) = run("");
+    assert_eq!(
+        default, calibrated,
+        "calibrated unless another profile is given"
+    );
+    assert!(said.contains("(calibrated errors)"), "{said}");
     let (basic, said) = run("basic");
     assert!(!basic.contains("\"profile\""), "{basic}");
     assert!(said.contains("robot           moro in office"), "{said}");

@@ -190,7 +190,10 @@ fn task(path: &str) -> Result<String, String> {
 }
 
 fn moro_vm(path: &str) -> Result<SimVm, String> {
-    let robot = moro(office()?, SEED)?;
+    moro_vm_on(path, moro(office()?, SEED)?)
+}
+
+fn moro_vm_on(path: &str, robot: ilmr_sim::SimRobot) -> Result<SimVm, String> {
     let module = compile_with(path, &task(path)?, "skills_moro", robot.model())?;
     harness::vm(module, robot)
 }
@@ -276,6 +279,12 @@ fn drive(mut vm: SimVm, seconds: f64) -> (SimVm, Outcome) {
 /// The main run: MoRo, the corrected figure, two loads and home.
 pub fn corrected() -> Result<Outcome, String> {
     Ok(drive(moro_vm(CORRECTED)?, CORRECTED_SECONDS).1)
+}
+
+/// The main run on a MoRo with `profile`'s errors and `seed`.
+pub fn corrected_with(profile: ilmr_sim::SimProfile, seed: u64) -> Result<Outcome, String> {
+    let robot = harness::moro_with(office()?, seed, profile)?;
+    Ok(drive(moro_vm_on(CORRECTED, robot)?, CORRECTED_SECONDS).1)
 }
 
 /// The figure as printed, on MoRo.

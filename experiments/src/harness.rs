@@ -127,8 +127,37 @@ pub fn workpartner(world: World, seed: u64) -> Result<SimRobot, String> {
     SimRobot::workpartner(world, seed).map_err(|e| format!("Workpartner does not start: {e}"))
 }
 
+/// Workpartner with its shipped model and `profile`'s errors.
+pub fn workpartner_with(
+    world: World,
+    seed: u64,
+    profile: ilmr_sim::SimProfile,
+) -> Result<SimRobot, String> {
+    let model = RobotModel::builtin("workpartner").ok_or("no built-in model workpartner")?;
+    SimRobot::with_profile(
+        model,
+        ilmr_sim::RobotKind::Workpartner,
+        profile,
+        world,
+        seed,
+    )
+    .map_err(|e| format!("Workpartner does not start: {e}"))
+}
+
 pub fn vm(module: Module, robot: SimRobot) -> Result<SimVm, String> {
-    let cfg = vm_config(robot.model(), robot.sim().config());
+    vm_with(module, robot, ilmr_vm::Controller::PROJECT)
+}
+
+/// As [`vm`], with the position controller's `controller` variant.
+pub fn vm_with(
+    module: Module,
+    robot: SimRobot,
+    controller: ilmr_vm::Controller,
+) -> Result<SimVm, String> {
+    let cfg = Config {
+        controller,
+        ..vm_config(robot.model(), robot.sim().config())
+    };
     Vm::new(module, robot, SimClock, cfg).map_err(|e| format!("the VM refuses the task: {e:?}"))
 }
 

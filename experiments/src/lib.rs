@@ -7,12 +7,14 @@
 //! Every run is deterministic: a test's world, robot and seed give the same numbers
 //! on every machine, whichever thread runs it.
 
+pub mod controller;
 pub mod cost;
 pub mod doc;
 pub mod fig20_fetch_boxes;
 pub mod harness;
 pub mod picture;
 pub mod predictions;
+pub mod seeds;
 pub mod settings;
 pub mod stats;
 pub mod test1_turn;
@@ -31,6 +33,7 @@ pub struct Experiments {
     pub settings: settings::Settings,
     pub test1: test1_turn::Test1,
     pub predictions: predictions::Predictions,
+    pub controller: controller::Comparison,
     pub test2: test2_turn_left::Test2,
     pub test3: test3_followwall::Test3,
     pub test4: test4_obstacle::Test4,
@@ -40,9 +43,9 @@ pub struct Experiments {
     pub fig20: fig20_fetch_boxes::Fig20,
 }
 
-/// The pictures' file names (in `experiments/` beside the report), one per
-/// experiment.
-pub const PICTURES: [&str; 8] = [
+/// The pictures' file names (in `experiments/` beside the report): one per
+/// experiment, then the spreads of Test 1 and Test 5 over their seeds.
+pub const PICTURES: [&str; 10] = [
     "test1_turn.svg",
     "test2_turn_left.svg",
     "test3_followwall.svg",
@@ -51,6 +54,8 @@ pub const PICTURES: [&str; 8] = [
     "test6_loop.svg",
     "test7_way_out.svg",
     "fig20_fetch_boxes.svg",
+    "test1_spread.svg",
+    "test5_spread.svg",
 ];
 
 /// What one run (or the runs of one test) cost; see [`cost`].
@@ -75,18 +80,28 @@ fn joined<T>(h: Handle<'_, T>, name: &'static str, costs: &mut Vec<Costed>) -> R
     out.map_err(|e| format!("{name}: {e}"))
 }
 
-/// All the experiments, each run on its own thread (Figure 20's five runs each on
+/// All the experiments, the statistical ones over `seeds` seeds (the report:
+/// [`seeds::FULL`]), each run on its own thread (Figure 20's five runs each on
 /// theirs).
-pub fn run_all() -> Result<Experiments, String> {
-    run_all_costed().map(|(e, _)| e)
+pub fn run_all(seeds: usize) -> Result<Experiments, String> {
+    run_all_costed(seeds).map(|(e, _)| e)
 }
 
 /// As [`run_all`], with what each run cost, in the order of the report.
-pub fn run_all_costed() -> Result<(Experiments, Vec<Costed>), String> {
+pub fn run_all_costed(seeds: usize) -> Result<(Experiments, Vec<Costed>), String> {
     use fig20_fetch_boxes as f20;
+    use predictions as p;
+    let n = seeds;
     std::thread::scope(|s| {
         let t1 = spawn(s, test1_turn::run);
-        let pr = spawn(s, predictions::run);
+        let p2 = spawn(s, move || p::test2(n));
+        let p3 = spawn(s, move || p::test3(n));
+        let p4 = spawn(s, move || p::test4(n));
+        let p5 = spawn(s, move || p::test5(n));
+        let p6 = spawn(s, move || p::test6(n));
+        let p7 = spawn(s, move || p::test7(n));
+        let p20 = spawn(s, move || p::fig20(n));
+        let co = spawn(s, move || controller::run(n, n));
         let t2 = spawn(s, test2_turn_left::run);
         let t3 = spawn(s, test3_followwall::run);
         let t4 = spawn(s, test4_obstacle::run);
@@ -103,7 +118,17 @@ pub fn run_all_costed() -> Result<(Experiments, Vec<Costed>), String> {
         let experiments = Experiments {
             settings: settings::Settings::of_both()?,
             test1: joined(t1, "test 1", c)?,
-            predictions: joined(pr, "predictions (tests 2, 3, 5 calibrated)", c)?,
+            predictions: p::Predictions {
+                seeds: n,
+                test2: joined(p2, "test 2, calibrated, all seeds", c)?,
+                test3: joined(p3, "test 3, calibrated, all seeds", c)?,
+                test4: joined(p4, "test 4, calibrated, all seeds", c)?,
+                test5: joined(p5, "test 5, calibrated, all seeds", c)?,
+                test6: joined(p6, "test 6, calibrated, all seeds", c)?,
+                test7: joined(p7, "test 7, calibrated, all seeds", c)?,
+                fig20: joined(p20, "Figure 20, calibrated, all seeds", c)?,
+            },
+            controller: joined(co, "the controller, dissertation vs project", c)?,
             test2: joined(t2, "test 2", c)?,
             test3: joined(t3, "test 3", c)?,
             test4: joined(t4, "test 4", c)?,
@@ -125,7 +150,7 @@ pub fn run_all_costed() -> Result<(Experiments, Vec<Costed>), String> {
 
 impl Experiments {
     /// Each experiment's picture with its file name from [`PICTURES`].
-    pub fn figures(&self) -> [(&'static str, Figure); 8] {
+    pub fn figures(&self) -> [(&'static str, Figure); 10] {
         [
             (PICTURES[0], self.test1.figure()),
             (PICTURES[1], self.test2.figure()),
@@ -135,6 +160,8 @@ impl Experiments {
             (PICTURES[5], self.test6.figure()),
             (PICTURES[6], self.test7.figure()),
             (PICTURES[7], self.fig20.figure()),
+            (PICTURES[8], self.test1.spread_figure()),
+            (PICTURES[9], self.predictions.test5.spread_figure()),
         ]
     }
 }

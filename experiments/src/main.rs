@@ -45,7 +45,7 @@ fn print_costs(costs: &[Costed]) {
 }
 
 fn report(out: &Path) -> Result<(), String> {
-    let (results, costs) = ilmr_experiments::run_all_costed()?;
+    let (results, costs) = ilmr_experiments::run_all_costed(ilmr_experiments::seeds::FULL)?;
     print_costs(&costs);
     let doc = out.join("experiments.md");
     let existing = match std::fs::read_to_string(&doc) {

@@ -40,6 +40,59 @@ pub fn track(run: &Run, period: f64) -> Vec<Sample> {
     thin(&run.trace, &run.speeds, &run.curvatures, period)
 }
 
+/// How many points a mean path has.
+pub const MEAN_POINTS: usize = 200;
+
+/// The mean of several runs of one route: each run resampled at `n` equal shares of
+/// its own length, and the runs' points at each share averaged. Runs of one route
+/// that stop short or overrun stay comparable, which averaging by time would not
+/// give (a late start would pull the mean back along the route).
+pub fn mean_path(runs: &[Vec<(f64, f64)>], n: usize) -> Vec<(f64, f64)> {
+    let resampled: Vec<Vec<(f64, f64)>> = runs
+        .iter()
+        .filter(|r| !r.is_empty())
+        .map(|r| resample(r, n))
+        .collect();
+    if resampled.is_empty() {
+        return Vec::new();
+    }
+    let k = resampled.len() as f64;
+    (0..n)
+        .map(|i| {
+            let (x, y) = resampled
+                .iter()
+                .fold((0.0, 0.0), |(x, y), r| (x + r[i].0, y + r[i].1));
+            (x / k, y / k)
+        })
+        .collect()
+}
+
+/// `n` points (n >= 2) at equal shares of `run`'s length, its ends included.
+fn resample(run: &[(f64, f64)], n: usize) -> Vec<(f64, f64)> {
+    let mut along = vec![0.0];
+    for w in run.windows(2) {
+        let last = along[along.len() - 1];
+        along.push(last + (w[1].0 - w[0].0).hypot(w[1].1 - w[0].1));
+    }
+    let total = along[along.len() - 1];
+    let mut j = 0;
+    (0..n)
+        .map(|i| {
+            let s = total * i as f64 / (n - 1).max(1) as f64;
+            while j + 1 < run.len() - 1 && along[j + 1] < s {
+                j += 1;
+            }
+            if j + 1 >= run.len() {
+                return run[j];
+            }
+            let leg = along[j + 1] - along[j];
+            let t = if leg > 0.0 { (s - along[j]) / leg } else { 0.0 };
+            let (a, b) = (run[j], run[j + 1]);
+            (a.0 + t * (b.0 - a.0), a.1 + t * (b.1 - a.1))
+        })
+        .collect()
+}
+
 /// Marks where movement commands started and ended, at the true pose of the tick
 /// (as `ilmrc run` writes them to its trace).
 pub struct Marks {
@@ -143,5 +196,30 @@ impl Hits {
             .iter()
             .map(|&(i, j)| (i as f64 * CELL, j as f64 * CELL))
             .collect()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_mean_path_averages_runs_at_equal_shares_of_their_length() {
+        // Two straight runs a metre apart, one of them sampled unevenly and longer:
+        // the mean lies between them, from their starts' middle to their ends'.
+        let a = vec![(0.0, 0.0), (2.0, 0.0)];
+        let b = vec![(0.0, 1.0), (0.5, 1.0), (4.0, 1.0)];
+        let m = mean_path(&[a, b], 5);
+        assert_eq!(m.len(), 5);
+        let want = [(0.0, 0.5), (0.75, 0.5), (1.5, 0.5), (2.25, 0.5), (3.0, 0.5)];
+        for (got, want) in m.iter().zip(want) {
+            assert!(
+                (got.0 - want.0).abs() < 1e-12 && (got.1 - want.1).abs() < 1e-12,
+                "{m:?}"
+            );
+        }
+        assert!(mean_path(&[], 5).is_empty());
+        // A run standing still is its one point throughout.
+        assert_eq!(mean_path(&[vec![(1.0, 2.0)]], 3), vec![(1.0, 2.0); 3]);
     }
 }

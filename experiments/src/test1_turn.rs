@@ -9,7 +9,7 @@
 
 use ilmr_motion::path::{TurnSpec, turn};
 use ilmr_motion::{Direction, Pose};
-use ilmr_plot::{Colour, Corner, Figure, Reference, Sample, Track};
+use ilmr_plot::{Colour, Corner, Figure, Reference, RunSpread, Sample, Track};
 use ilmr_sim::SimProfile;
 use ilmr_stdlib::Command;
 
@@ -234,7 +234,13 @@ fn arc(c: f64) -> Result<ilmr_motion::Path, String> {
     .map_err(|e| format!("the reference arc c={c}: {e:?}"))
 }
 
-fn trial(spec: &Spec, v: f64, seed: u64, errors: &Errors) -> Result<Trial, String> {
+fn trial(
+    spec: &Spec,
+    v: f64,
+    seed: u64,
+    errors: &Errors,
+    controller: ilmr_vm::Controller,
+) -> Result<Trial, String> {
     let c = spec.c;
     let text = format!("t=turn(d=90,c={c})");
     let task = speed(Task::new(), v)
@@ -245,7 +251,7 @@ fn trial(spec: &Spec, v: f64, seed: u64, errors: &Errors) -> Result<Trial, Strin
             Some("t"),
         )
         .finish();
-    let mut vm = harness::vm(task, robot(spec.robot, seed, errors)?)?;
+    let mut vm = harness::vm_with(task, robot(spec.robot, seed, errors)?, controller)?;
     let out = harness::run(&mut vm, 60.0);
     let reference = arc(c)?;
     let max_deviation = out
@@ -266,13 +272,23 @@ fn trial(spec: &Spec, v: f64, seed: u64, errors: &Errors) -> Result<Trial, Strin
 
 /// One row of Table 10, `replicas` times over, with `errors`.
 pub fn sweep_with(spec: &'static Spec, replicas: usize, errors: &Errors) -> Result<Sweep, String> {
+    sweep_controlled(spec, replicas, errors, ilmr_vm::Controller::PROJECT)
+}
+
+/// As [`sweep_with`], with the position controller's `controller` variant.
+pub fn sweep_controlled(
+    spec: &'static Spec,
+    replicas: usize,
+    errors: &Errors,
+    controller: ilmr_vm::Controller,
+) -> Result<Sweep, String> {
     let n = spec.speeds.len();
     let replicas = (0..replicas)
         .map(|r| {
             spec.speeds
                 .iter()
                 .enumerate()
-                .map(|(i, &v)| trial(spec, v, SEED + (r * n + i) as u64, errors))
+                .map(|(i, &v)| trial(spec, v, SEED + (r * n + i) as u64, errors, controller))
                 .collect::<Result<Vec<_>, _>>()
         })
         .collect::<Result<Vec<_>, _>>()?;
@@ -334,6 +350,35 @@ impl Test1 {
                     samples: t.track.clone(),
                 });
             }
+        }
+        f
+    }
+
+    /// The spread: each row's trials at its fastest speed (where the rows deviate
+    /// most), one per replica, drawn thin over their mean and the ideal arc.
+    pub fn spread_figure(&self) -> Figure {
+        let mut f = Figure::new(format!(
+            "Test 1 over {REPLICAS} replicas: turn(d=90,c=..) at each row's fastest speed, {PROFILE} robots"
+        ));
+        f.legend = Corner::UpperLeft;
+        for (i, s) in self.sweeps.iter().enumerate() {
+            f.references.push(Reference {
+                label: Some("ideal arcs".into()),
+                colour: Colour::REFERENCE,
+                points: s.arc.clone(),
+            });
+            let last = s.spec.speeds.len() - 1;
+            let runs: Vec<Vec<(f64, f64)>> = s
+                .replicas
+                .iter()
+                .map(|r| r[last].track.iter().map(|p| (p.x, p.y)).collect())
+                .collect();
+            f.spreads.push(RunSpread {
+                label: format!("{} at {} m/s", s.label(), s.spec.speeds[last]),
+                colour: Colour::palette(i),
+                mean: picture::mean_path(&runs, picture::MEAN_POINTS),
+                runs,
+            });
         }
         f
     }

@@ -109,7 +109,18 @@ pub fn avoid(mode: Mode) -> Result<Avoid, String> {
 }
 
 fn avoid_in(mode: Mode, w: World) -> Result<Avoid, String> {
-    let mut vm = harness::vm(task(mode), moro(w, SEED)?)?;
+    let robot = moro(w, SEED)?;
+    avoid_on(mode, robot)
+}
+
+/// `obsavoid(on)`, the mode the dissertation tested, on a robot with `profile`'s
+/// errors and `seed`.
+pub fn run_with(profile: ilmr_sim::SimProfile, seed: u64) -> Result<Avoid, String> {
+    avoid_on(Mode::On, harness::moro_with(world(WORLD)?, seed, profile)?)
+}
+
+fn avoid_on(mode: Mode, robot: ilmr_sim::SimRobot) -> Result<Avoid, String> {
+    let mut vm = harness::vm(task(mode), robot)?;
     let out = harness::run(&mut vm, mode.seconds());
     let end = *out.trace.last().ok_or("the robot did not move")?;
     let held = vm

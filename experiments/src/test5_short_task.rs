@@ -88,9 +88,19 @@ pub fn run() -> Result<Test5, String> {
 
 /// Test 5 on a robot with `profile`'s errors and `seed`.
 pub fn run_with(profile: ilmr_sim::SimProfile, seed: u64) -> Result<Test5, String> {
-    let mut vm = harness::vm(
+    run_controlled(profile, seed, ilmr_vm::Controller::PROJECT)
+}
+
+/// As [`run_with`], with the position controller's `controller` variant.
+pub fn run_controlled(
+    profile: ilmr_sim::SimProfile,
+    seed: u64,
+    controller: ilmr_vm::Controller,
+) -> Result<Test5, String> {
+    let mut vm = harness::vm_with(
         figure_52(),
         harness::moro_with(shipped("empty")?, seed, profile)?,
+        controller,
     )?;
     let mut marks = Marks::new(&vm);
     let out = harness::run_watched(&mut vm, 60.0, |vm| marks.watch(vm));

@@ -69,8 +69,7 @@ pub struct Test6 {
     pub track: Vec<Sample>,
 }
 
-fn teach() -> Result<(bool, Vec<(f64, f64)>), String> {
-    let robot = workpartner(world(WORLD)?, SEED)?;
+fn teach(robot: ilmr_sim::SimRobot) -> Result<(bool, Vec<(f64, f64)>), String> {
     let task = compile("teach.ilmr", TEACH, robot.model())?;
     let mut vm = harness::vm(task, robot)?;
     let out = harness::run(&mut vm, 200.0);
@@ -83,9 +82,29 @@ fn teach() -> Result<(bool, Vec<(f64, f64)>), String> {
 }
 
 pub fn run() -> Result<Test6, String> {
-    let (taught_finished, taught) = teach()?;
     let w = world(WORLD)?;
-    let robot = workpartner(w.clone(), SEED)?;
+    loop_on(
+        workpartner(w.clone(), SEED)?,
+        workpartner(w.clone(), SEED)?,
+        w,
+    )
+}
+
+/// Test 6 on robots with `profile`'s errors: PATH taught with `seed`, the loop
+/// driven with the next seed (a run of its own, as the dissertation's was).
+pub fn run_with(profile: ilmr_sim::SimProfile, seed: u64) -> Result<Test6, String> {
+    let w = world(WORLD)?;
+    let robot = |seed| harness::workpartner_with(w.clone(), seed, profile);
+    loop_on(robot(seed)?, robot(seed.wrapping_add(1))?, w.clone())
+}
+
+/// PATH taught on `teacher`, then the loop on `robot`.
+fn loop_on(
+    teacher: ilmr_sim::SimRobot,
+    robot: ilmr_sim::SimRobot,
+    w: World,
+) -> Result<Test6, String> {
+    let (taught_finished, taught) = teach(teacher)?;
     let start = robot.true_pose();
     let module = compile_example("loop.ilmr", robot.model())?;
     let mut vm = harness::vm(module, robot)?;

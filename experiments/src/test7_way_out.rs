@@ -97,8 +97,7 @@ pub struct Test7 {
     pub world: World,
 }
 
-fn way_out(w: World) -> Result<WayOut, String> {
-    let robot = moro(w, SEED)?;
+fn way_out(robot: ilmr_sim::SimRobot) -> Result<WayOut, String> {
     let module = compile_example("way_out.ilmr", robot.model())?;
     let mut vm = harness::vm(module, robot)?;
     let (mut marks, mut hits) = (Marks::new(&vm), Hits::new(SCAN_EVERY));
@@ -125,7 +124,7 @@ fn way_out(w: World) -> Result<WayOut, String> {
     })
 }
 
-fn replay(w: World, path: &[(f64, f64)]) -> Result<Replay, String> {
+fn replay(robot: ilmr_sim::SimRobot, seed: u64, path: &[(f64, f64)]) -> Result<Replay, String> {
     let again = Task::new()
         .cmd(
             "f=followpath(path_1)",
@@ -135,8 +134,7 @@ fn replay(w: World, path: &[(f64, f64)]) -> Result<Replay, String> {
         )
         .wait_var("wait(f)", "f")
         .finish();
-    let seed = SEED + 1;
-    let mut vm = harness::vm(again, moro(w, seed)?)?;
+    let mut vm = harness::vm(again, robot)?;
     vm.add_path("path_1", path.to_vec());
     let out = harness::run(&mut vm, 240.0);
     let last = *out.trace.last().ok_or("the robot did not move")?;
@@ -159,8 +157,23 @@ fn replay(w: World, path: &[(f64, f64)]) -> Result<Replay, String> {
 
 pub fn run() -> Result<Test7, String> {
     let w = harness::shipped(WORLD)?;
-    let way_out = way_out(w.clone())?;
-    let replay = replay(w.clone(), &way_out.path_1)?;
+    let way_out = way_out(moro(w.clone(), SEED)?)?;
+    let replay = replay(moro(w.clone(), SEED + 1)?, SEED + 1, &way_out.path_1)?;
+    Ok(Test7 {
+        way_out,
+        replay,
+        world: w,
+    })
+}
+
+/// Test 7 on robots with `profile`'s errors: the way out with `seed`, the replay
+/// with the next.
+pub fn run_with(profile: ilmr_sim::SimProfile, seed: u64) -> Result<Test7, String> {
+    let w = harness::shipped(WORLD)?;
+    let robot = |seed| harness::moro_with(w.clone(), seed, profile);
+    let way_out = way_out(robot(seed)?)?;
+    let again = seed.wrapping_add(1);
+    let replay = replay(robot(again)?, again, &way_out.path_1)?;
     Ok(Test7 {
         way_out,
         replay,

@@ -65,7 +65,7 @@ pub struct RunArgs {
     #[arg(long, default_value_t = 0)]
     pub seed: u64,
     /// The simulated robot's errors: `ideal` (exact kinematics, noise-free sensors),
-    /// `basic` (light noise; the default) or `calibrated` (the errors of the
+    /// `basic` (light noise) or `calibrated` (the default: the errors of the
     /// dissertation's robots, fitted to its Table 10; docs/robot-model.md).
     #[arg(long, value_name = "PROFILE", value_parser = parse_profile)]
     pub sim_profile: Option<ilmr_sim::SimProfile>,

@@ -45,7 +45,7 @@ pub const KEYS: [(&str, &str); 15] = [
     ),
     (
         "profile",
-        "a simulated robot's errors: `ideal`, `basic` (default) or `calibrated` (`--sim-profile`)",
+        "a simulated robot's errors: `ideal`, `basic` or `calibrated` (default) (`--sim-profile`)",
     ),
     (
         "seeds",

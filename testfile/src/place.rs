@@ -8,6 +8,12 @@ use ilmr_compiler::check::Source;
 use ilmr_model::{ModelWarning, RobotModel};
 use ilmr_sim::{RobotKind, SimProfile, World};
 
+/// A simulated robot's errors when `--sim-profile` is not given: the dissertation's
+/// robots were imperfect, and the `calibrated` profile has their errors (fitted to its
+/// Table 10, docs/experiments.md). A trace names every profile but `basic`, whose
+/// traces were recorded before profiles existed.
+pub const DEFAULT_PROFILE: SimProfile = SimProfile::Calibrated;
+
 /// `--robot ros2`: a real robot over DDS, which only `ilmrc run` drives.
 pub const ROS2_ROBOT: &str = "ros2";
 
@@ -121,7 +127,7 @@ pub fn place(
         }
         return Ok(Placed {
             backend: Backend::Sim(kind),
-            profile: c.profile.unwrap_or_default(),
+            profile: c.profile.unwrap_or(DEFAULT_PROFILE),
             model_spec: c.robot.to_string(),
             model: loaded.model,
             world: Some(world),

@@ -18,7 +18,7 @@ pub mod runtime;
 pub use bytecode::{Module, ModuleBuilder};
 pub use runtime::activity::Activity;
 pub use runtime::clock::{Clock, Jitter, RealClock, SimClock};
-pub use runtime::config::{Config, TURN_SHARE, TraceLevel};
+pub use runtime::config::{Config, Controller, TURN_SHARE, TraceLevel};
 pub use runtime::trace::{Event, EventKind, render_event, to_jsonl, write_jsonl};
 pub use runtime::vars::{How, VarRecord};
 pub use runtime::{LineError, Vm, VmError};

@@ -38,11 +38,12 @@ fn print_predictions() -> Result<(), String> {
             s.mean, s.lo, s.hi, s.min, s.max
         )
     };
-    let t = p::test2()?;
+    let n = ilmr_experiments::seeds::FULL;
+    let t = p::test2(n)?;
     line("Table 11 x", &t.x, t2::TABLE_11_X);
     line("Table 11 y", &t.y, t2::TABLE_11_Y);
     println!("Table 11 clean turns          {} of {}", t.clean, t.runs);
-    for f in p::test3()? {
+    for f in p::test3(n)? {
         line(
             &format!("Table 12 from {} m, excess", f.off),
             &f.overshoot,
@@ -53,14 +54,10 @@ fn print_predictions() -> Result<(), String> {
             "", f.at_end.mean, f.contacts
         );
     }
-    let s = p::test5()?;
+    let s = p::test5(n)?;
     line("Test 5 max error", &s.max_error, t5::FIGURE_53);
     line("Test 5 home", &s.home, t5::FIGURE_53);
-    println!(
-        "Test 5 finished               {} of {}",
-        s.finished,
-        p::SEEDS
-    );
+    println!("Test 5 finished               {} of {}", s.finished, n);
     Ok(())
 }
 

@@ -36,9 +36,17 @@ exactly.
 
 The simulated robots' errors are a profile of `ilmr-sim` ([docs/robot-model.md](robot-model.md#the-simulated-robots-errors)).
 Test 1 runs with the `calibrated` profile, fitted to Table 10, over 20 replicas of
-each row; the other experiments still run once, on one seed, with the `basic` profile
-(the light noise every trace before issue 15 was recorded with): their figures show
-the simulator more than the robots until they move to the calibrated model.
+each row. Tests 2-7 and Figure 20 then run over {seeds} seeds each on the same model,
+not retuned, beside the dissertation's figures (\"Predictions of the calibrated
+model\"), and the position controller as the dissertation describes it runs beside
+this project's over the same seeds (\"What the controller adds\"). The sections of
+tests 2-7 and Figure 20 after them show one run each, on one seed, with the `basic`
+profile (the light noise every trace before issue 15 was recorded with), and its
+picture: what the language does step by step, not what the robots would measure.
+
+`cargo test -p ilmr-experiments` runs the statistical experiments over the first
+{fast} seeds; `{env}=full cargo test --release -p ilmr-experiments` runs all {seeds}
+and checks this page byte for byte.
 
 This page and one picture per experiment (`docs/experiments/*.svg`, drawn by
 `ilmr-plot` as `ilmrc run --plot` draws a run) are written by
@@ -62,6 +70,9 @@ Worlds are the shipped `empty`, `office` and `yard` or
 
 ",
         robot(&s.moro),
-        robot(&s.workpartner)
+        robot(&s.workpartner),
+        seeds = crate::seeds::FULL,
+        fast = crate::seeds::FAST,
+        env = crate::seeds::ENV,
     )
 }

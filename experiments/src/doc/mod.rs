@@ -2,6 +2,7 @@
 //! measured here, the bars the tests assert, and its picture. The numbers come from
 //! the runs; the sections the generator does not write are kept (see [`merge`]).
 
+mod controller;
 mod fig20;
 mod fmt;
 mod intro;
@@ -19,9 +20,10 @@ use crate::{Experiments, PICTURES};
 use merge::Generated;
 
 /// How each generated section's heading starts, in the order of the report.
-const KEYS: [&str; 9] = [
+const KEYS: [&str; 10] = [
     "## Test 1:",
     "## Predictions of the calibrated model",
+    "## What the controller adds",
     "## Test 2:",
     "## Test 3:",
     "## Test 4:",
@@ -40,6 +42,7 @@ pub fn render(results: &Experiments, existing: &str) -> String {
     let sections = [
         test1::section(&results.test1),
         predictions::section(&results.predictions),
+        controller::section(&results.controller),
         test2::section(&results.test2),
         test3::section(&results.test3),
         test4::section(&results.test4),

@@ -172,5 +172,12 @@ asserts it).
         1,
         "Test 1: the first replicas' true paths over the ideal arcs, MoRo c=0.6 and c=0.4, Workpartner c=0.25",
     ));
+    s.push_str(&format!(
+        "\nThe spread over the replicas: each row's trial at its fastest speed in every one of\nthe {REPLICAS} replicas, drawn thin, and their mean (each path resampled at equal shares\nof its length) drawn thick over the ideal arc.\n\n"
+    ));
+    s.push_str(&picture(
+        9,
+        "Test 1's spread: each row's fastest trial in every replica, thin, over their mean",
+    ));
     s
 }

@@ -50,6 +50,17 @@ pub struct Track {
     pub samples: Vec<Sample>,
 }
 
+/// Many runs of one experiment (one per seed): each drawn thin and pale, their mean
+/// drawn over them, so that the picture shows how far the runs spread.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RunSpread {
+    /// The legend's name of the runs; the mean's is "mean of" it.
+    pub label: String,
+    pub colour: Colour,
+    pub runs: Vec<Vec<(f64, f64)>>,
+    pub mean: Vec<(f64, f64)>,
+}
+
 /// A path drawn dashed: a reference, an ideal route or a recording.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Reference {
@@ -123,6 +134,8 @@ pub struct Figure {
     pub hits: Vec<(f64, f64)>,
     pub references: Vec<Reference>,
     pub tracks: Vec<Track>,
+    /// Runs drawn thin with their mean, under the tracks.
+    pub spreads: Vec<RunSpread>,
     /// Where movement commands started and ended.
     pub marks: Vec<Mark>,
     /// Speed and curvature of every track over time, below the map (Figure 54).
@@ -144,6 +157,7 @@ impl Figure {
             hits: Vec::new(),
             references: Vec::new(),
             tracks: Vec::new(),
+            spreads: Vec::new(),
             marks: Vec::new(),
             time_series: false,
             body: None,
@@ -260,6 +274,29 @@ mod tests {
         // Each track drawn in its colour.
         assert!(svg.contains("stroke=\"#0072B2\""), "A's colour");
         assert!(svg.contains("stroke=\"#D55E00\""), "B's colour");
+    }
+
+    #[test]
+    fn a_spread_draws_each_run_pale_and_its_mean_over_them() {
+        let mut f = Figure::new("seeds");
+        let runs: Vec<Vec<(f64, f64)>> = (0..4)
+            .map(|i| vec![(0.0, f64::from(i)), (2.0, f64::from(i))])
+            .collect();
+        f.spreads.push(RunSpread {
+            label: "seeds".into(),
+            colour: Colour::palette(0),
+            runs,
+            mean: vec![(0.0, 1.5), (2.0, 1.5)],
+        });
+        let svg = f.to_svg().expect("drawn");
+        // One legend entry for the runs and one for the mean.
+        assert_eq!(svg.matches("seeds (4 runs)").count(), 1);
+        assert_eq!(svg.matches("mean of seeds").count(), 1);
+        // Four pale runs (and the legend's sample), one thick mean (and its sample).
+        let pale = "opacity=\"0.35\" stroke=\"#0072B2\" stroke-width=\"1\"";
+        assert_eq!(svg.matches(pale).count(), 5);
+        let thick = "opacity=\"1\" stroke=\"#0072B2\" stroke-width=\"3\"";
+        assert_eq!(svg.matches(thick).count(), 2);
     }
 
     #[test]

@@ -20,7 +20,7 @@ mod render;
 mod series;
 
 pub use data::{At, Header, Mark, RefPath, RunRecord, Sample};
-pub use figure::{Colour, Corner, Figure, Footprint, Reference, Scenery, Track};
+pub use figure::{Colour, Corner, Figure, Footprint, Reference, RunSpread, Scenery, Track};
 pub use render::WIDTH;
 
 use std::path::Path;

@@ -71,6 +71,12 @@ impl View {
             .chain(figure.marks.iter().map(|m| (m.x, m.y)))
             .chain(
                 figure
+                    .spreads
+                    .iter()
+                    .flat_map(|s| s.runs.iter().flatten().copied()),
+            )
+            .chain(
+                figure
                     .references
                     .iter()
                     .flat_map(|r| r.points.iter().copied()),
@@ -162,6 +168,9 @@ pub fn draw<DB: DrawingBackend>(
             .legend(|(x, y)| Circle::new((x + 10, y), 2, HIT.filled()));
     }
     let mut legend = Legend::default();
+    for spread in &figure.spreads {
+        draw_spread(&mut chart, spread)?;
+    }
     for t in &figure.tracks {
         let colour = rgb(t.colour);
         let series = chart
@@ -233,6 +242,38 @@ pub fn draw<DB: DrawingBackend>(
         })
         .draw()
         .map_err(err)?;
+    Ok(())
+}
+
+/// The runs of a spread: pale enough that where many overlap reads darker.
+const RUN_OPACITY: f64 = 0.35;
+
+/// A spread's runs, thin and pale, and their mean over them, thick.
+fn draw_spread<DB: DrawingBackend>(
+    chart: &mut Chart<'_, DB>,
+    spread: &crate::figure::RunSpread,
+) -> Result<(), String> {
+    let colour = rgb(spread.colour);
+    let pale = colour.mix(RUN_OPACITY);
+    for (i, run) in spread.runs.iter().enumerate() {
+        let series = chart
+            .draw_series(LineSeries::new(run.iter().copied(), pale.stroke_width(1)))
+            .map_err(err)?;
+        if i == 0 {
+            let label = format!("{} ({} runs)", spread.label, spread.runs.len());
+            series.label(label).legend(move |(x, y)| {
+                PathElement::new([(x, y), (x + 20, y)], pale.stroke_width(1))
+            });
+        }
+    }
+    chart
+        .draw_series(LineSeries::new(
+            spread.mean.iter().copied(),
+            colour.stroke_width(3),
+        ))
+        .map_err(err)?
+        .label(format!("mean of {}", spread.label))
+        .legend(move |(x, y)| PathElement::new([(x, y), (x + 20, y)], colour.stroke_width(3)));
     Ok(())
 }
 
@@ -574,4 +615,23 @@ fn world_legend<DB: DrawingBackend>(
             .legend(|(x, y)| PathElement::new([(x, y), (x + 20, y)], DOOR.stroke_width(3)));
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::figure::RunSpread;
+
+    #[test]
+    fn the_view_holds_every_run_of_a_spread() {
+        let mut f = Figure::new("seeds");
+        f.spreads.push(RunSpread {
+            label: "seeds".into(),
+            colour: Colour::palette(0),
+            runs: vec![vec![(0.0, 0.0), (1.0, 0.0)], vec![(0.0, 9.0), (1.0, 9.0)]],
+            mean: vec![(0.0, 4.5), (1.0, 4.5)],
+        });
+        let v = View::fit(&f);
+        assert!(v.y.0 <= -MARGIN && v.y.1 >= 9.0 + MARGIN, "{:?}", v.y);
+    }
 }

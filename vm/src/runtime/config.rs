@@ -25,6 +25,33 @@ pub enum TraceLevel {
     Full,
 }
 
+/// Which of this project's changes to the position controller of section 4.5.2.2
+/// (eqs. 4-8) are on. [`Controller::PROJECT`] is the default; [`Controller::DISSERTATION`]
+/// is the controller as the dissertation describes it, kept so that the two can be
+/// compared on the same seeds (docs/experiments.md, "What the controller adds").
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Controller {
+    /// The look-ahead never shorter than half a turning radius
+    /// (`ilmr_motion::controller::ControllerParams::min_lookahead_radii`); off, only
+    /// the speed, Δc and the curvature gap set it, as in the dissertation.
+    pub lookahead_floor: bool,
+    /// c_now of eq. (4) is the curvature commanded last cycle; off, it is the robot's
+    /// measured curvature ("the current curvature of the robot"), which lags the
+    /// command by the steering's dead time.
+    pub commanded_curvature: bool,
+}
+
+impl Controller {
+    pub const PROJECT: Controller = Controller {
+        lookahead_floor: true,
+        commanded_curvature: true,
+    };
+    pub const DISSERTATION: Controller = Controller {
+        lookahead_floor: false,
+        commanded_curvature: false,
+    };
+}
+
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Config {
     /// Seconds per tick (100 Hz).
@@ -82,6 +109,8 @@ pub struct Config {
     pub frames: bool,
     /// Thresholds of the run-time refusals and the supervisor.
     pub safety: Safety,
+    /// The position controller's variant.
+    pub controller: Controller,
 }
 
 impl Config {
@@ -145,6 +174,7 @@ impl Default for Config {
             trace: TraceLevel::Full,
             frames: true,
             safety: Safety::default(),
+            controller: Controller::PROJECT,
         }
     }
 }

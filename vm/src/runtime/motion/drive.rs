@@ -41,10 +41,15 @@ fn past_cusp(path: &Path, k: usize, pose: &Pose, v: f64) -> Option<usize> {
 
 impl<H: Hal, C: Clock> Vm<H, C> {
     pub(super) fn controller_params(&self) -> ControllerParams {
+        let base = ControllerParams::new(self.cfg.max_curvature, self.cfg.curinc, self.cfg.period);
         ControllerParams {
             min_lookahead: self.cfg.lookahead,
             max_lookahead: self.cfg.lookahead.max(3.0),
-            ..ControllerParams::new(self.cfg.max_curvature, self.cfg.curinc, self.cfg.period)
+            min_lookahead_radii: match self.cfg.controller.lookahead_floor {
+                true => base.min_lookahead_radii,
+                false => 0.0,
+            },
+            ..base
         }
     }
 
@@ -91,6 +96,10 @@ impl<H: Hal, C: Clock> Vm<H, C> {
         // The supervisor's hold pauses the movement exactly as `stop` does.
         let stopped = self.motion.stopped || self.motion.held;
         let (v_now, c_now, last_sign) = (self.motion.v, self.motion.c, self.motion.sign);
+        let c_fed_back = match self.cfg.controller.commanded_curvature {
+            true => c_now,
+            false => self.snap.curvature,
+        };
         let super::Motion {
             run, avoider, map, ..
         } = &mut self.motion;
@@ -137,7 +146,7 @@ impl<H: Hal, C: Clock> Vm<H, C> {
                 path,
                 k,
                 pose,
-                curvature: c_now,
+                curvature: c_fed_back,
                 speed: direction.sign() * v_now,
             },
         );
