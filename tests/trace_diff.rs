@@ -54,12 +54,20 @@ fn a_changed_task_shows_where_it_parts_ways_and_which_ends_moved() {
     // metre further first. The ends' times quoted below are the `basic` profile's (a
     // test of the diff).
     let basic = ["--sim-profile", "basic"];
-    let a = traced("task-a", "goahead(1.5)
+    let a = traced(
+        "task-a",
+        "goahead(1.5)
 turn(left)
-", &basic);
-    let b = traced("task-b", "goahead(2)
+",
+        &basic,
+    );
+    let b = traced(
+        "task-b",
+        "goahead(2)
 turn(left)
-", &basic);
+",
+        &basic,
+    );
     let (code, out, err) = diff(&a, &b);
     assert_eq!(code, 1, "{out}{err}");
     assert!(out.contains("part ways at t=0 (event 1 of"), "{out}");

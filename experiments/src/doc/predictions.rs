@@ -146,14 +146,14 @@ seeds; `ILMR_EXPERIMENTS=full` all of them).
         "done",
         t7.out,
         t7.runs,
-        "in `lab.toml`'s 3 m corridors (the office world's 2 m is issue 15 item 4)",
+        "in the office's 2 m corridors: a run that fails stops in the lab door, where `turn(left)` finds no room for the calibrated robot's outline (issue 15 item 4)",
     ));
     s.push_str(&count(
         "Test 7, `followpath(path_1)` driven again",
         "done",
         t7.replayed,
         t7.runs,
-        "a replay that fails stands stalled short of path_1's end (seed 1001: 2.3 m, by the bench); not yet analysed",
+        "a replay that fails stands stalled short of path_1's end; not yet analysed",
     ));
     s.push_str(&own(
         "Test 7, the replay's farthest from path_1, m",
