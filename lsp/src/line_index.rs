@@ -4,7 +4,7 @@
 //! so that a position on a megabyte-long line costs no more than one on a short one.
 
 use ilmr_compiler::Span;
-use tower_lsp_server::ls_types::{Position, Range};
+use tower_lsp_server::ls_types::{Position, Range, TextDocumentContentChangeEvent};
 
 #[derive(Debug, Clone, Default, PartialEq, Eq)]
 pub struct LineIndex {
@@ -84,6 +84,24 @@ impl LineIndex {
             ascii: scanned.ascii,
             checkpoints: scanned.checkpoints,
             len: text.len() as u32,
+        }
+    }
+
+    /// Applies a client's edits to `text` in order, keeping this index in step: a
+    /// ranged edit re-reads only the lines it touched, a whole-text one everything.
+    pub fn apply(&mut self, text: &mut String, changes: Vec<TextDocumentContentChangeEvent>) {
+        for change in changes {
+            match change.range {
+                Some(range) => {
+                    let span = self.span(text, range);
+                    text.replace_range(span.range(), &change.text);
+                    self.edit(text, span.range(), change.text.len());
+                }
+                None => {
+                    *text = change.text;
+                    *self = LineIndex::new(text);
+                }
+            }
         }
     }
 

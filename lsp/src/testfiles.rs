@@ -163,19 +163,7 @@ impl TestFiles {
         let Some(doc) = self.docs.get_mut(uri.as_str()) else {
             return;
         };
-        for change in changes {
-            match change.range {
-                Some(range) => {
-                    let span = doc.index.span(&doc.text, range);
-                    doc.text.replace_range(span.range(), &change.text);
-                    doc.index.edit(&doc.text, span.range(), change.text.len());
-                }
-                None => {
-                    doc.text = change.text;
-                    doc.index = LineIndex::new(&doc.text);
-                }
-            }
-        }
+        doc.index.apply(&mut doc.text, changes);
         doc.version = version;
         self.stale.insert(uri.as_str().to_string());
     }

@@ -485,13 +485,8 @@ impl<'s> Owners<'_, 's> {
         let mut steps = Some(Vec::new());
         for stmt in skill.blocks.first().map_or(&[][..], |b| &b.stmts) {
             let Some(out) = steps.as_mut() else { break };
-            let (name, args) = match &stmt.kind {
-                StmtKind::Call { call, .. } => (call.name.text, call.args.as_ref()),
-                StmtKind::Assign { value, .. } => match &value.kind {
-                    ExprKind::Name(n) => (n.text, None),
-                    _ => continue,
-                },
-                _ => continue,
+            let Some((name, args)) = called(stmt) else {
+                continue;
             };
             match self.resolve(name, stmt.span, file, info.index as u32 + 1) {
                 Called::Other => {}
@@ -654,14 +649,9 @@ impl<'s> Owners<'_, 's> {
                 strands
             };
             for stmt in &block.stmts {
-                let (name, args) = match &stmt.kind {
-                    StmtKind::Call { call, .. } => (call.name.text, call.args.as_ref()),
-                    StmtKind::Assign { value, .. } => match &value.kind {
-                        ExprKind::Name(n) => (n.text, None),
-                        _ => continue,
-                    },
-                    // Guards and loops run their bodies later; they do not hold.
-                    _ => continue,
+                // Guards and loops run their bodies later; they do not hold.
+                let Some((name, args)) = called(stmt) else {
+                    continue;
                 };
                 let span = stmt.span;
                 let inner = match self.resolve(name, span, file, info.index as u32 + 1) {
@@ -856,6 +846,19 @@ impl<'s> Queue<'s> {
 
 /// The VM's skill call depth: deeper chains are refused (E0603), and following them
 /// would recurse as deep as they go.
+/// What a statement calls, command or skill, with its arguments: a call, or a bare
+/// name assigned (`m = Pause`).
+fn called<'a, 's>(stmt: &'a Stmt<'s>) -> Option<(&'s str, Option<&'a Args<'s>>)> {
+    match &stmt.kind {
+        StmtKind::Call { call, .. } => Some((call.name.text, call.args.as_ref())),
+        StmtKind::Assign { value, .. } => match &value.kind {
+            ExprKind::Name(n) => Some((n.text, None)),
+            _ => None,
+        },
+        _ => None,
+    }
+}
+
 fn max_call_depth() -> usize {
     usize::from(ilmr_vm::Config::default().max_call_depth)
 }
