@@ -163,7 +163,7 @@ pub const MAX_CURVATURE: ParamSpec = ParamSpec {
     unit: "1/m",
     default: ParamDefault::Value(0.25),
     valid: Valid::PositiveAtMost(CURVATURE),
-    meaning: "Largest curvature the robot can drive (1 / smallest turning radius): the default arc of `turn(left)`, the admissibility test of a Bezier path (section 4.5.2.1), R_max of equation (11).",
+    meaning: "Largest curvature the robot can drive (1 / smallest turning radius): `turn(left)` drives an arc below it to keep steering in reserve (the VM's `TURN_SHARE`), the admissibility test of a Bezier path (section 4.5.2.1), R_max of equation (11).",
     readers: "compiler (range of `turn(c=)`), motion, sim",
 };
 pub const MAX_ACCELERATION: ParamSpec = ParamSpec {
