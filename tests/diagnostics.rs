@@ -7,6 +7,7 @@ use std::collections::BTreeSet;
 
 use ilmr_compiler::Code;
 use ilmr_compiler::check::{Source, analyze};
+use ilmr_compiler::limits::MAX_DIAGNOSTICS;
 use ilmr_compiler::render;
 use support::*;
 
@@ -54,6 +55,10 @@ fn every_code_is_exercised_by_the_corpus() {
         let (analysis, _) = check(&sources, &robot);
         seen.extend(analysis.diagnostics.iter().map(|d| d.code));
     }
+    for sources in past_the_limit() {
+        let (analysis, _) = check(&sources, "moro");
+        seen.extend(analysis.diagnostics.iter().map(|d| d.code));
+    }
     // The robot model's own warnings come from loading a model file, and unreadable
     // files are said by `ilmrc check` itself (tests/cli.rs).
     seen.insert(Code::RobotModel);
@@ -92,6 +97,54 @@ fn several_independent_mistakes_give_one_diagnostic_each() {
             .iter()
             .any(|s| s.span.slice(&sources[0].text) == "goahead(1)")
     );
+}
+
+/// Programs with more problems than a program is given diagnostics: 1,500 unknown
+/// commands, and 1,500 variables nothing reads. Generated rather than in the corpus,
+/// whose snapshots would hold a thousand diagnostics each.
+fn past_the_limit() -> [Vec<Source>; 2] {
+    let over = MAX_DIAGNOSTICS + MAX_DIAGNOSTICS / 2;
+    [
+        vec![Source::new("errors.ilmr", "nosuchcommand\n".repeat(over))],
+        vec![Source::new(
+            "warnings.ilmr",
+            (0..over)
+                .map(|i| format!("v{i} = {i}\n"))
+                .collect::<String>(),
+        )],
+    ]
+}
+
+#[test]
+fn past_the_limit_the_first_diagnostics_are_kept_and_the_rest_counted() {
+    let [errors, warnings] = past_the_limit();
+    let over = MAX_DIAGNOSTICS / 2;
+
+    let (analysis, _) = check(&errors, "moro");
+    let (last, kept) = analysis.diagnostics.split_last().unwrap();
+    assert_eq!(kept.len(), MAX_DIAGNOSTICS);
+    assert!(kept.iter().all(|d| d.code == Code::UnknownCommand));
+    // The first ones in source order: lines 1 to 1,000.
+    let index = ilmr_compiler::LineIndex::new(&errors[0].text);
+    let line =
+        |d: &ilmr_compiler::Diagnostic| index.line_col(&errors[0].text, d.span.start as usize).0;
+    assert_eq!(line(&kept[0]), 1);
+    assert_eq!(line(&kept[MAX_DIAGNOSTICS - 1]), MAX_DIAGNOSTICS);
+    assert_eq!(last.code, Code::TooManyErrors);
+    assert_eq!(last.span.start, kept[MAX_DIAGNOSTICS - 1].span.start);
+    assert!(
+        last.message.starts_with(&format!("{over} more problems")),
+        "{}",
+        last.message
+    );
+
+    // Only warnings past the limit: the program is not refused for them.
+    let (analysis, m) = check(&warnings, "moro");
+    assert_eq!(analysis.diagnostics.len(), MAX_DIAGNOSTICS + 1);
+    let last = analysis.diagnostics.last().unwrap();
+    assert_eq!(last.code, Code::TooManyWarnings);
+    assert!(!analysis.has_errors());
+    assert!(ilmr_compiler::lower::lower(&analysis, &m, ilmr_compiler::FileId(0)).is_ok());
 }
 
 #[test]

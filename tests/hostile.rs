@@ -135,6 +135,58 @@ const SHAPES: &[&str] = &[
     "stray endif",
 ];
 
+/// Files at the size limit made of one broken line repeated: one diagnostic a line
+/// would have been millions of them, and four million of these lines aborted `check`,
+/// `parse` and `fmt` at the address-space bound. Every tool ends with its answer, and
+/// `check` shows the first ones and counts the rest.
+#[test]
+fn millions_of_broken_lines_through_every_entry_point() {
+    let limit = ilmr_compiler::limits::MAX_DIAGNOSTICS;
+    let size = ilmr_files::MAX_SOURCE_BYTES as usize;
+    // Whether the line is a syntax error, which `fmt` refuses to format.
+    for (name, line, code, syntax) in [
+        ("parens", "(\n", "E0101", true),
+        ("unknown", "y\n", "E0301", false),
+        ("stray_endif", "endif\n", "E0204", true),
+    ] {
+        let lines = size / line.len();
+        let file = write(&format!("{name}_lines.ilmr"), &line.repeat(lines));
+        let f = file.to_str().unwrap();
+        let what = |tool: &str| format!("{tool} on {lines} lines of {line:?}");
+        let json = bounded(&["check", "--format", "json", f], None);
+        assert_eq!(ends_cleanly(&what("check --format json"), &json), 1);
+        let found: Vec<serde_json::Value> = serde_json::from_str(&json.stdout).unwrap();
+        assert_eq!(found.len(), limit + 1, "{}", what("check"));
+        assert!(found[..limit].iter().all(|d| d["code"] == code));
+        assert_eq!(found[limit - 1]["line"], limit);
+        let note = &found[limit];
+        assert_eq!(note["code"], "E0003");
+        let message = note["message"].as_str().unwrap();
+        assert!(
+            message.starts_with(&format!("{} more problems", lines - limit)),
+            "{}: {message}",
+            what("check")
+        );
+        assert_eq!(
+            ends_cleanly(&what("check"), &bounded(&["check", f], None)),
+            1
+        );
+        ends_cleanly(&what("parse"), &bounded(&["parse", f], None));
+        let fmt = ends_cleanly(&what("fmt --check"), &bounded(&["fmt", "--check", f], None));
+        assert_eq!(
+            fmt != 0,
+            syntax,
+            "{}",
+            what("fmt refuses syntax errors only")
+        );
+        let ilmb = scratch().join(format!("{name}_lines.ilmb"));
+        let build = bounded(&["build", f, "-o", ilmb.to_str().unwrap()], None);
+        assert_eq!(ends_cleanly(&what("build"), &build), 1);
+        let run = bounded(&["run", f, "--robot", "none", "--max-time", "2"], None);
+        assert_eq!(ends_cleanly(&what("run"), &run), 1);
+    }
+}
+
 /// The same file gets the same answer from every tool: what `check` accepts, `build`
 /// builds and `run` runs; what it refuses, they refuse.
 #[test]
@@ -255,6 +307,10 @@ fn the_limits_table_quotes_the_constants() {
         (
             "LONG_MESSAGE",
             format!("longer than {} characters", render::LONG_MESSAGE),
+        ),
+        (
+            "MAX_DIAGNOSTICS",
+            format!("{}, the first", count(limits::MAX_DIAGNOSTICS)),
         ),
         ("MAX_SOURCE_BYTES", mib(ilmr_files::MAX_SOURCE_BYTES)),
         (

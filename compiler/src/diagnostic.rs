@@ -52,6 +52,10 @@ codes! {
         "`ilmrc check` was given a file it could not read: missing, a directory, a device or FIFO, larger than the limit for a task or skill file (`MAX_SOURCE_BYTES`, docs/run.md), or refused by the system. The message says which. The other files are still checked; the exit code is 2.";
     NotUtf8 = "E0002", Error, "file is not UTF-8 text",
         "ILMR files are UTF-8 text. The diagnostic points at the line and column of the first byte that is not UTF-8 (a file saved as Latin-1 or UTF-16 by an editor, or a binary file); save the file as UTF-8. The other files are still checked; the exit code is 2.";
+    TooManyErrors = "E0003", Error, "too many diagnostics, errors among those not shown",
+        "A program gets at most `MAX_DIAGNOSTICS` (1,000) diagnostics, the first ones in source order; this one, after the last shown, counts the rest. Some of those not shown are errors, so the program is refused as if they were shown. Fix the first ones and check again. The limit keeps a hostile file (millions of broken lines) from exhausting memory (docs/reliability.md).";
+    TooManyWarnings = "W0003", Warning, "too many diagnostics, only warnings not shown",
+        "A program gets at most `MAX_DIAGNOSTICS` (1,000) diagnostics, the first ones in source order; this one, after the last shown, counts the rest, which are all warnings. The program is not refused for them.";
     Syntax = "E0101", Error, "syntax error",
         "The line does not follow ILMR's grammar. The rest of the file is still checked: each broken line gives one diagnostic.";
     UnclosedArgs = "E0102", Error, "unclosed argument list",

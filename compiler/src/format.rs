@@ -11,7 +11,7 @@ use ilmr_stdlib::Command;
 
 use crate::ast::{Arg, Block, Call, Expr, ExprKind, Name, Stmt, StmtKind};
 use crate::check::{Resolved, Source, analyze};
-use crate::diagnostic::Diagnostic;
+use crate::diagnostic::{Code, Diagnostic};
 use crate::span::{LineIndex, Span};
 
 const INDENT: &str = "    ";
@@ -22,14 +22,14 @@ pub fn format(source: &str, model: &RobotModel) -> Result<String, Vec<Diagnostic
     let sources = [Source::new("", source)];
     let analysis = analyze(&sources, model);
     let entry = &analysis.files[0];
-    let syntax: Vec<Diagnostic> = analysis
-        .diagnostics
-        .iter()
-        .filter(|d| matches!(&d.code.as_str()[..3], "E01" | "E02"))
-        .cloned()
-        .collect();
-    if !syntax.is_empty() {
-        return Err(syntax);
+    if entry.syntax_errors > 0 {
+        // The note that counts what the limit left out goes with them: the analysis
+        // may have kept none of the syntax errors.
+        let syntax = analysis.diagnostics.iter().filter(|d| {
+            matches!(&d.code.as_str()[..3], "E01" | "E02")
+                || matches!(d.code, Code::TooManyErrors | Code::TooManyWarnings)
+        });
+        return Err(syntax.cloned().collect());
     }
     let mut spellings: HashMap<Span, String> = HashMap::new();
     for unit in analysis.units.iter().filter(|u| u.file.0 == 0) {
@@ -48,7 +48,7 @@ pub fn format(source: &str, model: &RobotModel) -> Result<String, Vec<Diagnostic
         source,
         index: &index,
         spellings,
-        lines: HashMap::new(),
+        lines: vec![None; index.line_count()],
     };
     for skill in &file.skills {
         let head = f.header(skill);
@@ -67,13 +67,13 @@ struct Formatter<'a, 's> {
     /// Where a name means a variable or a skill: how it was first spelt.
     spellings: HashMap<Span, String>,
     /// 0-based line -> (depth, canonical text).
-    lines: HashMap<usize, (usize, String)>,
+    lines: Vec<Option<(usize, String)>>,
 }
 
 impl<'s> Formatter<'_, 's> {
     fn put(&mut self, span: Span, depth: usize, text: String) {
         let line = self.index.line_of(span.start as usize);
-        self.lines.insert(line, (depth, text));
+        self.lines[line] = Some((depth, text));
     }
 
     fn spelling<'n>(&'n self, name: &Name<'n>) -> &'n str {
@@ -247,13 +247,15 @@ impl<'s> Formatter<'_, 's> {
         // A comment-only line takes the depth of the statement that follows it.
         let mut next_depth = vec![0; count + 1];
         for line in (0..count).rev() {
-            next_depth[line] = self.lines.get(&line).map_or(next_depth[line + 1], |l| l.0);
+            next_depth[line] = self.lines[line]
+                .as_ref()
+                .map_or(next_depth[line + 1], |l| l.0);
         }
         for (line, &next) in next_depth.iter().enumerate().take(count) {
             let comment = comment_on
                 .get(&line)
                 .map(|c| c.slice(self.source).trim_end());
-            let text = match (self.lines.get(&line), comment) {
+            let text = match (&self.lines[line], comment) {
                 (Some((depth, text)), Some(c)) => format!("{}{text} {c}", INDENT.repeat(*depth)),
                 (Some((depth, text)), None) => format!("{}{text}", INDENT.repeat(*depth)),
                 (None, Some(c)) => format!("{}{c}", INDENT.repeat(next)),

@@ -9,6 +9,7 @@ pub mod ast;
 pub mod check;
 pub mod diagnostic;
 pub mod format;
+pub mod kept;
 pub mod lexer;
 pub mod limits;
 pub mod lower;

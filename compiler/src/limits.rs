@@ -23,6 +23,11 @@ pub const MAX_LINE_OPERATORS: usize = 256;
 
 const _: () = assert!(MAX_LINE_OPERATORS < ilmr_vm::bytecode::limits::EXPR_STACK);
 
+/// Diagnostics kept for one program (one analysis, one parsed file): the first ones in
+/// source order. Past it they are counted, not kept (`crate::kept`), so a file of
+/// millions of broken lines costs bounded memory and output.
+pub const MAX_DIAGNOSTICS: usize = 1000;
+
 /// The native stack a thread that checks, lowers or formats a program is given: twice
 /// what an unoptimised build needs at the limits (`compiler/tests/limits.rs` runs there
 /// on half of it). Only touched pages cost memory.

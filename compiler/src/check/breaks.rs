@@ -5,6 +5,7 @@ use crate::ast::{Pattern, Stmt, StmtKind};
 use crate::check::FileEntry;
 use crate::check::skills::Skills;
 use crate::diagnostic::{Code, Diagnostic, FileId};
+use crate::kept::Kept;
 use crate::span::Span;
 
 /// The text a pattern is searched for. The dissertation's own examples, `break(turn(d=))`
@@ -79,7 +80,7 @@ fn runs(entry: &FileEntry<'_>, file: FileId, skills: &Skills) -> bool {
             .any(|(id, s)| s.file == file && skills.is_called(id))
 }
 
-pub fn check_patterns(files: &[FileEntry<'_>], skills: &Skills, diags: &mut Vec<Diagnostic>) {
+pub fn check_patterns(files: &[FileEntry<'_>], skills: &Skills, diags: &mut Kept) {
     let mut any = false;
     for entry in files.iter().filter(|f| f.break_patterns) {
         entry.tree.for_each_stmt(&mut |stmt: &Stmt<'_>| {

@@ -92,6 +92,9 @@ impl Cx<'_, '_> {
     }
 
     pub fn unbound(&mut self, name: &Name<'_>) -> Diagnostic {
+        if self.quiet {
+            return Diagnostic::new(Code::UnboundVariable, self.file, name.span, "");
+        }
         let candidates: Vec<String> = self
             .vars
             .bound_names()

@@ -18,6 +18,7 @@ use crate::check::FileEntry;
 use crate::check::skills::Skills;
 use crate::check::starve;
 use crate::diagnostic::{Code, Diagnostic, FileId};
+use crate::kept::Kept;
 use crate::span::Span;
 
 /// How a variable is written, over the whole program.
@@ -30,7 +31,7 @@ struct Writes {
 }
 
 /// W0901, and W0902 (`starve.rs`) for the same loops.
-pub fn check_frozen_loops(files: &[FileEntry<'_>], skills: &Skills, diags: &mut Vec<Diagnostic>) {
+pub fn check_frozen_loops(files: &[FileEntry<'_>], skills: &Skills, diags: &mut Kept) {
     let mut any_loop = false;
     for entry in files {
         entry.tree.for_each_stmt(&mut |s: &Stmt<'_>| {
@@ -116,7 +117,7 @@ struct Walk<'a, 'd> {
     /// `issued` holds the same for lookups, so a long block stays linear.
     before: Vec<Span>,
     issued: FxHashSet<Span>,
-    diags: &'d mut Vec<Diagnostic>,
+    diags: &'d mut Kept,
 }
 
 impl Walk<'_, '_> {

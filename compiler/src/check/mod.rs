@@ -27,6 +27,7 @@ use rustc_hash::FxHashMap;
 
 use crate::ast::{Arg, Block, Call, ExprKind, FileKind, Name, SourceFile, Stmt, StmtKind};
 use crate::diagnostic::{Code, Diagnostic, FileId};
+use crate::kept::Kept;
 use crate::parser;
 use crate::span::Span;
 
@@ -101,6 +102,9 @@ pub struct FileEntry<'s> {
     pub library: bool,
     /// `Parsed::break_patterns`: whether a `break(pattern)` may be in the tree.
     pub break_patterns: bool,
+    /// The parser's errors, those past the diagnostics' limit (`Parsed::past`) among
+    /// them: the analysis may keep fewer than the parser found.
+    pub syntax_errors: usize,
 }
 
 /// How much of what the checker resolves an analysis keeps. The diagnostics are the
@@ -170,6 +174,9 @@ pub struct Cx<'m, 'v> {
     /// Emptied findings, kept for their capacity: a statement's findings are gathered
     /// apart and then absorbed, and most statements have some.
     pub spare: &'v mut Vec<Findings>,
+    /// Whether the statement's diagnostics fall past the limit (`crate::kept`), so
+    /// need no suggestions: they will be counted, not shown.
+    pub quiet: bool,
 }
 
 impl Cx<'_, '_> {
@@ -208,7 +215,7 @@ pub fn analyze_given<'s>(
     detail: Detail,
     given: &Given,
 ) -> Analysis<'s> {
-    let mut diagnostics = Vec::new();
+    let mut diagnostics = Kept::new();
     let mut files: Vec<FileEntry<'s>> = Vec::with_capacity(sources.len() + 1);
     let builtins = ilmr_stdlib::skills::BUILTIN_SKILL_FILES
         .iter()
@@ -218,8 +225,11 @@ pub fn analyze_given<'s>(
         .map(|s| (s.path.as_str(), s.text.as_str(), false, s.library));
     for (i, (path, text, builtin, library)) in user.chain(builtins).enumerate() {
         let parsed = parser::parse(text, FileId(i as u32));
+        let syntax_errors =
+            parsed.diagnostics.iter().filter(|d| d.is_error()).count() + parsed.past.errors;
         if !builtin {
             diagnostics.extend(parsed.diagnostics);
+            diagnostics.add_past(parsed.past);
         }
         files.push(FileEntry {
             path,
@@ -228,6 +238,7 @@ pub fn analyze_given<'s>(
             builtin,
             library,
             break_patterns: parsed.break_patterns,
+            syntax_errors,
         });
     }
 
@@ -373,15 +384,13 @@ pub fn analyze_given<'s>(
     owners::check_owners(&files, &skills, &units, model, &mut diagnostics);
     unused_variables(&files, &units, &mut diagnostics);
 
-    diagnostics.sort_by_key(|d| (d.file, d.span.start, d.code));
-    diagnostics.dedup();
     Analysis {
         files,
         skills,
         specials: specials.list,
         special_blocks,
         units,
-        diagnostics,
+        diagnostics: diagnostics.into_reported(),
     }
 }
 
@@ -402,7 +411,7 @@ fn check_specials<'s>(
     skills: &skills::Skills,
     specials: &mut params::Specials,
     units: &mut Vec<Unit>,
-    diagnostics: &mut Vec<Diagnostic>,
+    diagnostics: &mut Kept,
     c: Checking<'_>,
 ) -> Vec<Box<[Block<'s>]>> {
     let mut bodies = Vec::new();
@@ -431,7 +440,7 @@ fn check_specials<'s>(
             refs: Vec::new(),
             targets: FxHashMap::default(),
         };
-        let mut found = Vec::new();
+        let mut found = Kept::new();
         Walker::new(
             c.model,
             c.constants,
@@ -444,6 +453,8 @@ fn check_specials<'s>(
         )
         .blocks(&blocks);
         let (call_file, call) = special.call;
+        let (found, past) = found.finish();
+        diagnostics.add_past(past);
         for d in found {
             if diagnostics.contains(&d) {
                 continue;
@@ -488,7 +499,7 @@ pub fn check_fragment<'n>(
         refs: Vec::new(),
         targets: FxHashMap::default(),
     };
-    let mut diagnostics = Vec::new();
+    let mut diagnostics = Kept::new();
     Walker::new(
         model,
         &constants,
@@ -500,12 +511,11 @@ pub fn check_fragment<'n>(
         &mut params::Specials::default(),
     )
     .blocks(&tree.blocks);
-    diagnostics.sort_by_key(|d| (d.span.start, d.code));
-    (unit, diagnostics)
+    (unit, diagnostics.into_reported())
 }
 
 /// W0502: a task variable that nothing reads, in the task or in any skill.
-fn unused_variables(files: &[FileEntry<'_>], units: &[Unit], diagnostics: &mut Vec<Diagnostic>) {
+fn unused_variables(files: &[FileEntry<'_>], units: &[Unit], diagnostics: &mut Kept) {
     let mut skill_reads = fold::FoldMap::default();
     for unit in units.iter().filter(|u| u.skill.is_some()) {
         for (key, id) in unit.vars.keys() {
@@ -547,7 +557,7 @@ struct Walker<'a, 'm> {
     names: &'a names::Names,
     skills: &'a skills::Skills,
     unit: &'a mut Unit,
-    diagnostics: &'a mut Vec<Diagnostic>,
+    diagnostics: &'a mut Kept,
     /// Whether to record resolutions and targets beyond what the diagnostics need.
     full: bool,
     buf: String,
@@ -556,6 +566,8 @@ struct Walker<'a, 'm> {
     specials: &'a mut params::Specials,
     /// The parameters of the skill being checked, which cannot be bound.
     own_params: &'a [params::Param],
+    /// The statement being checked.
+    at: Span,
 }
 
 impl<'a, 'm> Walker<'a, 'm> {
@@ -568,7 +580,7 @@ impl<'a, 'm> Walker<'a, 'm> {
         names: &'a names::Names,
         skills: &'a skills::Skills,
         unit: &'a mut Unit,
-        diagnostics: &'a mut Vec<Diagnostic>,
+        diagnostics: &'a mut Kept,
         detail: Detail,
         specials: &'a mut params::Specials,
     ) -> Self {
@@ -584,6 +596,7 @@ impl<'a, 'm> Walker<'a, 'm> {
             full: detail == Detail::Full,
             buf: String::new(),
             spare: Vec::new(),
+            at: Span::empty(0),
         }
     }
 
@@ -595,6 +608,7 @@ impl<'a, 'm> Walker<'a, 'm> {
             file: self.unit.file,
             buf: &mut self.buf,
             spare: &mut self.spare,
+            quiet: !self.diagnostics.admits(self.unit.file, self.at),
         }
     }
 
@@ -661,6 +675,7 @@ impl<'a, 'm> Walker<'a, 'm> {
     }
 
     fn stmt(&mut self, stmt: &Stmt<'_>) {
+        self.at = stmt.span;
         match &stmt.kind {
             StmtKind::Call { bind, call } => {
                 let kind = self.call(call, stmt.span);
@@ -805,6 +820,11 @@ impl<'a, 'm> Walker<'a, 'm> {
             }
             self.target(stmt, Target::Skill(id));
             return Some(VarKind::Status);
+        }
+        if !self.diagnostics.admits(file, call.name.span) {
+            // Past the limit: its suggestions are a search over every known name.
+            self.diagnostics.count_dropped(Code::UnknownCommand);
+            return None;
         }
         let d = Diagnostic::new(
             Code::UnknownCommand,

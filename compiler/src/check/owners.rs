@@ -39,6 +39,7 @@ use crate::check::schedule::{Moment, Start};
 use crate::check::skills::{SkillId, Skills};
 use crate::check::{FileEntry, Target, Unit};
 use crate::diagnostic::{Code, Diagnostic, FileId};
+use crate::kept::Kept;
 use crate::span::Span;
 
 /// A skill's settings at its start beyond this many are not followed into its callers
@@ -173,7 +174,7 @@ pub fn check_owners(
     skills: &Skills,
     units: &[Unit],
     model: &RobotModel,
-    diags: &mut Vec<Diagnostic>,
+    diags: &mut Kept,
 ) {
     let mut o = Owners::new(files, skills, units, model);
     for (i, entry) in files.iter().enumerate() {
@@ -708,7 +709,7 @@ impl<'s> Owners<'_, 's> {
         out
     }
 
-    fn report(&mut self, diags: &mut Vec<Diagnostic>) {
+    fn report(&mut self, diags: &mut Kept) {
         let mut records = std::mem::take(&mut self.records);
         // Only settings of a thing that more than one block sets at one moment, to
         // more than one value, can meet: most are alone (or agree, as copies of one

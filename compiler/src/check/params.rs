@@ -17,6 +17,7 @@ use rustc_hash::FxHashMap;
 use crate::ast::{Arg, Args, Block, Conditional, Expr, ExprKind, Name, Stmt, StmtKind};
 use crate::check::skills::SkillId;
 use crate::diagnostic::{Code, Diagnostic, FileId};
+use crate::kept::Kept;
 use crate::span::Span;
 
 /// A specialization's number beyond which calls of parameterized skills are not
@@ -54,7 +55,7 @@ pub fn signature(name: &str, params: &[Param]) -> String {
 }
 
 /// Reads a header's parameters; what is not a parameter is an error.
-pub fn read(args: &Args<'_>, file: FileId, diags: &mut Vec<Diagnostic>) -> Vec<Param> {
+pub fn read(args: &Args<'_>, file: FileId, diags: &mut Kept) -> Vec<Param> {
     let mut out: Vec<Param> = Vec::new();
     for a in args.items.iter() {
         let param = match a {

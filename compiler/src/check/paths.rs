@@ -13,6 +13,7 @@ use rustc_hash::FxHashSet;
 use crate::ast::{Arg, Args, Block, Expr, ExprKind, Name, StmtKind};
 use crate::check::FileEntry;
 use crate::diagnostic::{Code, Diagnostic, FileId};
+use crate::kept::Kept;
 use crate::span::Span;
 use ilmr_stdlib::Command;
 
@@ -24,7 +25,7 @@ struct Follow<'s> {
     block_start: Span,
 }
 
-pub fn check_paths(files: &[FileEntry<'_>], given: &[String], diags: &mut Vec<Diagnostic>) {
+pub fn check_paths(files: &[FileEntry<'_>], given: &[String], diags: &mut Kept) {
     let mut made: FxHashSet<String> = given.iter().map(|p| p.to_lowercase()).collect();
     let mut follows = Vec::new();
     for (i, entry) in files.iter().enumerate() {

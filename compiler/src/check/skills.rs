@@ -10,6 +10,7 @@ use ilmr_stdlib::{Command, VarKind};
 use crate::ast::{Block, Call, ExprKind, FileKind, Name, StmtKind};
 use crate::check::FileEntry;
 use crate::diagnostic::{Code, Diagnostic, FileId};
+use crate::kept::Kept;
 use crate::span::Span;
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -40,11 +41,7 @@ pub struct Skills {
 }
 
 impl Skills {
-    pub fn collect(
-        files: &[FileEntry<'_>],
-        model: &RobotModel,
-        diags: &mut Vec<Diagnostic>,
-    ) -> Skills {
+    pub fn collect(files: &[FileEntry<'_>], model: &RobotModel, diags: &mut Kept) -> Skills {
         let mut skills = Skills::default();
         // User files first, so that a user's skill replaces a built-in of the same name.
         let order = files
@@ -101,7 +98,7 @@ impl Skills {
                         Some(args) if !entry.builtin => {
                             super::params::read(args, FileId(i as u32), diags)
                         }
-                        Some(args) => super::params::read(args, FileId(i as u32), &mut Vec::new()),
+                        Some(args) => super::params::read(args, FileId(i as u32), &mut Kept::new()),
                         None => Vec::new(),
                     },
                     calls: Vec::new(),
@@ -243,7 +240,7 @@ impl Skills {
     /// calls nest one deeper than the VM runs. One depth-first walk over the call graph,
     /// on a stack of its own: a chain of skills is as long as a file makes it. Returns
     /// each skill's height: the longest chain of calls a call of it makes, itself included.
-    fn report_recursion(&self, diags: &mut Vec<Diagnostic>) -> Vec<usize> {
+    fn report_recursion(&self, diags: &mut Kept) -> Vec<usize> {
         #[derive(Clone, Copy, PartialEq)]
         enum Mark {
             New,

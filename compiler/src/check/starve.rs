@@ -19,6 +19,7 @@ use crate::ast::{Arg, Args, Block, Expr, ExprKind, Stmt, StmtKind};
 use crate::check::loops::names_in;
 use crate::check::skills::Skills;
 use crate::diagnostic::{Code, Diagnostic, FileId};
+use crate::kept::Kept;
 use crate::render::thousands;
 
 /// What the W0902 check needs to know of the whole program.
@@ -36,7 +37,7 @@ pub fn check(
     stmt: &Stmt<'_>,
     cond: &Expr<'_>,
     body: &[Block<'_>],
-    diags: &mut Vec<Diagnostic>,
+    diags: &mut Kept,
 ) {
     let mut read: SmallVec<[&str; 4]> = SmallVec::new();
     names_in(cond, &mut read);

@@ -17,6 +17,7 @@ use crate::check::breaks::{matches, needle};
 use crate::check::constants;
 use crate::check::fold::{self, FoldMap};
 use crate::diagnostic::{Code, Diagnostic, FileId};
+use crate::kept::Kept;
 use crate::span::Span;
 use std::cell::Cell;
 
@@ -48,7 +49,7 @@ fn never_ending() -> Vec<Command> {
         .collect()
 }
 
-pub fn check_waits(files: &[FileEntry<'_>], diags: &mut Vec<Diagnostic>) {
+pub fn check_waits(files: &[FileEntry<'_>], diags: &mut Kept) {
     let never = never_ending();
     let mut scan = Scan::default();
     for (i, entry) in files.iter().enumerate() {

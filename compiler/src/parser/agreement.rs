@@ -59,7 +59,12 @@ fn reference(source: &str, file: FileId) -> Parsed<'_> {
         .any(|&(t, span)| t == Token::Break && lexer::break_pattern(source, span).inner.is_some());
     finish(
         tree,
-        [patterns, syntax, structure, unclosed],
+        [
+            patterns,
+            syntax.into_iter().collect(),
+            structure,
+            unclosed.into_iter().collect(),
+        ],
         break_patterns,
     )
 }

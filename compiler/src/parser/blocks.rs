@@ -7,6 +7,7 @@ use crate::ast::{
     Args, Block, Conditional, Expr, FileKind, Name, Skill, SourceFile, Stmt, StmtKind,
 };
 use crate::diagnostic::{Code, Diagnostic, FileId};
+use crate::kept::Kept;
 use crate::limits::MAX_BLOCK_DEPTH;
 use crate::parser::lines::{Line, ParsedLine};
 use crate::span::Span;
@@ -114,7 +115,7 @@ pub struct Builder<'s> {
     /// Blocks open past [`MAX_BLOCK_DEPTH`], counted but not built: their lines are
     /// dropped until the closers bring the depth back within the limit.
     skipped: usize,
-    diagnostics: Vec<Diagnostic>,
+    diagnostics: Kept,
 }
 
 impl<'s> Builder<'s> {
@@ -131,7 +132,7 @@ impl<'s> Builder<'s> {
             skills: Vec::new(),
             task_blocks: None,
             skipped: 0,
-            diagnostics: Vec::new(),
+            diagnostics: Kept::new(),
         }
     }
 
@@ -393,7 +394,7 @@ impl<'s> Builder<'s> {
     }
 
     /// The tree, and the diagnostics of its structure.
-    pub fn finish(mut self, comments: Vec<Span>) -> (SourceFile<'s>, Vec<Diagnostic>) {
+    pub fn finish(mut self, comments: Vec<Span>) -> (SourceFile<'s>, Kept) {
         let end = self.source.len();
         while self.stack.len() > 1 {
             if matches!(self.top().opener, Opener::Skill { .. }) {

@@ -13,6 +13,7 @@ use chumsky::error::{RichPattern, RichReason};
 
 use crate::ast::{Expr, ExprKind, Name, SourceFile, StmtKind};
 use crate::diagnostic::{Code, Diagnostic, FileId};
+use crate::kept::{Kept, Past};
 use crate::lexer::{self, Token};
 use crate::limits;
 use crate::parser::lines::{Line, ParsedLine};
@@ -20,7 +21,10 @@ use crate::span::Span;
 
 pub struct Parsed<'s> {
     pub file: SourceFile<'s>,
+    /// The first [`limits::MAX_DIAGNOSTICS`] in source order.
     pub diagnostics: Vec<Diagnostic>,
+    /// Those past the limit, counted.
+    pub past: Past,
     /// Whether the file has a `break(` with a pattern. When false, no statement of the
     /// tree is a `Break` with a pattern, and the checker need not look for one.
     pub break_patterns: bool,
@@ -33,9 +37,9 @@ pub struct Parsed<'s> {
 pub fn parse<'s>(source: &'s str, file: FileId) -> Parsed<'s> {
     let mut tokens = lexer::Tokens::new(source);
     let mut line: Vec<(Token, Span)> = Vec::new();
-    let mut patterns = Vec::new();
-    let mut syntax = Vec::new();
-    let mut unclosed = Vec::new();
+    let mut patterns = Kept::new();
+    let mut syntax = Kept::new();
+    let mut unclosed = Kept::new();
     let mut builder = blocks::Builder::new(source, file);
     let mut emit = |parsed: ParsedLine<'s>| {
         if let Some(d) = unclosed_args(&parsed.line, file) {
@@ -96,6 +100,12 @@ pub fn parse<'s>(source: &'s str, file: FileId) -> Parsed<'s> {
                         line: parsed,
                         span: whole,
                     });
+                } else if !syntax.admits(file, whole) {
+                    // Past the diagnostics' limit the grammar's error recovery, its
+                    // dearest path, would only feed a count: the line is read for
+                    // what it opens and binds, as an unparsed one is.
+                    syntax.count_dropped(Code::Syntax);
+                    emit(unparsed_line(&line, source));
                 } else {
                     line.push((token, span));
                     let (lines, errors) = lines::parse_lines(&line, source);
@@ -184,16 +194,18 @@ fn too_complex_diagnostic(at: Span, file: FileId) -> Diagnostic {
 }
 
 /// Diagnostics in source order; those at one place keep the order of their kinds.
-fn finish<'s>(
-    tree: SourceFile<'s>,
-    kinds: [Vec<Diagnostic>; 4],
-    break_patterns: bool,
-) -> Parsed<'s> {
-    let mut diagnostics: Vec<Diagnostic> = kinds.into_iter().flatten().collect();
-    diagnostics.sort_by_key(|d| (d.span.start, d.code));
+fn finish<'s>(tree: SourceFile<'s>, kinds: [Kept; 4], break_patterns: bool) -> Parsed<'s> {
+    let mut all = Kept::new();
+    for kind in kinds {
+        let (list, past) = kind.finish();
+        all.extend(list);
+        all.add_past(past);
+    }
+    let (diagnostics, past) = all.finish();
     Parsed {
         file: tree,
         diagnostics,
+        past,
         break_patterns,
     }
 }
