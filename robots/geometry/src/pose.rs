@@ -121,10 +121,10 @@ mod tests {
         let outside = Pose {
             x: 1.0,
             y: 2.0,
-            h: 3.1416,
+            h: 3.2,
         };
-        assert_eq!(outside.h, 3.1416);
-        assert!((outside.wrapped().h - (3.1416 - std::f64::consts::TAU)).abs() < 1e-12);
+        assert_eq!(outside.h, 3.2);
+        assert!((outside.wrapped().h - (3.2 - std::f64::consts::TAU)).abs() < 1e-12);
         let inside = Pose::new(1.0, 2.0, -0.3);
         assert_eq!(inside.wrapped(), inside);
     }
