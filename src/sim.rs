@@ -223,9 +223,7 @@ fn serve(
                 .scan
                 .as_ref()
                 .map(|s| Pose::new(s.mount.x, s.mount.y, 0.0));
-            let p = seen.pose;
-            let estimate = Pose::new(p.x, p.y, p.h);
-            base.odometry(estimate, seen.speed, seen.curvature, scanner, stamp)
+            base.odometry(seen.pose, seen.speed, seen.curvature, scanner, stamp)
                 .map_err(link)?;
             let truth = robot.true_pose();
             base.ground_truth(truth, sim.true_speed(), sim.true_curvature(), stamp)

@@ -366,10 +366,6 @@ pub fn mean_std(xs: &[f64]) -> (f64, f64) {
     (mean, var.sqrt())
 }
 
-pub fn mpose(p: ilmr_hal::Pose) -> ilmr_motion::Pose {
-    ilmr_motion::Pose::new(p.x, p.y, p.h)
-}
-
 /// Length of a driven trace, metres.
 pub fn length(trace: &[ilmr_hal::Pose]) -> f64 {
     trace

@@ -5,6 +5,7 @@
 use std::collections::BTreeSet;
 
 use ilmr_plot::{At, Mark, Sample};
+use ilmr_sim::geometry::Frame;
 
 use crate::harness::{Run, SimVm};
 

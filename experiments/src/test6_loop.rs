@@ -156,7 +156,7 @@ impl Test6 {
             world: self.world.clone(),
             tint: None,
         });
-        let s = ilmr_sim::Pose::new(self.start.x, self.start.y, self.start.h);
+        let s = self.start.wrapped();
         f.references.push(Reference {
             label: Some("taught PATH".into()),
             colour: Colour::REFERENCE,
@@ -164,7 +164,7 @@ impl Test6 {
                 .taught
                 .iter()
                 .map(|&(x, y)| {
-                    let p = s.transform(ilmr_sim::Vec2::new(x, y));
+                    let p = s.to_world(&ilmr_geometry::Point2::new(x, y));
                     (p.x, p.y)
                 })
                 .collect(),

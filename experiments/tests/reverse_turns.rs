@@ -4,8 +4,6 @@
 //! at c = 1, four times Workpartner's 0.25 1/m: such a turn is driven at the
 //! robot's own curvature, on a longer arc, through the same angle).
 
-use std::f64::consts::{PI, TAU};
-
 use ilmr_experiments::harness::{self, moro, shipped, workpartner};
 
 /// Degrees: the heading the turn plans, against where the robot ends.
@@ -30,7 +28,7 @@ fn turned(robot: &str, seed: u64, lead_in: &str, d: f64, c: f64) -> f64 {
     });
     assert!(out.finished, "{robot} seed {seed}: {text} did not finish");
     let end = vm.hal().sim().true_pose().h;
-    (end - start.unwrap_or(end) + PI).rem_euclid(TAU) - PI
+    ilmr_geometry::angle_diff(end, start.unwrap_or(end))
 }
 
 #[test]

@@ -5,6 +5,7 @@ use ilmr_hal::{
     AsyncOp, BodyPose, Hal, HalError, KnownMap, OpId, OpStatus, Pose, ScriptedRobot, Snapshot,
 };
 use ilmr_sim::SimRobot;
+use ilmr_sim::geometry::Frame;
 
 /// What the run loop needs beyond the HAL: whether the robot has come to rest, since a
 /// run does not end while it still moves, and, for a simulated robot, the ground truth
@@ -355,7 +356,12 @@ impl Robot for Ros2 {
         let p = self.robot.pose()?;
         let m = self.robot.scanner_mount().unwrap_or_default();
         let (s, c) = p.h.sin_cos();
-        let origin = Pose::new(p.x + c * m.x - s * m.y, p.y + s * m.x + c * m.y, p.h + m.h);
+        // The heading unfolded, as the beams' angles are counted from it.
+        let origin = Pose {
+            x: p.x + c * m.x - s * m.y,
+            y: p.y + s * m.x + c * m.y,
+            h: p.h + m.h,
+        };
         Some(WorldScan {
             t: scan.t,
             origin,

@@ -40,7 +40,12 @@ pub fn at(p: Pose) -> At {
 }
 
 pub fn pose(a: &At) -> Pose {
-    Pose::new(a.x.0, a.y.0, a.h.0)
+    // As the trace wrote it: a heading rounded to four decimals may lie past pi.
+    Pose {
+        x: a.x.0,
+        y: a.y.0,
+        h: a.h.0,
+    }
 }
 
 pub fn failure(e: &HalError) -> Failure {

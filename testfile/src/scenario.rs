@@ -123,7 +123,13 @@ impl Scenario {
     pub fn robot(&self, limits: Limits) -> Result<ScriptedRobot, String> {
         let mut r = ScriptedRobot::new(limits);
         if let Some(s) = self.start {
-            r = r.at(Pose::new(s.x, s.y, s.h.to_radians()));
+            // The heading as the test file gives it (270 degrees, say): the
+            // scripted robot folds it as it drives.
+            r = r.at(Pose {
+                x: s.x,
+                y: s.y,
+                h: s.h.to_radians(),
+            });
         }
         for reading in &self.readings {
             r = r.reading(reading.t, &reading.device, reading.value);

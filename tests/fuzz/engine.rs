@@ -7,6 +7,7 @@
 //! structure-aware mutational loop: it knows the inputs' shapes (lines, tokens,
 //! commands, INI sections, JSON tables) and is deterministic for a given seed.
 
+use ilmr_geometry::SplitMix64;
 use std::panic::{AssertUnwindSafe, catch_unwind};
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
@@ -25,21 +26,17 @@ pub fn on_compiler_stack<T: Send>(target: impl FnOnce() -> T + Send) -> T {
     })
 }
 
-/// SplitMix64: small, fast, and the same sequence on every machine.
+/// SplitMix64 (ilmr-geometry's), so that a seed means the same input on every machine.
 #[derive(Debug, Clone)]
-pub struct Rng(u64);
+pub struct Rng(SplitMix64);
 
 impl Rng {
     pub fn new(seed: u64) -> Rng {
-        Rng(seed ^ 0x9E37_79B9_7F4A_7C15)
+        Rng(SplitMix64::new(seed ^ 0x9E37_79B9_7F4A_7C15))
     }
 
     pub fn next_u64(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
+        self.0.next_u64()
     }
 
     /// Uniform in `0..n`; 0 when `n` is 0.

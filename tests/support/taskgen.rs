@@ -13,6 +13,7 @@
 //! let task = gen.generate(seed); // task.task, task.skills
 //! ```
 
+use ilmr_geometry::SplitMix64;
 use ilmr_model::RobotModel;
 use ilmr_stdlib::{Command, Form, ModelNames, NameSpace, Occurs, ParamKind, Range, Unit, VarKind};
 
@@ -162,17 +163,13 @@ impl Facts {
     }
 }
 
-/// SplitMix64, so that a seed means the same task on every machine.
+/// SplitMix64 (ilmr-geometry's), so that a seed means the same task on every machine.
 #[derive(Debug, Clone)]
-struct Rng(u64);
+struct Rng(SplitMix64);
 
 impl Rng {
     fn next(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
+        self.0.next_u64()
     }
 
     fn below(&mut self, n: usize) -> usize {
@@ -190,7 +187,7 @@ impl Rng {
     /// Uniform in `lo..=hi`, rounded to a twentieth so the text stays short.
     fn real(&mut self, lo: f64, hi: f64) -> f64 {
         let (lo, hi) = if lo <= hi { (lo, hi) } else { (hi, lo) };
-        let unit = (self.next() >> 11) as f64 / (1u64 << 53) as f64;
+        let unit = self.0.uniform();
         let v = ((lo + unit * (hi - lo)) * 20.0).round() / 20.0;
         v.clamp(lo, hi)
     }
@@ -298,7 +295,7 @@ impl Generator {
     }
 
     pub fn generate(&self, seed: u64) -> Generated {
-        let mut rng = Rng(seed ^ 0x5EED_1A5C_0FFE_E000);
+        let mut rng = Rng(SplitMix64::new(seed ^ 0x5EED_1A5C_0FFE_E000));
         let skill_count = if self.shape.max_skills == 0 {
             0
         } else {
@@ -311,7 +308,11 @@ impl Generator {
         let mut settings = Vec::new();
         for i in 0..skill_count {
             let name = format!("Skill{}", i + 1);
-            let mut p = Program::new(self, Rng(rng.next()), &format!("s{}_", i + 1));
+            let mut p = Program::new(
+                self,
+                Rng(SplitMix64::new(rng.next())),
+                &format!("s{}_", i + 1),
+            );
             p.settings = std::mem::take(&mut settings);
             p.skill = true;
             p.must_end = 1;
@@ -323,7 +324,7 @@ impl Generator {
             skills.push(name);
             settings = p.settings;
         }
-        let mut p = Program::new(self, Rng(rng.next()), "t");
+        let mut p = Program::new(self, Rng(SplitMix64::new(rng.next())), "t");
         p.settings = settings;
         p.callable = skills;
         let blocks = 1 + p.rng.below(self.shape.max_blocks.max(1));

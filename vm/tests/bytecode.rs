@@ -284,15 +284,8 @@ fn a_length_past_the_file_is_refused_without_allocating_for_it() {
 #[test]
 fn the_loader_survives_random_damage() {
     let seeds = [figure_27().to_bytes(), empty_task().to_bytes()];
-    let mut rng = 0x1a2b_3c4d_5e6f_7788_u64;
-    let mut next = move |n: usize| {
-        // SplitMix64.
-        rng = rng.wrapping_add(0x9e37_79b9_7f4a_7c15);
-        let mut z = rng;
-        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-        ((z ^ (z >> 31)) % n.max(1) as u64) as usize
-    };
+    let mut rng = ilmr_geometry::SplitMix64::new(0x1a2b_3c4d_5e6f_7788);
+    let mut next = move |n: usize| (rng.next_u64() % n.max(1) as u64) as usize;
     let (mut loaded, mut refused) = (0, 0);
     for i in 0..20_000 {
         let mut bytes = seeds[i % 2].clone();

@@ -12,12 +12,6 @@ use ilmr_stdlib::Command;
 
 const C: f64 = 0.25;
 
-/// Signed difference `a - b` of two headings, in (-pi, pi].
-fn heading_diff(a: f64, b: f64) -> f64 {
-    let d = (a - b).rem_euclid(2.0 * PI);
-    if d > PI { d - 2.0 * PI } else { d }
-}
-
 /// Runs `speed(-0.4)` then `t=turn(d=deg,c=0.25)` from `start` and checks the
 /// robot never drives forwards, stays on the circle of the forward arc, ends
 /// with its heading changed by `-deg` in the time the arc takes, and `t` holds
@@ -65,7 +59,7 @@ fn reverse_turn(start: Pose, deg: f64) {
     );
     assert!(worst < 0.08, "{text}: max deviation from the arc {worst}");
     let p = vm.hal().true_pose();
-    let turned = heading_diff(p.h, start.h);
+    let turned = ilmr_geometry::angle_diff(p.h, start.h);
     assert!(
         (turned + deg.to_radians()).abs() < 0.05,
         "{text} from {start:?} turned {} deg",

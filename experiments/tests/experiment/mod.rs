@@ -10,8 +10,8 @@ use ilmr_sim::{SimRobot, World};
 use ilmr_vm::Module;
 
 pub use h::{
-    A, Run, SimVm, Task, distance_to_polyline, ended, examples, length, linked_ends, mean_std,
-    mpose, run, run_watched, speed, vm_config,
+    A, Run, SimVm, Task, distance_to_polyline, ended, examples, length, linked_ends, mean_std, run,
+    run_watched, speed, vm_config,
 };
 
 fn ok<T>(r: Result<T, String>) -> T {

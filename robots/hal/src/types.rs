@@ -12,19 +12,9 @@ pub struct BodyOffsets {
     pub scanner: f64,
 }
 
-/// A planar pose: metres and radians (heading counter-clockwise from x).
-#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
-pub struct Pose {
-    pub x: f64,
-    pub y: f64,
-    pub h: f64,
-}
-
-impl Pose {
-    pub const fn new(x: f64, y: f64, h: f64) -> Pose {
-        Pose { x, y, h }
-    }
-}
+/// The planar pose every layer shares (ilmr-geometry's): metres and radians, heading
+/// counter-clockwise from x.
+pub use ilmr_geometry::Pose;
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]

@@ -1,6 +1,7 @@
 //! The task's frame over the robot's odometry frame: `locate(x,y,h)` says where the
 //! robot is now, and every later odometry pose is moved and turned by the same amount.
 
+use ilmr_geometry::wrap_angle;
 use ilmr_hal::Pose;
 
 /// A planar rigid transform: turn by `dh`, then move by `(dx, dy)`.
@@ -28,18 +29,8 @@ impl Frame {
         Pose {
             x: c * raw.x - s * raw.y + self.dx,
             y: s * raw.x + c * raw.y + self.dy,
-            h: wrap(raw.h + self.dh),
+            h: wrap_angle(raw.h + self.dh),
         }
-    }
-}
-
-/// An angle in (-pi, pi].
-fn wrap(a: f64) -> f64 {
-    let w = a.rem_euclid(std::f64::consts::TAU);
-    if w > std::f64::consts::PI {
-        w - std::f64::consts::TAU
-    } else {
-        w
     }
 }
 

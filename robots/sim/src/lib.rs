@@ -19,11 +19,14 @@ pub mod faults;
 pub mod geometry;
 pub mod kinematics;
 pub mod profile;
-pub mod rng;
 mod robot;
 pub mod sensors;
 mod sim;
 pub mod world;
+
+/// The seeded generator behind every noise source (ilmr-geometry's, shared with the
+/// layers above so that a seed means the same thing everywhere).
+pub use ilmr_geometry::rng;
 
 pub use config::{RobotConfig, RobotKind};
 pub use faults::{FaultKind, FaultPlan, FaultSpec};

@@ -210,7 +210,12 @@ impl<H: Hal, C: Clock> Vm<H, C> {
             Command::Locate => {
                 let (n, count) = self.numbers::<3>(r)?;
                 if count == 3 {
-                    let after = Pose::new(n[0], n[1], n[2].to_radians());
+                    // The heading as the task gave it; the robot folds it.
+                    let after = Pose {
+                        x: n[0],
+                        y: n[1],
+                        h: n[2].to_radians(),
+                    };
                     self.hal.locate(after).map_err(Self::refuse_hal)?;
                     self.map_from_estimate = super::safety::frame::relocated(
                         self.map_from_estimate,
@@ -264,7 +269,11 @@ impl<H: Hal, C: Clock> Vm<H, C> {
                             .detections
                             .iter()
                             .find(|d| d.sensor.eq_ignore_ascii_case(device))
-                            .map(|d| ilmr_hal::Pose::new(d.x, d.y, d.h))
+                            .map(|d| ilmr_hal::Pose {
+                                x: d.x,
+                                y: d.y,
+                                h: d.h,
+                            })
                             .ok_or_else(|| format!("{device} points at nothing now"))?,
                     ),
                     None => None,

@@ -391,15 +391,6 @@ mod tests {
             .collect()
     }
 
-    /// Deterministic splitmix64, for values near and far from the constants.
-    fn splitmix(state: &mut u64) -> u64 {
-        *state = state.wrapping_add(0x9e37_79b9_7f4a_7c15);
-        let mut z = *state;
-        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-        z ^ (z >> 31)
-    }
-
     #[test]
     fn the_true_runs_are_exactly_the_constants_the_comparison_holds_for() {
         let cs = [
@@ -417,7 +408,7 @@ mod tests {
             1e6,
         ];
         let gs = groups(&cs);
-        let mut seed = 7u64;
+        let mut rng = ilmr_geometry::SplitMix64::new(7);
         let mut values = vec![
             f64::NAN,
             f64::INFINITY,
@@ -437,7 +428,7 @@ mod tests {
             ]
         }));
         for _ in 0..2_000 {
-            let r = splitmix(&mut seed);
+            let r = rng.next_u64();
             let base = gs[(r % gs.len() as u64) as usize].c;
             let jitter = ((r >> 8) % 4001) as f64 - 2000.0;
             values.push(base + jitter * 1e-12);

@@ -67,7 +67,7 @@ impl Kinematics {
                 y - r * ((h + dh).cos() - h.cos()),
             )
         };
-        self.pose = Pose::new(nx, ny, wrap(h + dh));
+        self.pose = Pose::new(nx, ny, h + dh);
     }
 }
 
@@ -77,13 +77,6 @@ fn approach(from: f64, to: f64, max_step: f64) -> f64 {
     } else {
         from + max_step.copysign(to - from)
     }
-}
-
-/// Wraps an angle into (-pi, pi].
-pub(crate) fn wrap(a: f64) -> f64 {
-    use std::f64::consts::{PI, TAU};
-    let w = a.rem_euclid(TAU);
-    if w > PI { w - TAU } else { w }
 }
 
 #[cfg(test)]

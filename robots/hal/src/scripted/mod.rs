@@ -7,7 +7,8 @@ mod script;
 pub use kinematics::Limits;
 pub use script::{Call, OpMatch, OpOutcome, Stream};
 
-use kinematics::{Kinematics, wrap};
+use ilmr_geometry::wrap_angle;
+use kinematics::Kinematics;
 use script::{OpRule, Periodic, Script, Sighting, TimedReading, TimedScan};
 
 use crate::hal::Hal;
@@ -248,7 +249,7 @@ impl ScriptedRobot {
         Pose::new(
             cos * p.x - sin * p.y + self.offset.x,
             sin * p.x + cos * p.y + self.offset.y,
-            wrap(p.h + self.offset.h),
+            p.h + self.offset.h,
         )
     }
 
@@ -259,7 +260,7 @@ impl ScriptedRobot {
             }
             self.offset.x += shift.x;
             self.offset.y += shift.y;
-            self.offset.h = wrap(self.offset.h + shift.h);
+            self.offset.h = wrap_angle(self.offset.h + shift.h);
             self.next_jump += 1;
         }
     }
@@ -421,7 +422,7 @@ impl Hal for ScriptedRobot {
             return Err(HalError::Refused("pose is not a number".into()));
         }
         let p = self.kin.pose;
-        let turn = wrap(pose.h - p.h);
+        let turn = wrap_angle(pose.h - p.h);
         let (sin, cos) = turn.sin_cos();
         self.offset = Pose::new(
             pose.x - (cos * p.x - sin * p.y),

@@ -545,10 +545,10 @@ mod tests {
     fn hits_near_finds_exactly_the_hits_of_a_full_scan() {
         use crate::obstacle::grid::tests::{Rng, cloud};
         use crate::obstacle::grid_of;
-        let mut rng = Rng(11);
+        let mut rng = Rng::new(11);
         let mut found = 0;
         for round in 0..400 {
-            let n = 50 + (rng.next() % 600) as usize;
+            let n = 50 + (rng.next_u64() % 600) as usize;
             let pts = cloud(&mut rng, n, 0.05);
             let grid = grid_of([0.05, 0.25, 0.7][round % 3], &pts);
             let pose = Pose::new(
@@ -556,13 +556,13 @@ mod tests {
                 rng.range(-3.0, 3.0),
                 rng.range(-4.0, 4.0),
             );
-            let direction = if rng.next().is_multiple_of(3) {
+            let direction = if rng.next_u64().is_multiple_of(3) {
                 Direction::Backward
             } else {
                 Direction::Forward
             };
-            let curvature = [0.0, rng.range(-1.5, 1.5), 1e-10][(rng.next() % 3) as usize];
-            let max_turn = [f64::INFINITY, rng.range(0.0, 2.0)][(rng.next() % 2) as usize];
+            let curvature = [0.0, rng.range(-1.5, 1.5), 1e-10][(rng.next_u64() % 3) as usize];
+            let max_turn = [f64::INFINITY, rng.range(0.0, 2.0)][(rng.next_u64() % 2) as usize];
             let area = CheckArea::turning_at_most(
                 &pose,
                 direction,
@@ -591,7 +591,7 @@ mod tests {
     #[test]
     fn the_tester_answers_exactly_as_the_area() {
         use crate::obstacle::grid::tests::Rng;
-        let mut rng = Rng(5);
+        let mut rng = Rng::new(5);
         let (mut hits, mut screened) = (0, 0);
         for round in 0..3000 {
             let pose = Pose::new(
@@ -599,25 +599,25 @@ mod tests {
                 rng.range(-2.0, 2.0),
                 rng.range(-4.0, 4.0),
             );
-            let direction = if rng.next().is_multiple_of(3) {
+            let direction = if rng.next_u64().is_multiple_of(3) {
                 Direction::Backward
             } else {
                 Direction::Forward
             };
-            let curvature = match rng.next() % 6 {
+            let curvature = match rng.next_u64() % 6 {
                 0 => 0.0,
                 1 => rng.range(-1e-3, 1e-3),
                 2 => rng.range(-1e-8, 1e-8),
-                3 => [1.0 / 0.75, -1.0 / 0.75, 4.0][(rng.next() % 3) as usize],
+                3 => [1.0 / 0.75, -1.0 / 0.75, 4.0][(rng.next_u64() % 3) as usize],
                 _ => rng.range(-2.0, 2.0),
             };
-            let max_turn = match rng.next() % 3 {
+            let max_turn = match rng.next_u64() % 3 {
                 0 => f64::INFINITY,
                 1 => 0.0,
                 _ => rng.range(0.0, 3.5),
             };
             let params = AreaParams {
-                max_curvature: [1.0 / 0.75, 0.25, 0.01][(rng.next() % 3) as usize],
+                max_curvature: [1.0 / 0.75, 0.25, 0.01][(rng.next_u64() % 3) as usize],
                 robot_width: rng.range(0.3, 1.4),
                 front_offset: rng.range(0.0, 1.2),
             };
@@ -636,7 +636,7 @@ mod tests {
                 let p = if i % 2 == 0 {
                     let s = rng.range(-0.2, area.length() + 0.2);
                     let n = (0.5 * area.width + rng.range(-1e-9, 1e-9))
-                        * [1.0, -1.0, rng.range(-1.0, 1.0)][(rng.next() % 3) as usize];
+                        * [1.0, -1.0, rng.range(-1.0, 1.0)][(rng.next_u64() % 3) as usize];
                     let on = if s <= area.arc.length {
                         area.arc.start.advance(s, area.arc.curvature)
                     } else {

@@ -181,37 +181,21 @@ pub fn grid_of(cell: f64, points: &[Point2<f64>]) -> PointGrid {
 pub(crate) mod tests {
     use super::*;
 
-    /// splitmix64: reproducible random clouds without a dependency.
-    pub(crate) struct Rng(pub u64);
-
-    impl Rng {
-        pub fn next(&mut self) -> u64 {
-            self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-            let mut z = self.0;
-            z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-            z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-            z ^ (z >> 31)
-        }
-
-        /// Uniform in [a, b).
-        pub fn range(&mut self, a: f64, b: f64) -> f64 {
-            a + (b - a) * (self.next() >> 11) as f64 / (1u64 << 53) as f64
-        }
-    }
+    pub(crate) use ilmr_geometry::SplitMix64 as Rng;
 
     /// A cloud with the awkward cases: points on cell edges, repeated
     /// points, a tight cluster, and now and then a far or non-finite one.
     pub(crate) fn cloud(rng: &mut Rng, n: usize, cell: f64) -> Vec<Point2<f64>> {
         (0..n)
-            .map(|i| match rng.next() % 20 {
+            .map(|i| match rng.next_u64() % 20 {
                 0 => Point2::new(
-                    (rng.next() % 40) as f64 * cell,
-                    (rng.next() % 40) as f64 * cell,
+                    (rng.next_u64() % 40) as f64 * cell,
+                    (rng.next_u64() % 40) as f64 * cell,
                 ),
                 1 if i > 0 => Point2::new(0.5, 0.5),
                 2 => Point2::new(rng.range(1.0, 1.1), rng.range(-1.0, -0.9)),
-                3 if rng.next().is_multiple_of(8) => Point2::new(f64::NAN, 1.0),
-                4 if rng.next().is_multiple_of(8) => Point2::new(1e7, -3.0),
+                3 if rng.next_u64().is_multiple_of(8) => Point2::new(f64::NAN, 1.0),
+                4 if rng.next_u64().is_multiple_of(8) => Point2::new(1e7, -3.0),
                 _ => Point2::new(rng.range(-6.0, 6.0), rng.range(-6.0, 6.0)),
             })
             .collect()
@@ -228,10 +212,10 @@ pub(crate) mod tests {
 
     #[test]
     fn a_query_returns_every_point_in_its_box_once() {
-        let mut rng = Rng(7);
+        let mut rng = Rng::new(7);
         for round in 0..300 {
             let cell = [0.05, 0.25, 0.5, 1.3][round % 4];
-            let n = (rng.next() % 400) as usize;
+            let n = (rng.next_u64() % 400) as usize;
             let pts = cloud(&mut rng, n, cell);
             let grid = grid_of(cell, &pts);
             assert_eq!(grid.len(), pts.len());
@@ -239,9 +223,9 @@ pub(crate) mod tests {
             for _ in 0..20 {
                 let (x, y) = (rng.range(-8.0, 8.0), rng.range(-8.0, 8.0));
                 // Edges exactly on points and on cell boundaries too.
-                let (x, y) = match rng.next() % 3 {
+                let (x, y) = match rng.next_u64() % 3 {
                     0 if !pts.is_empty() => {
-                        let p = pts[(rng.next() as usize) % pts.len()];
+                        let p = pts[(rng.next_u64() as usize) % pts.len()];
                         (p.x, p.y)
                     }
                     1 => ((x / cell).round() * cell, (y / cell).round() * cell),
@@ -265,7 +249,7 @@ pub(crate) mod tests {
 
     #[test]
     fn a_query_is_a_small_part_of_a_large_cloud() {
-        let mut rng = Rng(3);
+        let mut rng = Rng::new(3);
         let pts: Vec<Point2<f64>> = (0..10_000)
             .map(|_| Point2::new(rng.range(0.0, 50.0), rng.range(0.0, 50.0)))
             .collect();

@@ -21,7 +21,7 @@ pub use polyline::polyline;
 pub use shapes::{TurnSpec, straight, turn};
 pub use taught::{SIMPLIFY_TOLERANCE, taught};
 
-use crate::pose::{Pose, normalize_angle};
+use crate::pose::{Pose, wrap_angle};
 use nalgebra::Point2;
 use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
@@ -92,7 +92,7 @@ impl PathPoint {
             s,
             x: p.x,
             y: p.y,
-            h: normalize_angle(h),
+            h: wrap_angle(h),
             curvature: direction.sign() * geometric_curvature,
             direction,
         }
@@ -111,7 +111,7 @@ impl PathPoint {
     pub fn travel_heading(&self) -> f64 {
         match self.direction {
             Direction::Forward => self.h,
-            Direction::Backward => normalize_angle(self.h + PI),
+            Direction::Backward => wrap_angle(self.h + PI),
         }
     }
 

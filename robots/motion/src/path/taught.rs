@@ -187,20 +187,17 @@ mod tests {
     use super::*;
     use crate::path::PathError;
 
-    /// A splitmix64 stream as uniform noise in [-1, 1).
-    fn noise(seed: &mut u64) -> f64 {
-        *seed = seed.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = *seed;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^= z >> 31;
-        (z >> 11) as f64 / (1u64 << 52) as f64 - 1.0
+    use ilmr_geometry::SplitMix64;
+
+    /// Uniform noise in [-1, 1).
+    fn noise(rng: &mut SplitMix64) -> f64 {
+        2.0 * rng.uniform() - 1.0
     }
 
     /// What `record` keeps while a robot drives 10 m, a left quarter circle
     /// at `radius`, and 10 m: a point every 5 cm, each off by up to `jitter`.
     fn recorded(radius: f64, jitter: f64) -> Vec<Point2<f64>> {
-        let mut seed = 7;
+        let mut rng = SplitMix64::new(7);
         let mut pts = Vec::new();
         let mut s = 0.0;
         let arc = radius * std::f64::consts::FRAC_PI_2;
@@ -213,7 +210,7 @@ mod tests {
             } else {
                 Point2::new(10.0 + radius, radius + s - 10.0 - arc)
             };
-            pts.push(p + nalgebra::Vector2::new(noise(&mut seed), noise(&mut seed)) * jitter);
+            pts.push(p + nalgebra::Vector2::new(noise(&mut rng), noise(&mut rng)) * jitter);
             s += 0.05;
         }
         pts

@@ -259,35 +259,26 @@ fn total_least_squares(points: &[Point2<f64>]) -> Option<(Point2<f64>, Unit<Vect
 mod tests {
     use super::*;
 
-    /// splitmix64: deterministic noise without a dependency.
-    struct Rng(u64);
-    impl Rng {
-        fn next(&mut self) -> f64 {
-            self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-            let mut z = self.0;
-            z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-            z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-            ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
-        }
-        fn noise(&mut self, amp: f64) -> f64 {
-            amp * (2.0 * self.next() - 1.0)
-        }
+    use ilmr_geometry::SplitMix64;
+
+    fn noise(rng: &mut SplitMix64, amp: f64) -> f64 {
+        amp * (2.0 * rng.uniform() - 1.0)
     }
 
     /// A wall at y = 1.2 tilted by 5 degrees, 2 cm noise, a 1 m door
     /// opening, and the room behind the door seen through it.
     fn corridor() -> Vec<Point2<f64>> {
-        let mut rng = Rng(7);
+        let mut rng = SplitMix64::new(7);
         let tilt = 5f64.to_radians().tan();
         let mut pts = vec![];
         for i in 0..120 {
             let x = -2.0 + i as f64 * 0.05;
             if (0.5..1.5).contains(&x) {
                 // Through the door: the far wall of the room, 3 m further.
-                pts.push(Point2::new(x, 4.2 + rng.noise(0.02)));
+                pts.push(Point2::new(x, 4.2 + noise(&mut rng, 0.02)));
                 continue;
             }
-            pts.push(Point2::new(x, 1.2 + x * tilt + rng.noise(0.02)));
+            pts.push(Point2::new(x, 1.2 + x * tilt + noise(&mut rng, 0.02)));
         }
         pts
     }

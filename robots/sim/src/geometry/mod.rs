@@ -11,8 +11,8 @@ pub use fan::Fan;
 pub use scene::{Hit, Scene, Solid, SolidRef};
 pub use shapes::{Circle, Obb, Shape};
 
+pub use ilmr_geometry::wrap_angle;
 use serde::{Deserialize, Serialize};
-use std::f64::consts::{PI, TAU};
 
 /// A point or direction in the world plane, metres.
 #[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
@@ -94,34 +94,33 @@ impl std::ops::Neg for Vec2 {
     }
 }
 
-/// A robot posture (x, y, h): position in metres and heading in radians,
-/// counter-clockwise from +x, kept in (-pi, pi].
-#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
-pub struct Pose {
-    pub x: f64,
-    pub y: f64,
-    pub h: f64,
+/// The pose the simulator shares with the HAL and the motion code (ilmr-geometry's).
+pub use ilmr_geometry::Pose;
+
+/// A pose as a frame of the simulator's plane, in its [`Vec2`]: the simulator's
+/// shapes and sensors still compute in `Vec2`, where the other layers use
+/// nalgebra's points and vectors. Each is the same arithmetic as
+/// [`Pose::to_world`] and [`Pose::to_local`].
+pub trait Frame {
+    fn origin(self) -> Vec2;
+    /// Unit vector along the heading.
+    fn heading(self) -> Vec2;
+    /// A point given in this pose's frame (x forward, y left), in world coordinates.
+    fn transform(self, local: Vec2) -> Vec2;
+    /// A world point in this pose's frame (x forward, y left).
+    fn inverse_transform(self, world: Vec2) -> Vec2;
 }
 
-impl Pose {
-    pub fn new(x: f64, y: f64, h: f64) -> Self {
-        Pose {
-            x,
-            y,
-            h: wrap_angle(h),
-        }
-    }
-
-    pub fn position(self) -> Vec2 {
+impl Frame for Pose {
+    fn origin(self) -> Vec2 {
         Vec2::new(self.x, self.y)
     }
 
-    pub fn heading(self) -> Vec2 {
+    fn heading(self) -> Vec2 {
         Vec2::from_angle(self.h)
     }
 
-    /// A point given in this pose's frame (x forward, y left), in world coordinates.
-    pub fn transform(self, local: Vec2) -> Vec2 {
+    fn transform(self, local: Vec2) -> Vec2 {
         let (s, c) = self.h.sin_cos();
         Vec2::new(
             self.x + c * local.x - s * local.y,
@@ -129,37 +128,11 @@ impl Pose {
         )
     }
 
-    /// A world point in this pose's frame (x forward, y left).
-    pub fn inverse_transform(self, world: Vec2) -> Vec2 {
+    fn inverse_transform(self, world: Vec2) -> Vec2 {
         let (s, c) = self.h.sin_cos();
-        let d = world - self.position();
+        let d = world - self.origin();
         Vec2::new(c * d.x + s * d.y, -s * d.x + c * d.y)
     }
-
-    /// `self` followed by `other` expressed in `self`'s frame.
-    pub fn compose(self, other: Pose) -> Pose {
-        let p = self.transform(other.position());
-        Pose::new(p.x, p.y, self.h + other.h)
-    }
-
-    /// The pose that maps `self` back to the origin.
-    pub fn inverse(self) -> Pose {
-        let (s, c) = self.h.sin_cos();
-        Pose::new(-(c * self.x + s * self.y), s * self.x - c * self.y, -self.h)
-    }
-
-    pub fn is_finite(self) -> bool {
-        self.x.is_finite() && self.y.is_finite() && self.h.is_finite()
-    }
-}
-
-/// An angle folded into (-pi, pi].
-pub fn wrap_angle(a: f64) -> f64 {
-    if a > -PI && a <= PI {
-        return a;
-    }
-    let r = a.rem_euclid(TAU);
-    if r > PI { r - TAU } else { r }
 }
 
 #[cfg(test)]
@@ -167,19 +140,13 @@ mod tests {
     use super::*;
 
     #[test]
-    fn wrap_angle_folds_into_half_open_range() {
-        assert_eq!(wrap_angle(PI), PI);
-        assert!((wrap_angle(-PI) - PI).abs() < 1e-12);
-        assert!((wrap_angle(3.0 * PI / 2.0) + PI / 2.0).abs() < 1e-12);
-        assert!((wrap_angle(-5.0 * TAU + 0.25) - 0.25).abs() < 1e-9);
-    }
-
-    #[test]
-    fn compose_with_inverse_is_identity() {
+    fn the_frame_is_the_poses_own() {
         let p = Pose::new(1.5, -2.0, 0.7);
-        let id = p.compose(p.inverse());
-        assert!(id.x.abs() < 1e-12 && id.y.abs() < 1e-12 && id.h.abs() < 1e-12);
         let w = Vec2::new(3.0, 4.0);
+        let there = p.to_world(&ilmr_geometry::Point2::new(w.x, w.y));
+        assert_eq!(p.transform(w), Vec2::new(there.x, there.y));
+        let here = p.to_local(&ilmr_geometry::Point2::new(w.x, w.y));
+        assert_eq!(p.inverse_transform(w), Vec2::new(here.x, here.y));
         let back = p.transform(p.inverse_transform(w));
         assert!(back.distance(w) < 1e-12);
     }

@@ -2,7 +2,7 @@
 //! (Figure 33), and where the laser pointer on the same head points
 //! (`savepos(name,laser)`), as the HAL reports them.
 
-use crate::geometry::{Pose, Vec2};
+use crate::geometry::{Frame, Pose, Vec2};
 use crate::sensors::{CameraFrame, Scan};
 use ilmr_hal::{Detection, Side};
 use ilmr_model::RobotModel;

@@ -11,7 +11,7 @@
 //! the second run along the line between them, which tells a door from a
 //! gap between furniture.
 
-use crate::geometry::{Pose, Vec2};
+use crate::geometry::{Frame, Pose, Vec2};
 use crate::sensors::Scan;
 use ilmr_hal::{Detection, Side};
 use ilmr_model::RobotModel;
@@ -94,10 +94,10 @@ pub fn doors(model: &RobotModel, scan: &Scan, pose: Pose, out: &mut Vec<Detectio
         let (wa, wb) = (pose.transform(a), pose.transform(b));
         let mid = (wa + wb).scale(0.5);
         let mut normal = Vec2::from_angle(pose.h + along.angle()).perp();
-        if normal.dot(mid - pose.position()) < 0.0 {
+        if normal.dot(mid - pose.origin()) < 0.0 {
             normal = normal.scale(-1.0);
         }
-        let rel = crate::geometry::wrap_angle((mid - pose.position()).angle() - pose.h);
+        let rel = crate::geometry::wrap_angle((mid - pose.origin()).angle() - pose.h);
         out.push(Detection {
             sensor: "scanner".into(),
             object: name.clone(),

@@ -16,7 +16,7 @@ pub use model::config_from_model;
 pub use ops::{BALL_SECONDS, INIT_SECONDS, LEAVE_SECONDS, MOVEMODE_SECONDS, TAKE_SECONDS};
 
 use crate::config::RobotKind;
-use crate::geometry::Pose as SimPose;
+use crate::geometry::Frame;
 use crate::kinematics::{BodyPose as SimBodyPose, MovementMode};
 use crate::sim::{SimError, Simulator};
 use crate::world::World;
@@ -128,8 +128,7 @@ impl SimRobot {
 
     /// Ground truth in the world frame, for traces.
     pub fn true_pose(&self) -> Pose {
-        let p = self.sim.true_pose();
-        Pose::new(p.x, p.y, p.h)
+        self.sim.true_pose()
     }
 
     pub fn locmode_name(&self) -> &str {
@@ -256,9 +255,9 @@ impl Hal for SimRobot {
 
     fn snapshot(&mut self, out: &mut Snapshot) -> Result<(), HalError> {
         let seen = self.sim.snapshot();
-        let p = seen.pose;
+        let stamp = seen.pose;
         out.t = seen.time;
-        out.pose = Pose::new(p.x, p.y, p.h);
+        out.pose = stamp;
         out.true_pose = Some(self.true_pose());
         out.speed = seen.speed;
         out.curvature = seen.curvature;
@@ -283,7 +282,6 @@ impl Hal for SimRobot {
         out.devices = devices;
         out.detections.clear();
         if let Some(scan) = &seen.scan {
-            let stamp = SimPose::new(p.x, p.y, p.h);
             // Doors and objects are reported once, when the scan that shows them arrives.
             if scan.seq != self.seen_scan {
                 self.seen_scan = scan.seq;
@@ -297,7 +295,6 @@ impl Hal for SimRobot {
             }
         }
         if let (Some(frame), Some(cam)) = (&seen.camera, &self.sim.config().camera) {
-            let stamp = SimPose::new(p.x, p.y, p.h);
             let eye = stamp.transform(cam.head);
             detect::laser_spot(&self.model, frame, eye, stamp, &mut out.detections);
         }
@@ -368,7 +365,8 @@ impl Hal for SimRobot {
 
     fn locate(&mut self, pose: Pose) -> Result<(), HalError> {
         self.sim
-            .locate(SimPose::new(pose.x, pose.y, pose.h))
+            // A pose from a task (`setpose`) may give its heading beyond a half turn.
+            .locate(pose.wrapped())
             .map_err(hal_err)
     }
 

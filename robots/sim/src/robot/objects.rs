@@ -10,7 +10,7 @@
 //! a corner), so that pillars and people of the same width are not taken for
 //! boxes. Doors are found by `doors.rs`.
 
-use crate::geometry::{Pose, Vec2};
+use crate::geometry::{Frame, Pose, Vec2};
 use crate::sensors::Scan;
 use ilmr_hal::{Detection, Side};
 use ilmr_model::RobotModel;

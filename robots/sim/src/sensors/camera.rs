@@ -3,7 +3,7 @@
 //! measures the distance along the head's direction.
 
 use crate::config::CameraConfig;
-use crate::geometry::{Pose, Scene, SolidRef, Vec2};
+use crate::geometry::{Frame, Pose, Scene, SolidRef, Vec2};
 use crate::rng::Rng;
 use crate::world::Colour;
 use serde::Serialize;

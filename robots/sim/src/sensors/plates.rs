@@ -2,7 +2,7 @@
 //! passes over a floor plate and tells how far off-centre the plate was.
 
 use crate::config::PlateSensorConfig;
-use crate::geometry::Pose;
+use crate::geometry::{Frame, Pose};
 use crate::world::Plate;
 use serde::Serialize;
 

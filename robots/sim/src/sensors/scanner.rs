@@ -2,7 +2,7 @@
 //! (-90 degrees for 180) and the last on the left, ranges in metres.
 
 use crate::config::{MIXED_PIXEL_JUMP, ScannerConfig};
-use crate::geometry::{Hit, Pose, Scene, Vec2};
+use crate::geometry::{Frame, Hit, Pose, Scene, Vec2};
 use crate::kinematics::advance;
 use crate::rng::Rng;
 use serde::Serialize;

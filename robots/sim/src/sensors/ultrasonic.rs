@@ -2,7 +2,7 @@
 //! within its cone, facing backwards from the rear edge.
 
 use crate::config::UltrasonicConfig;
-use crate::geometry::{Pose, Scene, Vec2};
+use crate::geometry::{Frame, Pose, Scene, Vec2};
 use crate::rng::Rng;
 use serde::Serialize;
 

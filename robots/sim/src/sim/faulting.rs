@@ -4,7 +4,7 @@
 
 use super::{EventKind, SimError, Simulator};
 use crate::faults::{FaultKind, FaultPlan, ObstacleChange};
-use crate::geometry::{Circle, Shape, Solid, SolidRef, Vec2};
+use crate::geometry::{Circle, Frame, Shape, Solid, SolidRef, Vec2};
 
 impl Simulator {
     /// Checks the world's faults against this robot, adds a hidden solid for

@@ -3,7 +3,7 @@
 
 use super::{EventKind, SimError, Simulator};
 use crate::config::RobotKind;
-use crate::geometry::{Shape, SolidRef, Vec2};
+use crate::geometry::{Frame, Shape, SolidRef, Vec2};
 
 /// How far from the gripper point a box can be taken, m.
 const REACH: f64 = 0.8;

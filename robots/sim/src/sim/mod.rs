@@ -18,7 +18,7 @@ pub use snapshot::{EventKind, SensorSnapshot, SimEvent};
 
 use crate::config::{RobotConfig, SlipConfig};
 use crate::faults::FaultPlan;
-use crate::geometry::{Obb, Pose, Scene, SolidRef, Vec2};
+use crate::geometry::{Frame, Obb, Pose, Scene, SolidRef, Vec2};
 use crate::kinematics::{
     BodyPose, MovementMode, advance, next_curvature, next_speed, slide, steering_angle,
     wheel_travel,

@@ -130,7 +130,7 @@ impl<H: Hal, C: Clock> Vm<H, C> {
             run.mode = mode;
             run.walled = walled;
             if mode == Mode::Path {
-                self.motion.goal = super::hpose(run.path.end_pose());
+                self.motion.goal = run.path.end_pose();
             }
             self.trace_reference();
         }

@@ -11,7 +11,6 @@ use ilmr_motion::controller::{
 use ilmr_motion::obstacle::Observation;
 use ilmr_motion::{Path, Pose};
 
-use super::mpose;
 use crate::runtime::Vm;
 use crate::runtime::clock::Clock;
 use crate::runtime::stmt_of;
@@ -62,7 +61,7 @@ impl<H: Hal, C: Clock> Vm<H, C> {
 
     /// Takes a new scan into the environmental map.
     pub(in crate::runtime) fn update_map(&mut self) {
-        let pose = mpose(self.snap.pose);
+        let pose = self.snap.pose.wrapped();
         self.motion
             .map
             .update(self.snap.scan.as_ref(), &pose, self.cfg.scanner_offset);
@@ -80,7 +79,7 @@ impl<H: Hal, C: Clock> Vm<H, C> {
             self.ramp_down();
             return;
         }
-        let pose = mpose(self.snap.pose);
+        let pose = self.snap.pose.wrapped();
         if let Err(why) = self.update_behaviour(pose) {
             self.end_node(head.idx, How::Refused, false, Some(why), true);
             return;

@@ -112,8 +112,8 @@ pub(crate) struct Motion {
     /// The remainder of a linked predecessor, joined before the next path.
     joined: Option<Path>,
     /// The running movement's goal pose (body heading).
-    goal: ilmr_hal::Pose,
-    pub last_goal: Option<ilmr_hal::Pose>,
+    goal: Pose,
+    pub last_goal: Option<Pose>,
     pub speed: f64,
     pub stopped: bool,
     pub use_goalpos: bool,
@@ -162,14 +162,6 @@ fn avoid_params(cfg: &Config) -> AvoidParams {
     }
 }
 
-pub(crate) fn mpose(p: ilmr_hal::Pose) -> Pose {
-    Pose::new(p.x, p.y, p.h)
-}
-
-fn hpose(p: Pose) -> ilmr_hal::Pose {
-    ilmr_hal::Pose::new(p.x, p.y, p.h)
-}
-
 impl Motion {
     pub fn new(cfg: &Config) -> Motion {
         Motion {
@@ -177,7 +169,7 @@ impl Motion {
             head: None,
             run: None,
             joined: None,
-            goal: ilmr_hal::Pose::default(),
+            goal: Pose::default(),
             last_goal: None,
             speed: cfg.default_speed,
             stopped: false,
@@ -330,8 +322,8 @@ impl<H: Hal, C: Clock> Vm<H, C> {
         };
         let start = match &joined {
             Some(j) => j.end_pose(),
-            None if self.motion.use_goalpos => mpose(self.motion.last_goal.unwrap_or(current)),
-            None => mpose(current),
+            None if self.motion.use_goalpos => self.motion.last_goal.unwrap_or(current).wrapped(),
+            None => current.wrapped(),
         };
         self.update_map();
         let planned = self.plan_spec(spec, start)?;
@@ -356,7 +348,7 @@ impl<H: Hal, C: Clock> Vm<H, C> {
         // Otherwise the setpoint goes on from what was commanded last (a halt ramp
         // in progress), so that it never jumps.
         let advance = self.motion.advance_stop.take().unwrap_or(0.0).max(0.0);
-        self.motion.goal = hpose(path.end_pose());
+        self.motion.goal = path.end_pose();
         self.motion.run = Some(Run {
             path,
             k: 0,
@@ -443,7 +435,7 @@ impl<H: Hal, C: Clock> Vm<H, C> {
         }
         let p = self.snap.pose;
         let d = match (&self.motion.run, self.motion.head) {
-            (Some(run), Some(h)) if h.idx == idx => run.dist(&mpose(p).position()),
+            (Some(run), Some(h)) if h.idx == idx => run.dist(&p.position()),
             _ => 0.0,
         };
         Some((d, p.x, p.y, p.h))

@@ -53,12 +53,17 @@ impl Rigid {
 /// `a` then `b`: the pose `b`, given in the frame `a`, expressed in `a`'s parent.
 fn compose(a: Pose, b: Pose) -> Pose {
     let (x, y) = Rigid::new(a).apply((b.x, b.y));
-    Pose::new(x, y, a.h + b.h)
+    // Headings unfolded: only their sines and cosines are used.
+    Pose { x, y, h: a.h + b.h }
 }
 
 fn inverse(p: Pose) -> Pose {
     let (s, c) = p.h.sin_cos();
-    Pose::new(-c * p.x - s * p.y, s * p.x - c * p.y, -p.h)
+    Pose {
+        x: -c * p.x - s * p.y,
+        y: s * p.x - c * p.y,
+        h: -p.h,
+    }
 }
 
 /// The transform after a `locate` that says the robot, estimated at `before` a

@@ -15,7 +15,6 @@ use super::{frame, sweep};
 use crate::runtime::Vm;
 use crate::runtime::activity::REST_SPEED;
 use crate::runtime::clock::Clock;
-use crate::runtime::motion::mpose;
 use crate::runtime::trace::EventKind;
 
 /// A battery must climb this far above `LowBattery` before `battery_low` clears, V,
@@ -273,7 +272,7 @@ impl<H: Hal, C: Clock> Vm<H, C> {
             });
             return;
         }
-        let pose = mpose(self.snap.pose);
+        let pose = self.snap.pose.wrapped();
         let c = self.motion.commanded_curvature();
         let params = AreaParams {
             max_curvature: self.cfg.max_curvature,

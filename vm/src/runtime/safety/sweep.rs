@@ -288,15 +288,8 @@ mod tests {
 
     #[test]
     fn skipping_poses_meets_the_same_first_contact() {
-        // splitmix64
-        let mut state = 17u64;
-        let mut next = move || {
-            state = state.wrapping_add(0x9E37_79B9_7F4A_7C15);
-            let mut z = state;
-            z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-            z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-            ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut rng = ilmr_geometry::SplitMix64::new(17);
+        let mut next = move || rng.uniform();
         let mut met = 0;
         for round in 0..2000 {
             let f = Footprint {

@@ -1,0 +1,16 @@
+//! The vocabulary the layers below the VM share, so that the HAL, the motion
+//! algorithms and the simulator speak of one pose, fold angles one way and draw
+//! noise from one generator: a value handed from one layer to another needs no
+//! conversion, and a seed means the same thing everywhere.
+//!
+//! Points and vectors are nalgebra's ([`Point2`], [`Vector2`]), as in the motion
+//! code and the VM.
+
+pub mod angle;
+pub mod pose;
+pub mod rng;
+
+pub use angle::{angle_diff, wrap_angle};
+pub use nalgebra::{Point2, Vector2};
+pub use pose::Pose;
+pub use rng::{Rng, SplitMix64};
