@@ -101,6 +101,8 @@ pub struct FileEntry<'s> {
     pub library: bool,
     /// `Parsed::break_patterns`: whether a `break(pattern)` may be in the tree.
     pub break_patterns: bool,
+    /// `Parsed::binds`: at least as many as the file's variables.
+    pub binds: usize,
 }
 
 /// How much of what the checker resolves an analysis keeps. The diagnostics are the
@@ -228,6 +230,7 @@ pub fn analyze_given<'s>(
             builtin,
             library,
             break_patterns: parsed.break_patterns,
+            binds: parsed.binds,
         });
     }
 
@@ -245,7 +248,8 @@ pub fn analyze_given<'s>(
             skill: None,
             special: None,
             specials: FxHashMap::default(),
-            vars: Vars::default().with_detail(detail),
+            // Sized once: a large task's table would be copied as it doubles.
+            vars: Vars::with_capacity(entry.binds).with_detail(detail),
             refs: Vec::new(),
             targets: FxHashMap::default(),
         };
@@ -336,7 +340,8 @@ pub fn analyze_given<'s>(
     );
 
     breaks::check_patterns(&files, &skills, &mut diagnostics);
-    loops::check_frozen_loops(&files, &skills, &mut diagnostics);
+    let variables = units.iter().map(|u| u.vars.len()).sum();
+    loops::check_frozen_loops(&files, &skills, variables, &mut diagnostics);
     wakes::check_waits(&files, &mut diagnostics);
     paths::check_paths(&files, &given.paths, &mut diagnostics);
     owners::check_owners(&files, &skills, &units, model, &mut diagnostics);
@@ -558,6 +563,7 @@ pub fn check_line<'s, 'n>(
         builtin: false,
         library: false,
         break_patterns: parsed.break_patterns,
+        binds: parsed.binds,
     });
     let builtins = ilmr_stdlib::skills::BUILTIN_SKILL_FILES
         .iter()
@@ -576,6 +582,7 @@ pub fn check_line<'s, 'n>(
             builtin,
             library: true,
             break_patterns: parsed.break_patterns,
+            binds: parsed.binds,
         });
     }
     let mut skills = skills::Skills::collect(&files, model, &mut Vec::new());
