@@ -445,6 +445,46 @@ fn a_task_starts_with_the_server_and_a_bad_one_is_refused() {
     assert!(!stdout.contains("listening"), "{stdout}");
 }
 
+/// A line may call a parameterized skill of `--skills` with arguments the task never
+/// gave (issue 17 item 6); a bad argument is rejected with the code `check` gives.
+#[test]
+fn a_line_calls_a_parameterized_skill_with_new_arguments() {
+    let dir = std::env::temp_dir().join(format!("ilmr-serve-params-{}", std::process::id()));
+    let skills = dir.join("skills");
+    std::fs::create_dir_all(&skills).expect("temp dir");
+    std::fs::write(
+        skills.join("corner.ilms"),
+        "Corner(d, side=left/right):\nm = goahead(d)\nwait(m)\nturn(side)\n",
+    )
+    .expect("write skills");
+    let task = dir.join("task.ilmr");
+    std::fs::write(&task, "Corner(0.5, left)\n").expect("write task");
+    let server = Server::start(&[
+        "--task",
+        task.to_str().expect("utf-8 path"),
+        "--skills",
+        skills.to_str().expect("utf-8 path"),
+    ]);
+    let mut c = server.connect();
+    let joined = c.ask(r#"{"ilmr": "Corner(1.5, right)"}"#);
+    assert_eq!(joined["ok"], json!(true), "{joined}");
+    let again = c.ask(r#"{"ilmr": "Corner(0.5, left)"}"#);
+    assert_eq!(again["ok"], json!(true), "{again}");
+    let status = c.ask(r#"{"status": true}"#);
+    let live = &status["activity"];
+    assert!(
+        live["running_commands"].as_u64() >= Some(1)
+            || live["queued_movements"].as_u64() >= Some(1),
+        "{status}"
+    );
+    let bad = c.ask(r#"{"ilmr": "Corner(1.5, up)"}"#);
+    assert!(rejected_with(&bad, "E0304"), "{bad}");
+    let short = c.ask(r#"{"ilmr": "Corner(1.5)"}"#);
+    assert!(rejected_with(&short, "E0302"), "{short}");
+    drop(server);
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
 #[test]
 fn an_accepted_line_brings_its_warnings() {
     let server = Server::start(&[]);

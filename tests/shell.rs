@@ -484,3 +484,78 @@ fn a_line_nested_past_the_limits_is_an_error_and_the_shell_reads_on() {
     sh.expect("left the shell at t=");
     assert_eq!(sh.exit_code(), Some(0));
 }
+
+/// The skills of `--skills DIR` that a shell's lines may call, one with parameters
+/// (issue 17 item 6); the task calls only one specialization of it.
+const PARAM_SKILLS: &str = "Corner(d, side=left/right):\nspeed(0.3)\nm = goahead(d)\nwait(m)\nturn(side)\n\nPlain:\nspeed(0.2)\n\nFast(v):\nspeed(v)\n";
+
+/// A line may call any loaded skill, a parameterized one with arguments the task never
+/// gave (the running module holds only the task's specializations): it is checked,
+/// joined and run; a bad argument gets the diagnostic a task file gets from `check`.
+#[test]
+fn a_line_calls_a_parameterized_skill_with_new_arguments() {
+    let dir = std::env::temp_dir().join(format!("ilmr-shell-params-{}", std::process::id()));
+    let skills = dir.join("skills");
+    std::fs::create_dir_all(&skills).expect("temp dir");
+    std::fs::write(skills.join("corner.ilms"), PARAM_SKILLS).expect("write skills");
+    let task = dir.join("task.ilmr");
+    std::fs::write(&task, "Corner(0.5, left)\n").expect("write task");
+    // What `ilmrc check` says of the same calls in a task file.
+    let in_a_file = |line: &str| {
+        let file = dir.join("calls.ilmr");
+        std::fs::write(&file, format!("{line}\n")).expect("write task");
+        let out = Command::new(env!("CARGO_BIN_EXE_ilmrc"))
+            .args(["check", "--skills"])
+            .args([&skills, &file])
+            .output()
+            .expect("ilmrc check");
+        assert_eq!(out.status.code(), Some(1), "{out:?}");
+        let text = String::from_utf8_lossy(&out.stdout).to_string();
+        text.lines()
+            .find(|l| l.contains("] Error: "))
+            .map(plain)
+            .expect("an error")
+    };
+    let (task_arg, skills_arg) = (task.display().to_string(), skills.display().to_string());
+    let mut sh = Shell::piped(&["--task", &task_arg, "--skills", &skills_arg]);
+    sh.expect("ILMR shell: moro");
+
+    sh.keys("Corner(1.5, right)\n");
+    sh.expect("joined at t=");
+    let live = status_until(&mut sh, "the new specialization did not run", |v| {
+        v.contains("<typed 1>:1  Corner(1.5, right)")
+    });
+    assert!(live.contains("corner.ilms:3  m = goahead(d)"), "{live}");
+    // A plain skill the task never called joins too.
+    sh.keys("Plain\n");
+    sh.expect("joined at t=");
+
+    for (line, code) in [
+        ("Corner(2, up)", "E0304"),
+        ("Corner(2)", "E0302"),
+        ("Fast(2)", "E0404"),
+    ] {
+        sh.keys(&format!("{line}\n"));
+        let rejected = plain(&sh.expect("not joined"));
+        assert!(
+            rejected.contains(&format!("[{code}]")),
+            "{line}: {rejected}"
+        );
+        let said = in_a_file(line);
+        assert!(
+            rejected.contains(said.trim()),
+            "{line}: `{said}` in {rejected}"
+        );
+    }
+    // The speed beyond the limit stands in the skill: the line says where.
+    sh.keys("Fast(2)\n");
+    let rejected = plain(&sh.expect("not joined"));
+    assert!(rejected.contains("corner.ilms:11:7"), "{rejected}");
+    sh.keys("Fast(0.2)\n");
+    sh.expect("joined at t=");
+
+    sh.keys("exit\n");
+    sh.expect("left the shell at t=");
+    assert_eq!(sh.exit_code(), Some(0));
+    let _ = std::fs::remove_dir_all(&dir);
+}

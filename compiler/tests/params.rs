@@ -69,3 +69,76 @@ fn a_variable_argument_is_read_where_the_skill_uses_it() {
     assert!(text.contains("== skill Corner(dist,right) =="), "{text}");
     assert!(text.contains("ISSUE     goahead dist.value => m"), "{text}");
 }
+
+/// A line joining a running task may call a parameterized skill with arguments the
+/// task never gave, given the skill files (`lower_line_with`): the new specialization
+/// joins as a unit of its own, one the module has is called where it is, and a bad
+/// argument gets the diagnostic a task file gets. Without the files the module alone
+/// knows no `Corner` (E0301).
+#[test]
+fn a_line_specializes_a_skill_of_the_library() {
+    use ilmr_compiler::lower::{LineOptions, lower_line_warned, lower_line_with};
+    use ilmr_vm::ModuleBuilder;
+
+    let model = RobotModel::builtin("moro").unwrap();
+    let live = module("Corner(1.5, left)\n", CORNER);
+    let library = [Source::library("skills.ilms", CORNER)];
+    let line = |text: &str| {
+        let mut b = ModuleBuilder::extending(&live);
+        let mut warnings = Vec::new();
+        let options = LineOptions::default();
+        lower_line_with(text, &mut b, &model, options, Some(&library), &mut warnings)
+            .map(|start| (b.finish_fragment(&start).expect("a fragment"), warnings))
+    };
+
+    let (fragment, warnings) = line("Twice(2)").expect("Twice joins");
+    assert!(warnings.is_empty(), "{warnings:?}");
+    let units: Vec<&str> = fragment
+        .added
+        .units
+        .iter()
+        .map(|u| u.name.as_str())
+        .collect();
+    assert_eq!(units, ["Twice(2)", "Corner(2,right)", "Corner(2,left)"]);
+    let mut joined = live.clone();
+    joined.append(&fragment).unwrap();
+    let text = disassemble(&joined);
+    assert!(text.contains("CALL      Twice(2)"), "{text}");
+    assert!(text.contains("ISSUE     goahead 2 => m"), "{text}");
+
+    let (fragment, _) = line("Corner(1.5, left)").expect("the task's own joins");
+    assert!(
+        fragment.added.units.is_empty(),
+        "{:?}",
+        fragment.added.units
+    );
+
+    let in_a_file = |call: &str| {
+        let sources = vec![
+            Source::new("task.ilmr", format!("{call}\n")),
+            Source::library("skills.ilms", CORNER),
+        ];
+        analyze(&sources, &model).diagnostics
+    };
+    for call in ["Corner(2, up)", "Corner(2)", "Twice(left)"] {
+        let Err(said) = line(call) else {
+            panic!("{call} joined");
+        };
+        let file: Vec<_> = in_a_file(call)
+            .into_iter()
+            .filter(|d| d.is_error())
+            .collect();
+        assert!(!file.is_empty(), "{call}");
+        assert_eq!(said, file, "{call}");
+    }
+
+    let mut b = ModuleBuilder::extending(&live);
+    let unknown = lower_line_warned(
+        "Corner(2, right)",
+        &mut b,
+        &model,
+        LineOptions::default(),
+        &mut Vec::new(),
+    );
+    assert!(unknown.is_err_and(|d| d[0].code.as_str() == "E0301"));
+}

@@ -8,7 +8,8 @@
 
 use std::sync::mpsc::{Receiver, Sender};
 
-use ilmr_compiler::lower::{LineOptions, lower_line_warned};
+use ilmr_compiler::check::Source;
+use ilmr_compiler::lower::{LineOptions, lower_line_with};
 use ilmr_model::RobotModel;
 use ilmr_vm::bytecode::Fragment;
 use ilmr_vm::{Module, ModuleBuilder};
@@ -72,6 +73,9 @@ pub(super) struct Compiler {
     engine: Sender<Job>,
     /// Fragments the engine joined on its own.
     news: Receiver<Fragment>,
+    /// The skill files the task was started with (`--skills DIR`), which lines may
+    /// call although the task did not.
+    library: Vec<Source>,
 }
 
 impl Compiler {
@@ -90,7 +94,15 @@ impl Compiler {
             model,
             engine,
             news,
+            library: Vec::new(),
         }
+    }
+
+    /// Lines may call the skills of `library` (and the built-in ones) that the running
+    /// task never called, parameterized ones with arguments of their own.
+    pub(super) fn with_library(mut self, library: Vec<Source>) -> Compiler {
+        self.library = library;
+        self
     }
 
     /// Refuses lines once they would have added more than `statements` statements or
@@ -207,13 +219,14 @@ impl Compiler {
         let mut warnings = Vec::new();
         let options = LineOptions { robotless: false };
         let model = &self.model;
+        let library = &self.library[..];
         let doing = if keep {
             "compiling the line"
         } else {
             "checking the line"
         };
         let lowered = guarded(doing, || {
-            lower_line_warned(text, &mut b, model, options, &mut warnings)
+            lower_line_with(text, &mut b, model, options, Some(library), &mut warnings)
         });
         let (module, counts) = b.into_extended();
         self.copy = module;

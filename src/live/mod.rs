@@ -104,8 +104,13 @@ pub fn start_named(args: &RobotArgs, name: Option<&str>) -> Result<Option<Live>,
     let (work, to_compile) = mpsc::channel();
     let (news, heard) = mpsc::channel();
     let stop = Arc::new(stop::EmergencyStop::default());
+    let library = match &args.skills {
+        Some(dir) => crate::inputs::read_skill_dir(dir)?,
+        None => Vec::new(),
+    };
     let compiler = lines::Compiler::new(copy, opened.model.clone(), jobs.clone(), heard)
-        .limited_to(MAX_LINE_STATEMENTS, MAX_LINE_TEXT_BYTES);
+        .limited_to(MAX_LINE_STATEMENTS, MAX_LINE_TEXT_BYTES)
+        .with_library(library);
     // The compiler's thread has the stack the compiler's nesting limits need; the
     // engine's too, for the one line it compiles itself (`stop`) and for lines when
     // it has no compiler (its unit tests).

@@ -139,11 +139,17 @@ fn same(key: &str, name: &str) -> bool {
     k.len() == n.len() && folded(k).first == folded(n).first && same_tail(k, n)
 }
 
+/// The bytes of text a key is given room for by [`FoldMap::with_capacity`]: most
+/// names are shorter (room not written is never touched).
+const KEY_BYTES: usize = 8;
+
 impl<V> FoldMap<V> {
+    /// Room for `capacity` keys, and for their text at [`KEY_BYTES`] each: a large
+    /// table's keys would otherwise be copied each time their string doubles.
     pub fn with_capacity(capacity: usize) -> Self {
         FoldMap {
             table: HashTable::with_capacity(capacity),
-            keys: String::new(),
+            keys: String::with_capacity(capacity.saturating_mul(KEY_BYTES)),
         }
     }
 

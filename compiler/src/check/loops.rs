@@ -11,10 +11,12 @@
 //! block and the blocks round it, are over when it starts. Lines typed while the task
 //! runs could still change the variable; the help says so.
 
-use rustc_hash::{FxHashMap, FxHashSet};
+use rustc_hash::FxHashSet;
+use smallvec::SmallVec;
 
 use crate::ast::{Block, Expr, ExprKind, Stmt, StmtKind};
 use crate::check::FileEntry;
+use crate::check::fold::FoldMap;
 use crate::check::skills::Skills;
 use crate::check::starve;
 use crate::diagnostic::{Code, Diagnostic, FileId};
@@ -26,12 +28,19 @@ use crate::span::Span;
 struct Writes {
     /// A command binds it or names it: it can change at any time.
     by_command: bool,
-    /// Where it is assigned.
-    assigned: Vec<(FileId, Span)>,
+    /// Where it is assigned: most variables once or twice (a counter's start and
+    /// step), kept without an allocation.
+    assigned: SmallVec<[(FileId, Span); 2]>,
 }
 
-/// W0901, and W0902 (`starve.rs`) for the same loops.
-pub fn check_frozen_loops(files: &[FileEntry<'_>], skills: &Skills, diags: &mut Kept) {
+/// W0901, and W0902 (`starve.rs`) for the same loops. `variables` is how many
+/// variables the program's units hold, which sizes the table of writes once.
+pub fn check_frozen_loops(
+    files: &[FileEntry<'_>],
+    skills: &Skills,
+    variables: usize,
+    diags: &mut Kept,
+) {
     let mut any_loop = false;
     for entry in files {
         entry.tree.for_each_stmt(&mut |s: &Stmt<'_>| {
@@ -41,8 +50,8 @@ pub fn check_frozen_loops(files: &[FileEntry<'_>], skills: &Skills, diags: &mut 
     if !any_loop {
         return;
     }
-    let writes = writes(files);
-    let is_variable = |name: &str| writes.contains_key(&key(name));
+    let writes = writes(files, variables);
+    let is_variable = |name: &str| find(&writes, name).is_some();
     let program = starve::Program {
         skills,
         is_variable: &is_variable,
@@ -67,18 +76,31 @@ pub fn check_frozen_loops(files: &[FileEntry<'_>], skills: &Skills, diags: &mut 
     }
 }
 
-fn key(name: &str) -> String {
-    name.to_lowercase()
+/// The writes of `name`, in any case.
+fn find<'w>(writes: &'w FoldMap<Writes>, name: &str) -> Option<&'w Writes> {
+    if name.is_ascii() {
+        writes.get(name)
+    } else {
+        writes.get(&name.to_lowercase())
+    }
 }
 
-fn writes(files: &[FileEntry<'_>]) -> FxHashMap<String, Writes> {
-    let mut writes: FxHashMap<String, Writes> = FxHashMap::default();
-    for (i, entry) in files.iter().enumerate() {
+/// Keyed without a copy of each name: the table is filled from every statement of
+/// the program.
+fn writes(files: &[FileEntry<'_>], variables: usize) -> FoldMap<Writes> {
+    let mut writes: FoldMap<Writes> = FoldMap::with_capacity(variables);
+    let mut buf = String::new();
+    fn entry<'w>(writes: &'w mut FoldMap<Writes>, buf: &mut String, name: &str) -> &'w mut Writes {
+        writes.get_or_insert_with(crate::check::constants::key(name, buf), Writes::default)
+    }
+    for (i, entry_file) in files.iter().enumerate() {
         let file = FileId(i as u32);
-        entry.tree.for_each_stmt(&mut |s: &Stmt<'_>| match &s.kind {
-            StmtKind::Call { bind, call } => {
-                let named =
-                    call.args
+        entry_file
+            .tree
+            .for_each_stmt(&mut |s: &Stmt<'_>| match &s.kind {
+                StmtKind::Call { bind, call } => {
+                    let named = call
+                        .args
                         .iter()
                         .flat_map(|a| a.items.iter())
                         .filter_map(|arg| match arg {
@@ -88,22 +110,22 @@ fn writes(files: &[FileEntry<'_>]) -> FxHashMap<String, Writes> {
                             }) => Some(n.text),
                             _ => None,
                         });
-                for name in bind.iter().map(|b| b.text).chain(named) {
-                    writes.entry(key(name)).or_default().by_command = true;
+                    for name in bind.iter().map(|b| b.text).chain(named) {
+                        entry(&mut writes, &mut buf, name).by_command = true;
+                    }
                 }
-            }
-            StmtKind::While { bind: Some(b), .. } => {
-                writes.entry(key(b.text)).or_default().by_command = true;
-            }
-            StmtKind::Assign { target, value } => {
-                // `v = Skill` or `v = command` bound bare: a command's variable.
-                let bare = matches!(value.kind, ExprKind::Name(_));
-                let w = writes.entry(key(target.text)).or_default();
-                w.assigned.push((file, s.span));
-                w.by_command |= bare;
-            }
-            _ => {}
-        });
+                StmtKind::While { bind: Some(b), .. } => {
+                    entry(&mut writes, &mut buf, b.text).by_command = true;
+                }
+                StmtKind::Assign { target, value } => {
+                    // `v = Skill` or `v = command` bound bare: a command's variable.
+                    let bare = matches!(value.kind, ExprKind::Name(_));
+                    let w = entry(&mut writes, &mut buf, target.text);
+                    w.assigned.push((file, s.span));
+                    w.by_command |= bare;
+                }
+                _ => {}
+            });
     }
     writes
 }
@@ -111,7 +133,7 @@ fn writes(files: &[FileEntry<'_>]) -> FxHashMap<String, Writes> {
 struct Walk<'a, 'd> {
     file: FileId,
     text: &'a str,
-    writes: &'a FxHashMap<String, Writes>,
+    writes: &'a FoldMap<Writes>,
     program: &'a starve::Program<'a>,
     /// Assignments issued, one after another, before the statement being looked at;
     /// `issued` holds the same for lookups, so a long block stays linear.
@@ -167,7 +189,7 @@ impl Walk<'_, '_> {
         for name in &names {
             // Never written: a model constant, or an unbound name the checker reports
             // itself.
-            let Some(w) = self.writes.get(&key(name)) else {
+            let Some(w) = find(self.writes, name) else {
                 continue;
             };
             variables.push(*name);

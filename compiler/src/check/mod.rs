@@ -105,6 +105,8 @@ pub struct FileEntry<'s> {
     /// The parser's errors, those past the diagnostics' limit (`Parsed::past`) among
     /// them: the analysis may keep fewer than the parser found.
     pub syntax_errors: usize,
+    /// `Parsed::binds`: at least as many as the file's variables.
+    pub binds: usize,
 }
 
 /// How much of what the checker resolves an analysis keeps. The diagnostics are the
@@ -239,6 +241,7 @@ pub fn analyze_given<'s>(
             library,
             break_patterns: parsed.break_patterns,
             syntax_errors,
+            binds: parsed.binds,
         });
     }
 
@@ -256,7 +259,8 @@ pub fn analyze_given<'s>(
             skill: None,
             special: None,
             specials: FxHashMap::default(),
-            vars: Vars::default().with_detail(detail),
+            // Sized once: a large task's table would be copied as it doubles.
+            vars: Vars::with_capacity(entry.binds).with_detail(detail),
             refs: Vec::new(),
             targets: FxHashMap::default(),
         };
@@ -314,51 +318,20 @@ pub fn analyze_given<'s>(
             .map(|(id, _)| id)
             .collect();
         for id in ids {
-            let skill = skills.get(id);
-            let entry = &files[skill.file.0 as usize];
-            let mut unit = Unit {
-                file: skill.file,
-                skill: Some(id),
-                special: None,
-                specials: FxHashMap::default(),
-                vars: Vars::with_globals(globals.clone()).with_detail(detail),
-                refs: Vec::new(),
-                targets: FxHashMap::default(),
-            };
-            let blocks = &entry.tree.skills[skill.index].blocks;
-            // A parameterized skill is checked on its own with its number parameters
-            // bound as numbers and each keyword parameter as its first word; each call's
-            // specialization is checked again below.
-            let abstract_blocks;
-            let blocks = if skill.params.is_empty() {
-                blocks
-            } else {
-                let with: Vec<params::Replace<'s>> = skill
-                    .params
-                    .iter()
-                    .map(|p| match p.word_spans.first() {
-                        Some(w) => params::Replace::Text(w.slice(entry.text)),
-                        None => params::Replace::Keep,
-                    })
-                    .collect();
-                for p in skill.params.iter().filter(|p| p.words.is_empty()) {
-                    unit.vars.bind(&p.name, VarKind::Number, skill.file, p.span);
-                }
-                abstract_blocks = params::substitute(blocks, &skill.params, &with);
-                &abstract_blocks
-            };
-            let mut walker = Walker::new(
-                model,
-                &constants,
-                &names,
+            let unit = check_skill(
+                id,
+                &files,
                 &skills,
-                &mut unit,
-                &mut diagnostics,
-                detail,
                 &mut specials,
+                &mut diagnostics,
+                Checking {
+                    model,
+                    constants: &constants,
+                    names: &names,
+                    globals: &globals,
+                    detail,
+                },
             );
-            walker.own_params = &skill.params;
-            walker.blocks(blocks);
             units.push(unit);
         }
     }
@@ -378,7 +351,8 @@ pub fn analyze_given<'s>(
     );
 
     breaks::check_patterns(&files, &skills, &mut diagnostics);
-    loops::check_frozen_loops(&files, &skills, &mut diagnostics);
+    let variables = units.iter().map(|u| u.vars.len()).sum();
+    loops::check_frozen_loops(&files, &skills, variables, &mut diagnostics);
     wakes::check_waits(&files, &mut diagnostics);
     paths::check_paths(&files, &given.paths, &mut diagnostics);
     owners::check_owners(&files, &skills, &units, model, &mut diagnostics);
@@ -401,6 +375,62 @@ struct Checking<'c> {
     names: &'c names::Names,
     globals: &'c std::rc::Rc<fold::FoldMap<VarKind>>,
     detail: Detail,
+}
+
+/// Checks one skill's body as a unit of its own. A parameterized skill is checked on
+/// its own with its number parameters bound as numbers and each keyword parameter as
+/// its first word; each call's specialization is checked again by [`check_specials`].
+fn check_skill<'s>(
+    id: SkillId,
+    files: &[FileEntry<'s>],
+    skills: &skills::Skills,
+    specials: &mut params::Specials,
+    diagnostics: &mut Kept,
+    c: Checking<'_>,
+) -> Unit {
+    let skill = skills.get(id);
+    let entry = &files[skill.file.0 as usize];
+    let mut unit = Unit {
+        file: skill.file,
+        skill: Some(id),
+        special: None,
+        specials: FxHashMap::default(),
+        vars: Vars::with_globals(c.globals.clone()).with_detail(c.detail),
+        refs: Vec::new(),
+        targets: FxHashMap::default(),
+    };
+    let blocks = &entry.tree.skills[skill.index].blocks;
+    let abstract_blocks;
+    let blocks = if skill.params.is_empty() {
+        blocks
+    } else {
+        let with: Vec<params::Replace<'s>> = skill
+            .params
+            .iter()
+            .map(|p| match p.word_spans.first() {
+                Some(w) => params::Replace::Text(w.slice(entry.text)),
+                None => params::Replace::Keep,
+            })
+            .collect();
+        for p in skill.params.iter().filter(|p| p.words.is_empty()) {
+            unit.vars.bind(&p.name, VarKind::Number, skill.file, p.span);
+        }
+        abstract_blocks = params::substitute(blocks, &skill.params, &with);
+        &abstract_blocks
+    };
+    let mut walker = Walker::new(
+        c.model,
+        c.constants,
+        c.names,
+        skills,
+        &mut unit,
+        diagnostics,
+        c.detail,
+        specials,
+    );
+    walker.own_params = &skill.params;
+    walker.blocks(blocks);
+    unit
 }
 
 /// Checks each specialization of a parameterized skill (those its checking makes
@@ -512,6 +542,154 @@ pub fn check_fragment<'n>(
     )
     .blocks(&tree.blocks);
     (unit, diagnostics.into_reported())
+}
+
+/// The file name a line has in [`check_line`]'s analysis.
+pub const LINE_FILE: &str = "<line>";
+
+/// Checks an interactive line with the skill files the running program was started
+/// with (`library`, checked as `--skills` libraries are) and the built-in skills at
+/// hand, so that the line may call any of them, a parameterized skill with arguments
+/// of its own too, whether or not the running program ever called it. The line is
+/// file 0 and unit 0, checked by the same walker as [`check_fragment`] with the
+/// program's variables bound and their kinds fixed; the skills it reaches and the
+/// specializations its calls make are checked as a task's are, so that the lowering
+/// can add those the running module lacks. Only the walk is run, as for
+/// [`check_fragment`]: a line is not a program of its own.
+pub fn check_line<'s, 'n>(
+    line: &'s str,
+    library: &'s [Source],
+    model: &RobotModel,
+    globals: impl IntoIterator<Item = (&'n str, VarKind)>,
+) -> Analysis<'s> {
+    let mut diagnostics = Kept::new();
+    let mut files: Vec<FileEntry<'s>> = Vec::with_capacity(library.len() + 8);
+    let parsed = parser::parse(line, FileId(0));
+    let syntax_errors =
+        parsed.diagnostics.iter().filter(|d| d.is_error()).count() + parsed.past.errors;
+    diagnostics.extend(parsed.diagnostics);
+    diagnostics.add_past(parsed.past);
+    files.push(FileEntry {
+        path: LINE_FILE,
+        text: line,
+        tree: parsed.file,
+        builtin: false,
+        library: false,
+        break_patterns: parsed.break_patterns,
+        binds: parsed.binds,
+        syntax_errors,
+    });
+    let builtins = ilmr_stdlib::skills::BUILTIN_SKILL_FILES
+        .iter()
+        .map(|b| (b.path, b.source, true));
+    let given = library
+        .iter()
+        .map(|s| (s.path.as_str(), s.text.as_str(), false));
+    for (path, text, builtin) in given.chain(builtins) {
+        // The library was checked when the program was; what it says of itself was
+        // said then.
+        let parsed = parser::parse(text, FileId(files.len() as u32));
+        files.push(FileEntry {
+            path,
+            text,
+            tree: parsed.file,
+            builtin,
+            library: true,
+            break_patterns: parsed.break_patterns,
+            binds: parsed.binds,
+            syntax_errors: 0,
+        });
+    }
+    let mut skills = skills::Skills::collect(&files, model, &mut Kept::new());
+    let constants = constants::Constants::new(model);
+    let names = names::Names::new(&constants, &skills);
+    let mut specials = params::Specials::default();
+
+    let mut buf = String::new();
+    let mut fixed = fold::FoldMap::default();
+    for (name, kind) in globals {
+        fixed.insert(constants::key(name, &mut buf), kind);
+    }
+    let mut unit = Unit {
+        file: FileId(0),
+        skill: None,
+        special: None,
+        specials: FxHashMap::default(),
+        vars: Vars::with_fixed_globals(std::rc::Rc::new(fixed.clone())),
+        refs: Vec::new(),
+        targets: FxHashMap::default(),
+    };
+    Walker::new(
+        model,
+        &constants,
+        &names,
+        &skills,
+        &mut unit,
+        &mut diagnostics,
+        Detail::Full,
+        &mut specials,
+    )
+    .blocks(&files[0].tree.blocks);
+
+    // What a skill sees: the program's variables, the line's, and what skills bind.
+    for (name, kind) in skills.all_binds() {
+        fixed.insert(constants::key(&name, &mut buf), kind);
+    }
+    for (key, id) in unit.vars.keys() {
+        fixed.insert(key, unit.vars.get(id).kind);
+    }
+    let globals = std::rc::Rc::new(fixed);
+    let called: Vec<SkillId> = unit
+        .targets
+        .values()
+        .filter_map(|t| match t {
+            Target::Skill(id) => Some(*id),
+            _ => None,
+        })
+        .collect();
+    for id in called {
+        skills.mark_called(id);
+    }
+    let checking = || Checking {
+        model,
+        constants: &constants,
+        names: &names,
+        globals: &globals,
+        detail: Detail::Full,
+    };
+    let mut units = vec![unit];
+    let ids: Vec<SkillId> = skills
+        .iter()
+        .filter(|(id, _)| skills.is_called(*id))
+        .map(|(id, _)| id)
+        .collect();
+    for id in ids {
+        let unit = check_skill(
+            id,
+            &files,
+            &skills,
+            &mut specials,
+            &mut diagnostics,
+            checking(),
+        );
+        units.push(unit);
+    }
+    let special_blocks = check_specials(
+        &files,
+        &skills,
+        &mut specials,
+        &mut units,
+        &mut diagnostics,
+        checking(),
+    );
+    Analysis {
+        files,
+        skills,
+        specials: specials.list,
+        special_blocks,
+        units,
+        diagnostics: diagnostics.into_reported(),
+    }
 }
 
 /// W0502: a task variable that nothing reads, in the task or in any skill.

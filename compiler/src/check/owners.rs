@@ -224,7 +224,10 @@ impl<'a, 's> Owners<'a, 's> {
             keys: FxHashMap::default(),
             next_key: 0,
             targets: FxHashMap::default(),
-            records: Vec::new(),
+            // Room written only as settings are found: a large task's records would
+            // otherwise be copied each time they double. There are seldom more settings
+            // than statements that bind.
+            records: Vec::with_capacity(files.iter().map(|f| f.binds).sum()),
             strands: 0,
             origins: 0,
             holds: FxHashMap::default(),

@@ -56,6 +56,16 @@ impl Vars {
         self.index.iter().map(|(key, id)| (key, *id))
     }
 
+    /// An empty table with room for `n` variables.
+    pub(crate) fn with_capacity(n: usize) -> Vars {
+        Vars {
+            vars: Vec::with_capacity(n),
+            index: FoldMap::with_capacity(n),
+            bound: Vec::with_capacity(n),
+            ..Vars::default()
+        }
+    }
+
     /// A table for a skill body, which sees the program's variables as bound.
     pub(crate) fn with_globals(globals: Rc<FoldMap<VarKind>>) -> Vars {
         Vars {

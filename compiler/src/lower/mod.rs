@@ -27,7 +27,7 @@ use crate::check::{Analysis, SkillId};
 use crate::diagnostic::{Code, Diagnostic, FileId};
 use crate::span::{LineIndex, Span};
 
-pub use line::{LineOptions, lower_line, lower_line_into, lower_line_warned};
+pub use line::{LineOptions, lower_line, lower_line_into, lower_line_warned, lower_line_with};
 pub use robotless::robot_uses;
 
 use scope::Scope;
@@ -162,13 +162,13 @@ fn statements(blocks: &[Block<'_>]) -> usize {
 /// A skill to lower: a skill as written, or a parameterized skill specialized by a
 /// call's arguments (`Analysis::specials`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-enum Reach {
+pub(super) enum Reach {
     Skill(SkillId),
     Special(u32),
 }
 
 /// The blocks a reached skill lowers: its own, or its specialization's.
-fn body<'a, 's>(analysis: &'a Analysis<'s>, r: Reach) -> Option<&'a [Block<'s>]> {
+pub(super) fn body<'a, 's>(analysis: &'a Analysis<'s>, r: Reach) -> Option<&'a [Block<'s>]> {
     match r {
         Reach::Skill(id) => {
             let info = analysis.skills.get(id);
@@ -182,7 +182,7 @@ fn body<'a, 's>(analysis: &'a Analysis<'s>, r: Reach) -> Option<&'a [Block<'s>]>
 /// The skills a task calls, directly or through other skills, in the order first
 /// reached (depth first, calls in text order), so that module layout is stable. Calls
 /// inside `check` blocks never run and reach nothing.
-fn reachable(
+pub(super) fn reachable(
     analysis: &Analysis<'_>,
     task: &crate::check::Unit,
     checked_units: &HashMap<Reach, &crate::check::Unit>,

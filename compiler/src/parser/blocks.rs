@@ -116,6 +116,9 @@ pub struct Builder<'s> {
     /// dropped until the closers bring the depth back within the limit.
     skipped: usize,
     diagnostics: Kept,
+    /// Statements that bind a variable (`v = ...`, `v = command(...)`, `v = while`):
+    /// at least as many as the file's variables, so the checker sizes its table once.
+    pub binds: usize,
 }
 
 impl<'s> Builder<'s> {
@@ -133,6 +136,7 @@ impl<'s> Builder<'s> {
             task_blocks: None,
             skipped: 0,
             diagnostics: Kept::new(),
+            binds: 0,
         }
     }
 
@@ -224,20 +228,30 @@ impl<'s> Builder<'s> {
             // (docs/language.md).
             Line::Blank if self.holds_comment(span) => {}
             Line::Blank => self.flush(),
-            Line::Stmt(kind) => self.parts.stmts.push(Stmt { kind, span }),
+            Line::Stmt(kind) => {
+                let binds = matches!(
+                    kind,
+                    StmtKind::Assign { .. } | StmtKind::Call { bind: Some(_), .. }
+                );
+                self.binds += usize::from(binds);
+                self.parts.stmts.push(Stmt { kind, span });
+            }
             Line::IfHead { keyword, cond } => self.open_block(Opener::If { keyword, cond }, span),
             Line::WhileHead {
                 bind,
                 keyword,
                 cond,
-            } => self.open_block(
-                Opener::While {
-                    bind,
-                    keyword,
-                    cond,
-                },
-                span,
-            ),
+            } => {
+                self.binds += usize::from(bind.is_some());
+                self.open_block(
+                    Opener::While {
+                        bind,
+                        keyword,
+                        cond,
+                    },
+                    span,
+                )
+            }
             Line::Check => self.open_block(Opener::Check, span),
             Line::EndIf => self.close(Closer::EndIf, span),
             Line::EndWhile => self.close(Closer::EndWhile, span),

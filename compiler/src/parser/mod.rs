@@ -28,6 +28,8 @@ pub struct Parsed<'s> {
     /// Whether the file has a `break(` with a pattern. When false, no statement of the
     /// tree is a `Break` with a pattern, and the checker need not look for one.
     pub break_patterns: bool,
+    /// Statements that bind a variable: at least as many as the file's variables.
+    pub binds: usize,
 }
 
 /// Line by line: the hand-written reader takes the lines it recognises, and the chumsky
@@ -125,12 +127,15 @@ pub fn parse<'s>(source: &'s str, file: FileId) -> Parsed<'s> {
         previous_end = span.end;
         line.clear();
     }
+    let binds = builder.binds;
     let (tree, structure) = builder.finish(tokens.comments);
-    finish(
+    let mut parsed = finish(
         tree,
         [patterns, syntax, structure, unclosed],
         break_patterns,
-    )
+    );
+    parsed.binds = binds;
+    parsed
 }
 
 /// A line past [`limits::MAX_LINE_OPERATORS`], which is not parsed: what it opens (so
@@ -207,6 +212,7 @@ fn finish<'s>(tree: SourceFile<'s>, kinds: [Kept; 4], break_patterns: bool) -> P
         diagnostics,
         past,
         break_patterns,
+        binds: 0,
     }
 }
 
