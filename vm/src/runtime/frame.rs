@@ -267,16 +267,30 @@ impl Hasher for Fx {
     }
 }
 
-/// `id` relative to `base`; NONE stays NONE.
+/// Marks an id in shared code that is not relative: one below the block's base,
+/// such as a variable every block reads or an expression they all use.
+const ABSOLUTE: u32 = 1 << 31;
+
+/// `id` relative to `base`, or itself marked [`ABSOLUTE`] below it; NONE stays
+/// NONE. Ids are below [`ABSOLUTE`] ([`Frames::share`] keeps a block with others on
+/// the tree).
 fn rel(id: u32, base: u32) -> u32 {
-    if id == NONE { NONE } else { id - base }
+    if id == NONE {
+        NONE
+    } else if id >= base {
+        id - base
+    } else {
+        id | ABSOLUTE
+    }
 }
 
-/// A relative id back from `base`; NONE stays NONE.
+/// An id of shared code back from `base`; NONE stays NONE.
 #[inline]
 fn abs(id: u32, base: u32) -> u32 {
     if id == NONE {
         NONE
+    } else if id & ABSOLUTE != 0 {
+        id & !ABSOLUTE
     } else {
         base.wrapping_add(id)
     }
@@ -440,9 +454,11 @@ impl Frames {
         for b in self.entry.len()..m.blocks.len() {
             local.clear();
             let mut checks = [NONE; MAX_LOOPS];
-            let (entry, ctx) = if block(m, b as u32, 0, &mut checks, &mut local, period) {
+            let compiled = block(m, b as u32, 0, &mut checks, &mut local, period);
+            let (entry, ctx) = if compiled {
                 local.push(end(FOp::End, 0, &checks));
                 self.share(&local, decoded)
+                    .unwrap_or((NONE, Ctx::default()))
             } else {
                 (NONE, Ctx::default())
             };
@@ -453,23 +469,34 @@ impl Frames {
 
     /// The pc of the program that runs `local` (a block's code, ids absolute, pcs
     /// from 0), compiled now unless one of its shape already is, and where its ids
-    /// start.
-    fn share(&mut self, local: &[FInstr], decoded: &[Decoded]) -> (u32, Ctx) {
+    /// start: each kind at the first id of it the code names, so that ids below
+    /// it (shared by many blocks) stay absolute. None for ids too large to mark.
+    fn share(&mut self, local: &[FInstr], decoded: &[Decoded]) -> Option<(u32, Ctx)> {
         let (mut relative, mut quick) = std::mem::take(&mut self.scratch);
         quick.clear();
         quick.extend((0..local.len()).map(|pc| Quick::of(local, pc, decoded)));
-        let least = |least: &mut u32, id: u32| {
-            *least = (*least).min(id);
+        let large = std::cell::Cell::new(false);
+        let first = |first: &mut u32, id: u32| {
+            if id != NONE {
+                large.set(large.get() || id >= ABSOLUTE);
+                if *first == NONE {
+                    *first = id;
+                }
+            }
             id
         };
-        let (mut var, mut expr) = (NONE, NONE);
+        let (mut var, mut expr, mut stmt) = (NONE, NONE, NONE);
         for i in local {
-            i.op.map(|v| least(&mut var, v), |e| least(&mut expr, e), |p| p);
+            i.op.map(|v| first(&mut var, v), |e| first(&mut expr, e), |p| p);
+            first(&mut stmt, i.stmt);
         }
         for id in quick.iter().flat_map(Quick::vars) {
-            least(&mut var, id);
+            first(&mut var, id);
         }
-        let stmt = local.iter().map(|i| i.stmt).min().unwrap_or(NONE);
+        if large.get() {
+            self.scratch = (relative, quick);
+            return None;
+        }
         let zero = |id: u32| if id == NONE { 0 } else { id };
         let ctx = Ctx {
             var: zero(var),
@@ -521,7 +548,7 @@ impl Frames {
             }
         };
         self.scratch = (relative, quick);
-        (e, ctx)
+        Some((e, ctx))
     }
 
     /// The state a block's frame starts in, if it is frame-shaped.
@@ -883,14 +910,14 @@ impl<H: Hal, C: Clock> Vm<H, C> {
                     }
                     // The statement's op and its expression's three.
                     *ops_left = (*ops_left - 1).saturating_sub(3);
-                    let a = vars.field(f.base.wrapping_add(src), field);
+                    let a = vars.field(abs(src, f.base), field);
                     let v = match op {
                         Arith::Add => a + k,
                         Arith::Sub => a - k,
                         Arith::Mul => a * k,
                     };
                     // What `assign` does after its evaluation, with the trace off.
-                    let var = f.base.wrapping_add(var);
+                    let var = abs(var, f.base);
                     vars.assign(var, v);
                     if vars.queue_wake(var) {
                         ready.push_back(Ready::Wake(var).into());
@@ -903,7 +930,7 @@ impl<H: Hal, C: Clock> Vm<H, C> {
                         break Some(true);
                     }
                     *ops_left = (*ops_left - 1).saturating_sub(1);
-                    let var = f.base.wrapping_add(var);
+                    let var = abs(var, f.base);
                     vars.assign(var, k);
                     if vars.queue_wake(var) {
                         ready.push_back(Ready::Wake(var).into());
@@ -943,7 +970,7 @@ impl<H: Hal, C: Clock> Vm<H, C> {
                     *ops_left = ops_left.saturating_sub(1 + 3);
                     // The loop's iteration is counted only for `start` events: with
                     // the trace on, which takes the general path.
-                    if cmp.holds(vars.field(f.base.wrapping_add(src), field), k) {
+                    if cmp.holds(vars.field(abs(src, f.base), field), k) {
                         f.pc += 1;
                         step(next);
                         queue = true;
@@ -1452,18 +1479,18 @@ mod tests {
         let (first, decoded) = counting(3, 4, 10, 100.0);
         assert_eq!(
             frames.share(&first, &decoded),
-            (
+            Some((
                 0,
                 Ctx {
                     var: 3,
                     expr: 4,
                     stmt: 10
                 }
-            )
+            ))
         );
         // Another block of the shape, its ids further on: the same program.
         let (second, decoded) = counting(7, 8, 14, 100.0);
-        let (entry, ctx) = frames.share(&second, &decoded);
+        let (entry, ctx) = frames.share(&second, &decoded).expect("shares");
         assert_eq!(entry, 0);
         assert_eq!(frames.code.len(), first.len());
         // Its instructions, the ids made absolute again, are its own.
@@ -1479,7 +1506,7 @@ mod tests {
         ));
         // A block that counts to another bound is another program, after the first.
         let (third, decoded) = counting(11, 12, 18, 50.0);
-        let (entry, _) = frames.share(&third, &decoded);
+        let (entry, _) = frames.share(&third, &decoded).expect("shares");
         assert_eq!(entry, first.len() as u32);
         assert_eq!(
             frames.quick[entry as usize + 5],
@@ -1491,5 +1518,24 @@ mod tests {
                 },
             }
         );
+        // Blocks that wait on one expression, below their own: it stays absolute,
+        // and they share a program of their own.
+        let shared_wait = |var, expr, stmt| {
+            let (mut code, decoded) = counting(var, expr, stmt, 100.0);
+            if let FOp::Wait { seconds, .. } = &mut code[4].op {
+                *seconds = 1;
+            }
+            (code, decoded)
+        };
+        let (a, decoded) = shared_wait(20, 20, 30);
+        let (e1, _) = frames.share(&a, &decoded).expect("shares");
+        let (b, decoded) = shared_wait(24, 30, 40);
+        let (e2, c) = frames.share(&b, &decoded).expect("shares");
+        assert_eq!((e1, e1 as usize + a.len()), (e2, frames.code.len()));
+        frames.ctx[1] = c;
+        assert_eq!(frames.instr(e2 + 4, 1), Some(b[4]));
+        // An id too large to mark keeps the block on the tree.
+        let (huge, decoded) = counting(ABSOLUTE, 0, 0, 100.0);
+        assert_eq!(frames.share(&huge, &decoded), None);
     }
 }
