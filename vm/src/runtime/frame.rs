@@ -7,6 +7,9 @@
 //! per loop and a node per body; the frame is queued at exactly the points where the
 //! tree queues those (the check after a body ends, the body after a check), so the
 //! ready queue's order, and with it every event and variable write, is the tree's.
+//! Blocks of one shape share one such array: its ids are relative to where each
+//! block's own start ([`Ctx`]), as Lua's coroutines share a function and address
+//! their registers from a base, so a million counting blocks read one program.
 //!
 //! What a frame stands for at each pc (the loops and bodies the tree would hold
 //! live, and whether one of its blocks is still issuing) is a fact of the pc, decoded
@@ -282,6 +285,14 @@ fn rel(id: u32, base: u32) -> u32 {
     } else {
         id | ABSOLUTE
     }
+}
+
+/// A quick form's variable back from `base` (never NONE), without a branch: the
+/// base counts unless the id is marked [`ABSOLUTE`].
+#[inline(always)]
+fn var_at(id: u32, base: u32) -> u32 {
+    let relative = (id >> 31).wrapping_sub(1);
+    (base & relative).wrapping_add(id & !ABSOLUTE)
 }
 
 /// An id of shared code back from `base`; NONE stays NONE.
@@ -910,14 +921,14 @@ impl<H: Hal, C: Clock> Vm<H, C> {
                     }
                     // The statement's op and its expression's three.
                     *ops_left = (*ops_left - 1).saturating_sub(3);
-                    let a = vars.field(abs(src, f.base), field);
+                    let a = vars.field(var_at(src, f.base), field);
                     let v = match op {
                         Arith::Add => a + k,
                         Arith::Sub => a - k,
                         Arith::Mul => a * k,
                     };
                     // What `assign` does after its evaluation, with the trace off.
-                    let var = abs(var, f.base);
+                    let var = var_at(var, f.base);
                     vars.assign(var, v);
                     if vars.queue_wake(var) {
                         ready.push_back(Ready::Wake(var).into());
@@ -930,7 +941,7 @@ impl<H: Hal, C: Clock> Vm<H, C> {
                         break Some(true);
                     }
                     *ops_left = (*ops_left - 1).saturating_sub(1);
-                    let var = abs(var, f.base);
+                    let var = var_at(var, f.base);
                     vars.assign(var, k);
                     if vars.queue_wake(var) {
                         ready.push_back(Ready::Wake(var).into());
@@ -970,7 +981,7 @@ impl<H: Hal, C: Clock> Vm<H, C> {
                     *ops_left = ops_left.saturating_sub(1 + 3);
                     // The loop's iteration is counted only for `start` events: with
                     // the trace on, which takes the general path.
-                    if cmp.holds(vars.field(abs(src, f.base), field), k) {
+                    if cmp.holds(vars.field(var_at(src, f.base), field), k) {
                         f.pc += 1;
                         step(next);
                         queue = true;
@@ -1244,7 +1255,7 @@ mod tests {
     #[test]
     fn the_counting_loop_runs_on_quick_forms_but_its_while() {
         // `c=0` / `while(c<100)` / `c=c+1` / `wait(0.01)` / `endwhile`, as
-        // `Frames::block` lays it out; expressions 0 `0`, 1 `c<100`, 2 `c+1`, 3 `0.01`.
+        // `block` lays it out; expressions 0 `0`, 1 `c<100`, 2 `c+1`, 3 `0.01`.
         let c = Operand::Field(0, Field::Value);
         let decoded = [
             Decoded {
@@ -1534,6 +1545,10 @@ mod tests {
         assert_eq!((e1, e1 as usize + a.len()), (e2, frames.code.len()));
         frames.ctx[1] = c;
         assert_eq!(frames.instr(e2 + 4, 1), Some(b[4]));
+        // The quick forms' branch-free read of a variable agrees.
+        for id in [0, 5, 7 | ABSOLUTE, ABSOLUTE - 1] {
+            assert_eq!(var_at(id, 40), abs(id, 40));
+        }
         // An id too large to mark keeps the block on the tree.
         let (huge, decoded) = counting(ABSOLUTE, 0, 0, 100.0);
         assert_eq!(frames.share(&huge, &decoded), None);
