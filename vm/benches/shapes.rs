@@ -5,6 +5,9 @@
 //!   (the kind of command that costs something every tick).
 //! - `Guards`: every command is an `if(t<0)` woken each tick by `t` changing.
 //! - `Sleepers`: every command is a `wait(1000)` (costs nothing until it wakes).
+//! - `Counting`: every block is `cN=0` / `while(cN<1e9)` / `cN=cN+1` / `wait(0.01)` /
+//!   `endwhile` with a variable of its own (issue 14's general path, the workload of
+//!   `tools/blocks_vs_lua.sh`): all of them run one shared frame program.
 
 use ilmr_hal::{Limits, ScriptedRobot};
 use ilmr_stdlib::{Command, Field, VarKind};
@@ -16,6 +19,7 @@ pub enum Shape {
     Searches,
     Guards,
     Sleepers,
+    Counting,
 }
 
 pub fn module(shape: Shape, n: usize) -> Module {
@@ -113,6 +117,63 @@ pub fn module(shape: Shape, n: usize) -> Module {
                         },
                         s,
                     )])
+                    .expect("block");
+                blocks.push(blk);
+            }
+            Vec::new()
+        }
+        Shape::Counting => {
+            let (zero, bound, one) = (
+                b.constant(0.0).expect("const"),
+                b.constant(1e9).expect("const"),
+                b.constant(1.0).expect("const"),
+            );
+            let tick = b.num(0.01).expect("num");
+            for i in 0..n {
+                let c = b.global(&format!("c{i}"), VarKind::Number).expect("var");
+                let set = b.expr(&[ExprOp::Const(zero)]).expect("expr");
+                let cond = b
+                    .expr(&[
+                        ExprOp::Field(c, Field::Value),
+                        ExprOp::Const(bound),
+                        ExprOp::Lt,
+                    ])
+                    .expect("expr");
+                let inc = b
+                    .expr(&[
+                        ExprOp::Field(c, Field::Value),
+                        ExprOp::Const(one),
+                        ExprOp::Add,
+                    ])
+                    .expect("expr");
+                let s0 = stmt(&mut b, &format!("c{i}=0"));
+                let sl = stmt(&mut b, &format!("while(c{i}<1e9)"));
+                let si = stmt(&mut b, &format!("c{i}=c{i}+1"));
+                let sw = stmt(&mut b, "wait(0.01)");
+                let body = b
+                    .block(&[
+                        Instr::new(Op::Assign { var: c, expr: inc }, si),
+                        Instr::new(
+                            Op::WaitTime {
+                                seconds: tick,
+                                bind: None,
+                            },
+                            sw,
+                        ),
+                    ])
+                    .expect("block");
+                let blk = b
+                    .block(&[
+                        Instr::new(Op::Assign { var: c, expr: set }, s0),
+                        Instr::new(
+                            Op::While {
+                                cond,
+                                body,
+                                bind: None,
+                            },
+                            sl,
+                        ),
+                    ])
                     .expect("block");
                 blocks.push(blk);
             }

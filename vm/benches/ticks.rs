@@ -7,7 +7,7 @@
 //!     target/release/deps/ticks-HASH guards 1000000 10
 //! ```
 //!
-//! Arguments: shape (`searches`, `guards`, `sleepers`), live commands, ticks. Setup
+//! Arguments: shape (`searches`, `guards`, `sleepers`, `counting`), live commands, ticks. Setup
 //! (building the program and the three settling ticks) runs before the counted ticks;
 //! with `--toggle-collect` on `tick` callgrind counts only ticks, so instructions per
 //! command per tick = (Ir - 3 settling ticks' Ir) / ticks / n; the difference of two
@@ -23,6 +23,7 @@ fn main() {
         Some("searches") => Shape::Searches,
         Some("guards") => Shape::Guards,
         Some("sleepers") => Shape::Sleepers,
+        Some("counting") => Shape::Counting,
         // `cargo bench` runs every bench target with `--bench`: nothing to count then.
         _ => return,
     };

@@ -37,12 +37,20 @@ fn sleepers(bencher: Bencher, n: usize) {
     run(bencher, Shape::Sleepers, n);
 }
 
+/// Issue 14's general path: a block steps each tick (wake, `cN=cN+1`, the `while`
+/// re-evaluated, `wait` again).
+#[divan::bench(args = SIZES, sample_count = 30)]
+fn counting(bencher: Bencher, n: usize) {
+    run(bencher, Shape::Counting, n);
+}
+
 fn main() {
     println!("bytes per live command (runtime state / live nodes):");
     for shape in [
         ("searches", Shape::Searches),
         ("guards", Shape::Guards),
         ("sleepers", Shape::Sleepers),
+        ("counting", Shape::Counting),
     ] {
         let vm = vm(shape.1, 100_000);
         println!(

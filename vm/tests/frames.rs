@@ -34,9 +34,17 @@ struct Gen {
     rng: Rng,
     /// Distinct statement texts, so that break patterns name what they mean to.
     n: u32,
+    /// Appended to every variable's name: blocks of one shape with variables of
+    /// their own.
+    suffix: String,
 }
 
 impl Gen {
+    /// One of [`VARS`], with the suffix.
+    fn var(&mut self) -> String {
+        format!("{}{}", self.rng.pick(&VARS), self.suffix)
+    }
+
     fn tag(&mut self) -> u32 {
         self.n += 1;
         self.n
@@ -44,8 +52,8 @@ impl Gen {
 
     /// A statement that only computes or sleeps.
     fn simple(&mut self, a: &mut Asm) -> Instr {
-        let v = self.rng.pick(&VARS);
-        let w = self.rng.pick(&VARS);
+        let (v, w) = (self.var(), self.var());
+        let (v, w) = (v.as_str(), w.as_str());
         let t = self.tag();
         match self.rng.below(8) {
             0 => a.assign(
@@ -86,8 +94,8 @@ impl Gen {
     fn frame_block(&mut self, a: &mut Asm, depth: u32) -> Vec<Instr> {
         let mut code: Vec<Instr> = (0..self.rng.below(3)).map(|_| self.simple(a)).collect();
         if depth > 0 && self.rng.below(4) != 0 {
-            let v = self.rng.pick(&VARS);
-            let w = self.rng.pick(&VARS);
+            let (v, w) = (self.var(), self.var());
+            let (v, w) = (v.as_str(), w.as_str());
             let k = 2 + self.rng.below(8) as i32;
             let t = self.tag();
             let bind = (self.rng.below(3) == 0).then(|| format!("l{t}"));
@@ -132,7 +140,8 @@ impl Gen {
     /// A block that keeps the tree: a guard, a wait on a variable, a break.
     fn other_block(&mut self, a: &mut Asm) -> Vec<Instr> {
         let mut code = vec![a.wait(&format!("wait(0.05) #{};", self.tag()), 0.05)];
-        let v = self.rng.pick(&VARS);
+        let v = self.var();
+        let d = format!("d{}", self.suffix);
         let t = self.tag();
         match self.rng.below(8) {
             5 => code.push(a.op(&format!("break #{t};"), Op::BreakAll)),
@@ -157,12 +166,12 @@ impl Gen {
                 let k = self.rng.below(6) as f64;
                 let g = a.if_(
                     &format!("if({v}>{k}) #{t};"),
-                    &[X::V(v), X::N(k), X::Op(ExprOp::Gt)],
+                    &[X::V(&v), X::N(k), X::Op(ExprOp::Gt)],
                     |a| {
                         vec![a.assign(
-                            &format!("d=d+10 #{t};"),
-                            "d",
-                            &[X::V("d"), X::N(10.0), X::Op(ExprOp::Add)],
+                            &format!("{d}={d}+10 #{t};"),
+                            &d,
+                            &[X::V(&d), X::N(10.0), X::Op(ExprOp::Add)],
                         )]
                     },
                 );
@@ -175,8 +184,8 @@ impl Gen {
                 code.push(a.brk(&format!("break(#{k};) #{t};"), &format!("#{k};")));
             }
             _ => {
-                let w = self.rng.pick(&VARS);
-                code.push(a.wait_var(&format!("wait({w}) #{t};"), w));
+                let w = self.var();
+                code.push(a.wait_var(&format!("wait({w}) #{t};"), &w));
             }
         }
         // A loop in a block that keeps the tree: its body may be a frame, parked
@@ -192,6 +201,7 @@ fn program(seed: u64) -> (ilmr_vm::Module, u32) {
     let mut g = Gen {
         rng: Rng(seed.wrapping_mul(0x9e37_79b9_7f4a_7c15) | 1),
         n: 0,
+        suffix: String::new(),
     };
     let mut a = Asm::new();
     let mut blocks: Vec<BlockId> = Vec::new();
@@ -270,6 +280,93 @@ fn frames_trace_byte_for_byte_as_the_tree() {
         framed += usize::from(flat.footprint() != tree.footprint());
     }
     assert!(framed > 40, "only {framed} programs ran frames");
+}
+
+/// Blocks of one shape, each with variables of its own (`a0`, `a1`, ...): their
+/// frames share one program and address their variables from a base. Guards, waits
+/// on variables and breaks of the other blocks read and end them.
+fn cloned_program(seed: u64) -> (ilmr_vm::Module, u32, Vec<String>) {
+    let mut g = Gen {
+        rng: Rng(seed.wrapping_mul(0x9e37_79b9_7f4a_7c15) | 1),
+        n: 0,
+        suffix: String::new(),
+    };
+    let mut a = Asm::new();
+    let mut blocks: Vec<BlockId> = Vec::new();
+    let clones = 2 + g.rng.below(5);
+    let depth = 1 + g.rng.below(2) as u32;
+    let template = g.rng.next() | 1;
+    for i in 0..clones {
+        g.suffix = i.to_string();
+        g.rng = Rng(template);
+        let code = g.frame_block(&mut a, depth);
+        if !blocks.is_empty() {
+            a.blank();
+        }
+        blocks.push(a.block(code));
+    }
+    g.rng = Rng(template.rotate_left(17) | 1);
+    for _ in 0..g.rng.below(3) {
+        g.suffix = g.rng.below(clones).to_string();
+        let code = g.other_block(&mut a);
+        a.blank();
+        blocks.push(a.block(code));
+    }
+    let budget = match g.rng.below(3) {
+        0 => 2 + g.rng.below(20) as u32,
+        _ => 200_000,
+    };
+    let names = (0..clones)
+        .flat_map(|i| VARS.iter().map(move |v| format!("{v}{i}")))
+        .collect();
+    (a.task(&blocks), budget, names)
+}
+
+#[test]
+fn blocks_of_one_shape_run_as_the_tree() {
+    let seeds: u64 = std::env::var("FRAMES_SEEDS")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(60);
+    let mut framed = 0;
+    for seed in 0..seeds {
+        let (module, budget, names) = cloned_program(seed);
+        let cfg = |frames, trace| Config {
+            budget_ops: budget,
+            frames,
+            trace,
+            ..config()
+        };
+        let full = config().trace;
+        let mut tree = vm(module.clone(), robot(), cfg(false, full));
+        let mut flat = vm(module.clone(), robot(), cfg(true, full));
+        let mut tree_off = vm(module.clone(), robot(), cfg(false, TraceLevel::Off));
+        let mut flat_off = vm(module, robot(), cfg(true, TraceLevel::Off));
+        let what = |v: &common::TestVm| {
+            let vars: Vec<_> = names.iter().map(|n| v.var(n)).collect();
+            (
+                v.activity(),
+                v.live(),
+                v.live_statements(),
+                v.finished(),
+                format!("{vars:?}"),
+            )
+        };
+        for tick in 0..200 {
+            if tree.finished() && flat.finished() {
+                break;
+            }
+            for v in [&mut tree, &mut flat, &mut tree_off, &mut flat_off] {
+                v.tick();
+            }
+            assert_eq!(what(&tree), what(&flat), "seed {seed}, tick {tick}");
+            assert_eq!(what(&tree_off), what(&flat_off), "seed {seed}, tick {tick}");
+            assert_eq!(what(&tree), what(&tree_off), "seed {seed}, tick {tick}");
+        }
+        assert_eq!(trace(&tree), trace(&flat), "seed {seed}");
+        framed += usize::from(flat.footprint() != tree.footprint());
+    }
+    assert!(framed > 20, "only {framed} programs ran frames");
 }
 
 #[test]

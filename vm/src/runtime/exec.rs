@@ -5,7 +5,7 @@ use ilmr_hal::Hal;
 use ilmr_stdlib::Field;
 
 use super::clock::Clock;
-use super::frame::{FInstr, FOp, FrameHit, FrameState};
+use super::frame::{FInstr, FOp, FrameHit};
 use super::nodes::{BlockState, Kind, NodeRef, SLEEPING};
 use super::trace::EventKind;
 use super::vars::{FieldMask, How, NONE, Waiter, Woken};
@@ -274,7 +274,7 @@ impl<H: Hal, C: Clock> Vm<H, C> {
                 let code = self.module.block_code(crate::bytecode::BlockId(b.block));
                 code.get(b.pc as usize).map_or(NONE, |i| i.stmt.0)
             }
-            Kind::Frame(f) => self.frames.code.get(f.pc as usize).map_or(NONE, |i| i.stmt),
+            Kind::Frame(f) => self.frames.instr(f.pc, f.block).map_or(NONE, |i| i.stmt),
             _ => self.nodes.get(idx).stmt,
         };
         let pending = self.ready.len() as u32;
@@ -740,10 +740,11 @@ impl<H: Hal, C: Clock> Vm<H, C> {
                 let last = self.nodes.get(idx).first_child;
                 if self.nodes.parked(last) {
                     let r = self.nodes.unpark(last);
-                    if let Kind::Frame(_) = self.nodes.get(r.idx).kind {
-                        let entry = self.frames.entry(body).unwrap_or(NONE);
-                        self.nodes.get_mut(r.idx).kind = Kind::Frame(FrameState::at(entry));
-                        self.frame_account(None, Some(entry));
+                    if let Kind::Frame(_) = self.nodes.get(r.idx).kind
+                        && let Some(f) = self.frames.start(body)
+                    {
+                        self.nodes.get_mut(r.idx).kind = Kind::Frame(f);
+                        self.frame_account(None, Some(f.pc));
                     }
                     self.enqueue(r.idx);
                 } else {
@@ -984,8 +985,7 @@ impl<H: Hal, C: Clock> Vm<H, C> {
                 self.nodes.wake(idx);
                 let instr =
                     f.pc.checked_sub(1)
-                        .and_then(|pc| self.frames.code.get(pc as usize))
-                        .copied();
+                        .and_then(|pc| self.frames.instr(pc, f.block));
                 let Some(FInstr {
                     op: FOp::Wait { bind, .. },
                     stmt,

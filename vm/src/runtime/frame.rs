@@ -7,11 +7,17 @@
 //! per loop and a node per body; the frame is queued at exactly the points where the
 //! tree queues those (the check after a body ends, the body after a check), so the
 //! ready queue's order, and with it every event and variable write, is the tree's.
+//! Blocks of one shape share one such array: its ids are relative to where each
+//! block's own start ([`Ctx`]), as Lua's coroutines share a function and address
+//! their registers from a base, so a million counting blocks read one program.
 //!
 //! What a frame stands for at each pc (the loops and bodies the tree would hold
 //! live, and whether one of its blocks is still issuing) is a fact of the pc, decoded
 //! with the code ([`FInstr::live`], [`FInstr::issuing`]), so `Vm::live` and
 //! `Vm::activity` count a frame as the nodes it replaces.
+
+use std::collections::HashMap;
+use std::hash::{BuildHasherDefault, Hash, Hasher};
 
 use ilmr_hal::Hal;
 use ilmr_stdlib::Field;
@@ -32,8 +38,8 @@ use crate::bytecode::{BlockId, ExprId, ExprOp, Module, Op, StmtId};
 pub(crate) const MAX_LOOPS: usize = 2;
 
 /// A frame instruction. Expression, variable and statement operands are the
-/// module's ids.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+/// module's ids, relative to a block's [`Ctx`] in [`Frames::code`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub(crate) enum FOp {
     Assign {
         var: u32,
@@ -73,7 +79,7 @@ pub(crate) enum FOp {
     End,
 }
 
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub(crate) struct FInstr {
     pub op: FOp,
     /// The statement traced for it (a check's is its `while`'s); NONE for the ends
@@ -155,7 +161,6 @@ pub(crate) enum Quick {
         src: u32,
         field: Field,
         cmp: Cmp,
-        level: u8,
         next: Moved,
         out: Moved,
         exit: u32,
@@ -203,8 +208,8 @@ impl Quick {
             FOp::Check {
                 cond,
                 bind: NONE,
-                level,
                 exit,
+                ..
             } => match shape(cond) {
                 Some((
                     Shape::Two(Operand::Field(src, field), Operand::Const(k), Bin::Cmp(cmp)),
@@ -213,7 +218,6 @@ impl Quick {
                     src,
                     field,
                     cmp,
-                    level,
                     next,
                     out: Moved::between(code, pc, exit as usize),
                     exit,
@@ -230,14 +234,225 @@ impl Quick {
     }
 }
 
-/// The flat code of every frame-shaped block of a module.
+/// Where a block's ids start: its frame's code names variables, expressions and
+/// statements relative to these, so that blocks of one shape (a million counting
+/// blocks) run one program, as Lua's coroutines share one function and address
+/// their registers from a base.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub(crate) struct Ctx {
+    pub var: u32,
+    pub expr: u32,
+    pub stmt: u32,
+}
+
+/// rustc's FxHash: the shapes' table hashes a block's code once at load, where
+/// SipHash cost as much as compiling the block.
+#[derive(Default)]
+struct Fx(u64);
+
+impl Hasher for Fx {
+    fn finish(&self) -> u64 {
+        self.0
+    }
+    fn write(&mut self, bytes: &[u8]) {
+        for &b in bytes {
+            self.write_u64(u64::from(b));
+        }
+    }
+    fn write_u32(&mut self, w: u32) {
+        self.write_u64(u64::from(w));
+    }
+    fn write_u64(&mut self, w: u64) {
+        self.0 = (self.0.rotate_left(5) ^ w).wrapping_mul(0x517c_c1b7_2722_0a95);
+    }
+    fn write_usize(&mut self, w: usize) {
+        self.write_u64(w as u64);
+    }
+}
+
+/// Marks an id in shared code that is not relative: one below the block's base,
+/// such as a variable every block reads or an expression they all use.
+const ABSOLUTE: u32 = 1 << 31;
+
+/// `id` relative to `base`, or itself marked [`ABSOLUTE`] below it; NONE stays
+/// NONE. Ids are below [`ABSOLUTE`] ([`Frames::share`] keeps a block with others on
+/// the tree).
+fn rel(id: u32, base: u32) -> u32 {
+    if id == NONE {
+        NONE
+    } else if id >= base {
+        id - base
+    } else {
+        id | ABSOLUTE
+    }
+}
+
+/// A quick form's variable back from `base` (never NONE), without a branch: the
+/// base counts unless the id is marked [`ABSOLUTE`].
+#[inline(always)]
+fn var_at(id: u32, base: u32) -> u32 {
+    let relative = (id >> 31).wrapping_sub(1);
+    (base & relative).wrapping_add(id & !ABSOLUTE)
+}
+
+/// An id of shared code back from `base`; NONE stays NONE.
+#[inline]
+fn abs(id: u32, base: u32) -> u32 {
+    if id == NONE {
+        NONE
+    } else if id & ABSOLUTE != 0 {
+        id & !ABSOLUTE
+    } else {
+        base.wrapping_add(id)
+    }
+}
+
+impl FOp {
+    /// The op with its variable ids through `var`, its expression ids through
+    /// `expr` and its pcs through `pc`.
+    fn map(
+        self,
+        mut var: impl FnMut(u32) -> u32,
+        mut expr: impl FnMut(u32) -> u32,
+        mut pc: impl FnMut(u32) -> u32,
+    ) -> FOp {
+        match self {
+            FOp::Assign { var: v, expr: e } => FOp::Assign {
+                var: var(v),
+                expr: expr(e),
+            },
+            FOp::Copy { to, from } => FOp::Copy {
+                to: var(to),
+                from: var(from),
+            },
+            FOp::Wait {
+                seconds,
+                bind,
+                ticks,
+            } => FOp::Wait {
+                seconds: expr(seconds),
+                bind: var(bind),
+                ticks,
+            },
+            FOp::While { bind, level } => FOp::While {
+                bind: var(bind),
+                level,
+            },
+            FOp::Check {
+                cond,
+                bind,
+                level,
+                exit,
+            } => FOp::Check {
+                cond: expr(cond),
+                bind: var(bind),
+                level,
+                exit: pc(exit),
+            },
+            FOp::EndBody { check } => FOp::EndBody { check: pc(check) },
+            FOp::End => FOp::End,
+        }
+    }
+}
+
+impl FInstr {
+    fn map(
+        self,
+        var: impl Fn(u32) -> u32,
+        expr: impl Fn(u32) -> u32,
+        stmt: impl Fn(u32) -> u32,
+        mut pc: impl FnMut(u32) -> u32,
+    ) -> FInstr {
+        let mut checks = self.checks;
+        for c in &mut checks {
+            *c = pc(*c);
+        }
+        FInstr {
+            op: self.op.map(var, expr, &mut pc),
+            stmt: stmt(self.stmt),
+            checks,
+            ..self
+        }
+    }
+}
+
+impl Quick {
+    /// The form with its variable ids through `var` and its pcs through `pc`.
+    fn map(self, var: impl Fn(u32) -> u32, pc: impl Fn(u32) -> u32) -> Quick {
+        match self {
+            Quick::SetVK {
+                var: v,
+                src,
+                field,
+                op,
+                next,
+                k,
+            } => Quick::SetVK {
+                var: var(v),
+                src: var(src),
+                field,
+                op,
+                next,
+                k,
+            },
+            Quick::SetK { var: v, next, k } => Quick::SetK {
+                var: var(v),
+                next,
+                k,
+            },
+            Quick::CheckVK {
+                src,
+                field,
+                cmp,
+                next,
+                out,
+                exit,
+                k,
+            } => Quick::CheckVK {
+                src: var(src),
+                field,
+                cmp,
+                next,
+                out,
+                exit: pc(exit),
+                k,
+            },
+            Quick::EndBody { check, back } => Quick::EndBody {
+                check: pc(check),
+                back,
+            },
+            q @ (Quick::Sleep { .. } | Quick::Slow) => q,
+        }
+    }
+
+    /// The variables the form names.
+    fn vars(&self) -> [u32; 2] {
+        match *self {
+            Quick::SetVK { var, src, .. } => [var, src],
+            Quick::SetK { var, .. } => [var, NONE],
+            Quick::CheckVK { src, .. } => [src, NONE],
+            _ => [NONE; 2],
+        }
+    }
+}
+
+/// The flat code of every frame-shaped block of a module, one program per shape:
+/// blocks whose code differs only by where their ids start share it.
 #[derive(Debug, Default)]
 pub(crate) struct Frames {
+    /// Ids relative to a block's [`Ctx`]; pcs absolute.
     pub code: Vec<FInstr>,
-    /// Per pc, the trace-off form of `code`'s instruction.
+    /// Per pc, the trace-off form of `code`'s instruction, variables relative too.
     pub quick: Vec<Quick>,
     /// Per block: the pc its frame starts at, or NONE when it keeps the tree.
     entry: Vec<u32>,
+    /// Per block: where its ids start.
+    ctx: Vec<Ctx>,
+    /// The programs compiled so far by a hash of their code, to find a block's
+    /// shape among them.
+    shapes: HashMap<u64, Vec<u32>, BuildHasherDefault<Fx>>,
+    /// A block's code and quick forms, relative, while it is compiled.
+    scratch: (Vec<FInstr>, Vec<Quick>),
     period: f64,
 }
 
@@ -246,116 +461,228 @@ impl Frames {
     /// module's expressions, decoded).
     pub fn grow(&mut self, m: &Module, decoded: &[Decoded], period: f64) {
         self.period = period;
-        let from = self.code.len();
+        let mut local = Vec::new();
         for b in self.entry.len()..m.blocks.len() {
-            let start = self.code.len();
+            local.clear();
             let mut checks = [NONE; MAX_LOOPS];
-            let entry = if self.block(m, b as u32, 0, &mut checks) {
-                self.code.push(end(FOp::End, 0, &checks));
-                start as u32
+            let compiled = block(m, b as u32, 0, &mut checks, &mut local, period);
+            let (entry, ctx) = if compiled {
+                local.push(end(FOp::End, 0, &checks));
+                self.share(&local, decoded)
+                    .unwrap_or((NONE, Ctx::default()))
             } else {
-                self.code.truncate(start);
-                NONE
+                (NONE, Ctx::default())
             };
             self.entry.push(entry);
-        }
-        for pc in from..self.code.len() {
-            let q = Quick::of(&self.code, pc, decoded);
-            self.quick.push(q);
+            self.ctx.push(ctx);
         }
     }
 
-    /// The pc a block's frame starts at, if it is frame-shaped.
+    /// The pc of the program that runs `local` (a block's code, ids absolute, pcs
+    /// from 0), compiled now unless one of its shape already is, and where its ids
+    /// start: each kind at the first id of it the code names, so that ids below
+    /// it (shared by many blocks) stay absolute. None for ids too large to mark.
+    fn share(&mut self, local: &[FInstr], decoded: &[Decoded]) -> Option<(u32, Ctx)> {
+        let (mut relative, mut quick) = std::mem::take(&mut self.scratch);
+        quick.clear();
+        quick.extend((0..local.len()).map(|pc| Quick::of(local, pc, decoded)));
+        let large = std::cell::Cell::new(false);
+        let first = |first: &mut u32, id: u32| {
+            if id != NONE {
+                large.set(large.get() || id >= ABSOLUTE);
+                if *first == NONE {
+                    *first = id;
+                }
+            }
+            id
+        };
+        let (mut var, mut expr, mut stmt) = (NONE, NONE, NONE);
+        for i in local {
+            i.op.map(|v| first(&mut var, v), |e| first(&mut expr, e), |p| p);
+            first(&mut stmt, i.stmt);
+        }
+        for id in quick.iter().flat_map(Quick::vars) {
+            first(&mut var, id);
+        }
+        if large.get() {
+            self.scratch = (relative, quick);
+            return None;
+        }
+        let zero = |id: u32| if id == NONE { 0 } else { id };
+        let ctx = Ctx {
+            var: zero(var),
+            expr: zero(expr),
+            stmt: zero(stmt),
+        };
+        relative.clear();
+        relative.extend(local.iter().map(|i| {
+            i.map(
+                |v| rel(v, ctx.var),
+                |e| rel(e, ctx.expr),
+                |s| rel(s, ctx.stmt),
+                |p| p,
+            )
+        }));
+        for q in &mut quick {
+            *q = q.map(|v| rel(v, ctx.var), |p| p);
+        }
+        let hash = {
+            let mut h = Fx::default();
+            relative.hash(&mut h);
+            h.finish()
+        };
+        let at = |e: u32| move |p: u32| abs(p, e);
+        let n = relative.len();
+        let found = self.shapes.get(&hash).and_then(|entries| {
+            entries.iter().copied().find(|&e| {
+                let (s, t) = (e as usize, e as usize + n);
+                self.code.get(s..t).is_some_and(|code| {
+                    code.iter()
+                        .zip(&relative)
+                        .all(|(c, r)| *c == r.map(|v| v, |x| x, |x| x, at(e)))
+                }) && self.quick.get(s..t).is_some_and(|qs| {
+                    qs.iter()
+                        .zip(&quick)
+                        .all(|(c, q)| *c == q.map(|v| v, at(e)))
+                })
+            })
+        });
+        let e = match found {
+            Some(e) => e,
+            None => {
+                let e = self.code.len() as u32;
+                self.code
+                    .extend(relative.iter().map(|r| r.map(|v| v, |x| x, |x| x, at(e))));
+                self.quick.extend(quick.iter().map(|q| q.map(|v| v, at(e))));
+                self.shapes.entry(hash).or_default().push(e);
+                e
+            }
+        };
+        self.scratch = (relative, quick);
+        Some((e, ctx))
+    }
+
+    /// The state a block's frame starts in, if it is frame-shaped.
     #[inline]
-    pub fn entry(&self, block: u32) -> Option<u32> {
-        self.entry
+    pub fn start(&self, block: u32) -> Option<FrameState> {
+        let pc = self
+            .entry
             .get(block as usize)
             .copied()
-            .filter(|&e| e != NONE)
+            .filter(|&e| e != NONE)?;
+        Some(FrameState {
+            pc,
+            nap: 0,
+            block,
+            base: self.ctx[block as usize].var,
+            asleep: false,
+            parked: false,
+        })
     }
 
-    /// Appends block `b`'s statements with `level` loops open around them; false
-    /// when the block is not frame-shaped. The caller appends the block's end.
-    fn block(&mut self, m: &Module, b: u32, level: usize, checks: &mut [u32; MAX_LOOPS]) -> bool {
-        let code = m.block_code(BlockId(b));
-        let stmt_in = |stmt: u32, op: FOp| FInstr {
-            op,
-            stmt,
-            live: (2 * level) as u8,
-            issuing: true,
-            checks: *checks,
-            loops: level as u8,
-        };
-        for (i, instr) in code.iter().enumerate() {
-            let stmt = instr.stmt.0;
-            let op = match instr.op {
-                Op::Assign { var, expr } => FOp::Assign {
-                    var: var.0,
-                    expr: expr.0,
-                },
-                Op::Copy { to, from } => FOp::Copy {
-                    to: to.0,
-                    from: from.0,
-                },
-                Op::WaitTime { seconds, bind } => FOp::Wait {
-                    seconds: seconds.0,
-                    bind: bind.map_or(NONE, |v| v.0),
-                    ticks: match m.expr_ops(seconds) {
-                        [ExprOp::Const(k)] => m
-                            .consts
-                            .get(k.index())
-                            .map_or(0, |&secs| ticks_of(secs, self.period)),
-                        _ => 0,
-                    },
-                },
-                Op::While { cond, body, bind } if i + 1 == code.len() && level < MAX_LOOPS => {
-                    let bind = bind.map_or(NONE, |v| v.0);
-                    self.code.push(stmt_in(
-                        stmt,
-                        FOp::While {
-                            bind,
-                            level: level as u8,
-                        },
-                    ));
-                    let check = self.code.len();
-                    checks[level] = check as u32;
-                    self.code.push(FInstr {
-                        op: FOp::Check {
-                            cond: cond.0,
-                            bind,
-                            level: level as u8,
-                            exit: NONE,
-                        },
-                        stmt,
-                        live: (2 * level + 1) as u8,
-                        issuing: false,
-                        checks: *checks,
-                        loops: level as u8 + 1,
-                    });
-                    if !self.block(m, body.0, level + 1, checks) {
-                        return false;
-                    }
-                    self.code.push(end(
-                        FOp::EndBody {
-                            check: check as u32,
-                        },
-                        level + 1,
-                        checks,
-                    ));
-                    checks[level] = NONE;
-                    // The loop's exit is its block's end, which the caller appends next.
-                    let exit = self.code.len() as u32;
-                    if let FOp::Check { exit: e, .. } = &mut self.code[check].op {
-                        *e = exit;
-                    }
-                    return true;
-                }
-                _ => return false,
-            };
-            self.code.push(stmt_in(stmt, op));
-        }
-        true
+    /// The instruction at `pc` of `block`'s frame, its ids absolute.
+    pub fn instr(&self, pc: u32, block: u32) -> Option<FInstr> {
+        let i = *self.code.get(pc as usize)?;
+        let c = self.ctx.get(block as usize).copied().unwrap_or_default();
+        Some(i.map(
+            |v| abs(v, c.var),
+            |e| abs(e, c.expr),
+            |s| abs(s, c.stmt),
+            |p| p,
+        ))
     }
+}
+
+/// Appends block `b`'s statements with `level` loops open around them to `code`
+/// (ids absolute, pcs from the start of `code`); false when the block is not
+/// frame-shaped. The caller appends the block's end.
+fn block(
+    m: &Module,
+    b: u32,
+    level: usize,
+    checks: &mut [u32; MAX_LOOPS],
+    out: &mut Vec<FInstr>,
+    period: f64,
+) -> bool {
+    let code = m.block_code(BlockId(b));
+    let stmt_in = |stmt: u32, op: FOp, checks: &[u32; MAX_LOOPS]| FInstr {
+        op,
+        stmt,
+        live: (2 * level) as u8,
+        issuing: true,
+        checks: *checks,
+        loops: level as u8,
+    };
+    for (i, instr) in code.iter().enumerate() {
+        let stmt = instr.stmt.0;
+        let op = match instr.op {
+            Op::Assign { var, expr } => FOp::Assign {
+                var: var.0,
+                expr: expr.0,
+            },
+            Op::Copy { to, from } => FOp::Copy {
+                to: to.0,
+                from: from.0,
+            },
+            Op::WaitTime { seconds, bind } => FOp::Wait {
+                seconds: seconds.0,
+                bind: bind.map_or(NONE, |v| v.0),
+                ticks: match m.expr_ops(seconds) {
+                    [ExprOp::Const(k)] => m
+                        .consts
+                        .get(k.index())
+                        .map_or(0, |&secs| ticks_of(secs, period)),
+                    _ => 0,
+                },
+            },
+            Op::While { cond, body, bind } if i + 1 == code.len() && level < MAX_LOOPS => {
+                let bind = bind.map_or(NONE, |v| v.0);
+                out.push(stmt_in(
+                    stmt,
+                    FOp::While {
+                        bind,
+                        level: level as u8,
+                    },
+                    checks,
+                ));
+                let check = out.len();
+                checks[level] = check as u32;
+                out.push(FInstr {
+                    op: FOp::Check {
+                        cond: cond.0,
+                        bind,
+                        level: level as u8,
+                        exit: NONE,
+                    },
+                    stmt,
+                    live: (2 * level + 1) as u8,
+                    issuing: false,
+                    checks: *checks,
+                    loops: level as u8 + 1,
+                });
+                if !block(m, body.0, level + 1, checks, out, period) {
+                    return false;
+                }
+                out.push(end(
+                    FOp::EndBody {
+                        check: check as u32,
+                    },
+                    level + 1,
+                    checks,
+                ));
+                checks[level] = NONE;
+                // The loop's exit is its block's end, which the caller appends next.
+                let exit = out.len() as u32;
+                if let FOp::Check { exit: e, .. } = &mut out[check].op {
+                    *e = exit;
+                }
+                return true;
+            }
+            _ => return false,
+        };
+        out.push(stmt_in(stmt, op, checks));
+    }
+    true
 }
 
 /// The ticks a `wait(secs)` sleeps: at least one. `wait(1e26)` checks (a
@@ -383,23 +710,13 @@ pub(crate) struct FrameState {
     pub pc: u32,
     /// How many times the frame has slept: names the current sleep to its timer.
     pub nap: u32,
-    /// The iteration of each open loop, for its `start` events.
-    pub iters: [u32; MAX_LOOPS],
+    /// Its block, whose [`Ctx`] turns the shared code's ids into the module's.
+    pub block: u32,
+    /// Where the block's variables start ([`Ctx::var`]), for the quick forms.
+    pub base: u32,
     pub asleep: bool,
     /// A loop's body that ended, kept under its `while` for the next iteration.
     pub parked: bool,
-}
-
-impl FrameState {
-    pub fn at(pc: u32) -> FrameState {
-        FrameState {
-            pc,
-            nap: 0,
-            iters: [0; MAX_LOOPS],
-            asleep: false,
-            parked: false,
-        }
-    }
 }
 
 impl<H: Hal, C: Clock> Vm<H, C> {
@@ -408,11 +725,9 @@ impl<H: Hal, C: Clock> Vm<H, C> {
         if !self.cfg.frames {
             return None;
         }
-        let entry = self.frames.entry(block)?;
-        let r = self
-            .nodes
-            .alloc(parent, NONE, NONE, Kind::Frame(FrameState::at(entry)));
-        self.frame_account(None, Some(entry));
+        let f = self.frames.start(block)?;
+        let r = self.nodes.alloc(parent, NONE, NONE, Kind::Frame(f));
+        self.frame_account(None, Some(f.pc));
         self.enqueue(r.idx);
         Some(r)
     }
@@ -449,7 +764,7 @@ impl<H: Hal, C: Clock> Vm<H, C> {
         };
         let from = f.pc;
         loop {
-            let Some(&ins) = self.frames.code.get(f.pc as usize) else {
+            let Some(ins) = self.frames.instr(f.pc, f.block) else {
                 // Unreachable for compiled code (every run ends in `End`); end the
                 // frame rather than spin.
                 self.frame_store(idx, f, from);
@@ -501,7 +816,9 @@ impl<H: Hal, C: Clock> Vm<H, C> {
                     f.pc += 1;
                     self.issue_event(stmt);
                     self.bind_issue(bind, stmt);
-                    if let Some(i) = f.iters.get_mut(usize::from(level)) {
+                    if self.tracing()
+                        && let Some(i) = self.frame_iters(idx).get_mut(usize::from(level))
+                    {
                         *i = 0;
                     }
                 }
@@ -514,12 +831,12 @@ impl<H: Hal, C: Clock> Vm<H, C> {
                     self.ops_left = self.ops_left.saturating_sub(1);
                     match self.eval(ExprId(cond)) {
                         Ok(v) if v != 0.0 => {
-                            let mut iteration = 0;
-                            if let Some(i) = f.iters.get_mut(usize::from(level)) {
-                                *i = i.wrapping_add(1);
-                                iteration = *i;
-                            }
                             if self.tracing() {
+                                let mut iteration = 0;
+                                if let Some(i) = self.frame_iters(idx).get_mut(usize::from(level)) {
+                                    *i = i.wrapping_add(1);
+                                    iteration = *i;
+                                }
                                 let start = EventKind::Start {
                                     iteration: Some(iteration),
                                 };
@@ -604,13 +921,14 @@ impl<H: Hal, C: Clock> Vm<H, C> {
                     }
                     // The statement's op and its expression's three.
                     *ops_left = (*ops_left - 1).saturating_sub(3);
-                    let a = vars.field(src, field);
+                    let a = vars.field(var_at(src, f.base), field);
                     let v = match op {
                         Arith::Add => a + k,
                         Arith::Sub => a - k,
                         Arith::Mul => a * k,
                     };
                     // What `assign` does after its evaluation, with the trace off.
+                    let var = var_at(var, f.base);
                     vars.assign(var, v);
                     if vars.queue_wake(var) {
                         ready.push_back(Ready::Wake(var).into());
@@ -623,6 +941,7 @@ impl<H: Hal, C: Clock> Vm<H, C> {
                         break Some(true);
                     }
                     *ops_left = (*ops_left - 1).saturating_sub(1);
+                    let var = var_at(var, f.base);
                     vars.assign(var, k);
                     if vars.queue_wake(var) {
                         ready.push_back(Ready::Wake(var).into());
@@ -653,7 +972,6 @@ impl<H: Hal, C: Clock> Vm<H, C> {
                     src,
                     field,
                     cmp,
-                    level,
                     next,
                     out,
                     exit,
@@ -661,10 +979,9 @@ impl<H: Hal, C: Clock> Vm<H, C> {
                 }) => {
                     // The check's op and its expression's three.
                     *ops_left = ops_left.saturating_sub(1 + 3);
-                    if cmp.holds(vars.field(src, field), k) {
-                        if let Some(i) = f.iters.get_mut(usize::from(level)) {
-                            *i = i.wrapping_add(1);
-                        }
+                    // The loop's iteration is counted only for `start` events: with
+                    // the trace on, which takes the general path.
+                    if cmp.holds(vars.field(var_at(src, f.base), field), k) {
                         f.pc += 1;
                         step(next);
                         queue = true;
@@ -695,6 +1012,17 @@ impl<H: Hal, C: Clock> Vm<H, C> {
             ready.push_back(Ready::Node(NodeRef { idx, epoch }).into());
         }
         result
+    }
+
+    /// The iterations of frame `idx`'s open loops, for their `start` events: kept
+    /// beside the arena, and only with the trace on, which alone reads them (a
+    /// frame's node holds what every step needs).
+    fn frame_iters(&mut self, idx: u32) -> &mut [u32; MAX_LOOPS] {
+        let i = idx as usize;
+        if self.frame_iters.len() <= i {
+            self.frame_iters.resize(i + 1, [0; MAX_LOOPS]);
+        }
+        &mut self.frame_iters[i]
     }
 
     /// Frame `idx` (its state `f`) goes to sleep for `ticks`: a wheel alarm names it
@@ -795,7 +1123,7 @@ impl<H: Hal, C: Clock> Vm<H, C> {
         let mut pc = f.pc;
         for l in (level..usize::from(at.loops)).rev() {
             let check = at.checks[l];
-            let Some(&c) = self.frames.code.get(check as usize) else {
+            let Some(c) = self.frames.instr(check, f.block) else {
                 continue;
             };
             if let FOp::Check { bind, exit, .. } = c.op {
@@ -863,14 +1191,14 @@ impl<H: Hal, C: Clock> Vm<H, C> {
             return;
         };
         for l in 0..usize::from(at.loops) {
-            if let Some(c) = self.frames.code.get(at.checks[l] as usize) {
+            if let Some(c) = self.frames.instr(at.checks[l], f.block) {
                 hit(FrameHit::Loop { frame: r, level: l }, c.stmt);
             }
         }
         if f.asleep
             && let Some(w) =
                 f.pc.checked_sub(1)
-                    .and_then(|pc| self.frames.code.get(pc as usize))
+                    .and_then(|pc| self.frames.instr(pc, f.block))
         {
             hit(
                 FrameHit::Sleep {
@@ -927,7 +1255,7 @@ mod tests {
     #[test]
     fn the_counting_loop_runs_on_quick_forms_but_its_while() {
         // `c=0` / `while(c<100)` / `c=c+1` / `wait(0.01)` / `endwhile`, as
-        // `Frames::block` lays it out; expressions 0 `0`, 1 `c<100`, 2 `c+1`, 3 `0.01`.
+        // `block` lays it out; expressions 0 `0`, 1 `c<100`, 2 `c+1`, 3 `0.01`.
         let c = Operand::Field(0, Field::Value);
         let decoded = [
             Decoded {
@@ -1002,7 +1330,6 @@ mod tests {
                 src: 0,
                 field: Field::Value,
                 cmp: Cmp::Lt,
-                level: 0,
                 // Into the body: its loop and body live, a block issuing again.
                 next: Moved {
                     live: 1,
@@ -1068,5 +1395,162 @@ mod tests {
             true,
         );
         assert_eq!(Quick::of(&[computed], 0, &decoded), Quick::Slow);
+    }
+
+    /// The counting block (`c=0` / `while(c<k)` / `c=c+1` / `wait(0.01)` /
+    /// `endwhile`) with its variable at `var`, its expressions from `expr` and its
+    /// statements from `stmt`, as [`block`] lays it out, and its decoded expressions.
+    fn counting(var: u32, expr: u32, stmt: u32, k: f64) -> (Vec<FInstr>, Vec<Decoded>) {
+        let c = Operand::Field(var, Field::Value);
+        let mut decoded = vec![
+            Decoded {
+                shape: Shape::One(Operand::Const(0.0)),
+                len: 1,
+            };
+            expr as usize
+        ];
+        decoded.extend([
+            Decoded {
+                shape: Shape::One(Operand::Const(0.0)),
+                len: 1,
+            },
+            Decoded {
+                shape: Shape::Two(c, Operand::Const(k), Bin::Cmp(Cmp::Lt)),
+                len: 3,
+            },
+            Decoded {
+                shape: Shape::Two(c, Operand::Const(1.0), Bin::Add),
+                len: 3,
+            },
+            Decoded {
+                shape: Shape::One(Operand::Const(0.01)),
+                len: 1,
+            },
+        ]);
+        let with = |op, live, issuing, s: u32| FInstr {
+            stmt: stmt + s,
+            ..at(op, live, issuing)
+        };
+        let code = vec![
+            with(FOp::Assign { var, expr }, 0, true, 0),
+            with(
+                FOp::While {
+                    bind: NONE,
+                    level: 0,
+                },
+                0,
+                true,
+                1,
+            ),
+            with(
+                FOp::Check {
+                    cond: expr + 1,
+                    bind: NONE,
+                    level: 0,
+                    exit: 6,
+                },
+                1,
+                false,
+                1,
+            ),
+            with(
+                FOp::Assign {
+                    var,
+                    expr: expr + 2,
+                },
+                2,
+                true,
+                2,
+            ),
+            with(
+                FOp::Wait {
+                    seconds: expr + 3,
+                    bind: NONE,
+                    ticks: 1,
+                },
+                2,
+                true,
+                3,
+            ),
+            FInstr {
+                stmt: NONE,
+                ..at(FOp::EndBody { check: 2 }, 2, true)
+            },
+            FInstr {
+                stmt: NONE,
+                ..at(FOp::End, 0, true)
+            },
+        ];
+        (code, decoded)
+    }
+
+    #[test]
+    fn blocks_of_one_shape_share_one_program() {
+        let mut frames = Frames::default();
+        let (first, decoded) = counting(3, 4, 10, 100.0);
+        assert_eq!(
+            frames.share(&first, &decoded),
+            Some((
+                0,
+                Ctx {
+                    var: 3,
+                    expr: 4,
+                    stmt: 10
+                }
+            ))
+        );
+        // Another block of the shape, its ids further on: the same program.
+        let (second, decoded) = counting(7, 8, 14, 100.0);
+        let (entry, ctx) = frames.share(&second, &decoded).expect("shares");
+        assert_eq!(entry, 0);
+        assert_eq!(frames.code.len(), first.len());
+        // Its instructions, the ids made absolute again, are its own.
+        frames.ctx.push(Ctx::default());
+        frames.ctx.push(ctx);
+        for (pc, own) in second.iter().enumerate() {
+            assert_eq!(frames.instr(pc as u32, 1), Some(*own));
+        }
+        // And its quick forms name its variable from the frame's base.
+        assert!(matches!(
+            frames.quick[3],
+            Quick::SetVK { var: 0, src: 0, .. }
+        ));
+        // A block that counts to another bound is another program, after the first.
+        let (third, decoded) = counting(11, 12, 18, 50.0);
+        let (entry, _) = frames.share(&third, &decoded).expect("shares");
+        assert_eq!(entry, first.len() as u32);
+        assert_eq!(
+            frames.quick[entry as usize + 5],
+            Quick::EndBody {
+                check: entry + 2,
+                back: Moved {
+                    live: -1,
+                    issuing: -1
+                },
+            }
+        );
+        // Blocks that wait on one expression, below their own: it stays absolute,
+        // and they share a program of their own.
+        let shared_wait = |var, expr, stmt| {
+            let (mut code, decoded) = counting(var, expr, stmt, 100.0);
+            if let FOp::Wait { seconds, .. } = &mut code[4].op {
+                *seconds = 1;
+            }
+            (code, decoded)
+        };
+        let (a, decoded) = shared_wait(20, 20, 30);
+        let (e1, _) = frames.share(&a, &decoded).expect("shares");
+        let (b, decoded) = shared_wait(24, 30, 40);
+        let (e2, c) = frames.share(&b, &decoded).expect("shares");
+        assert_eq!((e1, e1 as usize + a.len()), (e2, frames.code.len()));
+        frames.ctx[1] = c;
+        assert_eq!(frames.instr(e2 + 4, 1), Some(b[4]));
+        // The quick forms' branch-free read of a variable agrees.
+        for id in [0, 5, 7 | ABSOLUTE, ABSOLUTE - 1] {
+            assert_eq!(var_at(id, 40), abs(id, 40));
+        }
+        // An id too large to mark keeps the block on the tree.
+        let (huge, decoded) = counting(ABSOLUTE, 0, 0, 100.0);
+        assert_eq!(frames.share(&huge, &decoded), None);
     }
 }

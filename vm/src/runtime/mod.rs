@@ -96,6 +96,9 @@ pub struct Vm<H: Hal, C: Clock> {
     decoded: decode::Decoder,
     /// The flat code of the module's frame-shaped blocks.
     frames: frame::Frames,
+    /// Per node, the iterations of a frame's open loops, with the trace on only
+    /// (`Vm::frame_iters`).
+    frame_iters: Vec<[u32; frame::MAX_LOOPS]>,
     supervisor: safety::supervisor::Supervisor,
     /// The robot's static map, asked for once at the start.
     known_map: Option<KnownMap>,
@@ -188,6 +191,7 @@ impl<H: Hal, C: Clock> Vm<H, C> {
             stack: [0.0; EXPR_STACK],
             decoded: decode::Decoder::default(),
             frames: frame::Frames::default(),
+            frame_iters: Vec::new(),
             supervisor: Default::default(),
             known_map,
             map_from_estimate: ilmr_hal::Pose::default(),
@@ -339,7 +343,11 @@ impl<H: Hal, C: Clock> Vm<H, C> {
     pub fn footprint_parts(&self) -> [(&'static str, usize); 6] {
         use std::mem::size_of;
         [
-            ("nodes", self.nodes.footprint()),
+            (
+                "nodes",
+                self.nodes.footprint()
+                    + self.frame_iters.capacity() * size_of::<[u32; frame::MAX_LOOPS]>(),
+            ),
             ("variables", self.vars.footprint()),
             (
                 "ready queue",
