@@ -46,3 +46,95 @@ fn followwall_turns_the_corner_at_a_corridors_end() {
     // into the lobby (below y = 4), where the next corner turns it east.
     assert!(end.y < 4.0, "reached the lobby: {end:?}");
 }
+
+/// Runs `text` on MoRo in the office from beside the lab bench, (8, 5)
+/// heading east, the bench 2.1 m to the left, the lab's south wall 1 m to
+/// the right and its east wall 4.5 m ahead.
+fn from_the_bench(text: &str, seconds: f64) -> ilmr_experiments::harness::SimVm {
+    let mut w = shipped("office").expect("the office");
+    w.start = ilmr_sim::Pose {
+        x: 8.0,
+        y: 5.0,
+        h: 0.0,
+    };
+    // As `ilmrc run` has it: the calibrated errors, seed 0.
+    let robot = harness::moro_with(w, 0, ilmr_sim::SimProfile::Calibrated).expect("MoRo starts");
+    let module = harness::compile("bench.ilmr", text, robot.model()).expect("compiles");
+    let mut vm = harness::vm(module, robot).expect("the VM starts");
+    harness::run(&mut vm, seconds);
+    vm
+}
+
+fn reason(vm: &ilmr_experiments::harness::SimVm, text: &str) -> Option<String> {
+    vm.events().iter().find_map(|e| {
+        let s = e.stmt.and_then(|s| vm.module().stmt(s))?;
+        match &e.kind {
+            ilmr_vm::EventKind::End { reason, .. } if s.text == text => reason.clone(),
+            _ => None,
+        }
+    })
+}
+
+fn held(vm: &ilmr_experiments::harness::SimVm) -> usize {
+    vm.events()
+        .iter()
+        .filter(|e| matches!(e.kind, ilmr_vm::EventKind::Fault { .. }))
+        .count()
+}
+
+/// The bench ends 1.5 m on and the lab's east wall stands ahead: the leg stops
+/// short of it, where neither wall following nor a right turn round the
+/// corner (the lab's south wall 2 m off) can go on. Standing there until
+/// the run's time is up said nothing; the command is refused, with why.
+#[test]
+fn followwall_at_the_end_of_its_wall_with_no_room_to_turn_is_refused_with_why() {
+    let vm = from_the_bench("followwall(left)\n", 60.0);
+    let why = reason(&vm, "followwall(left)");
+    println!(
+        "followwall(left) from (8, 5): {:?} at {:.2} s, {why:?}",
+        harness::ended(&vm, "followwall(left)"),
+        vm.time()
+    );
+    assert_eq!(
+        harness::ended(&vm, "followwall(left)").as_deref(),
+        Some("refused")
+    );
+    let why = why.expect("a reason");
+    assert!(
+        why.contains("wall ahead") && why.contains("no room to turn right"),
+        "{why}"
+    );
+    assert!(
+        vm.time() < 30.0,
+        "refused once it stands: {:.2} s",
+        vm.time()
+    );
+    assert_eq!(vm.hal().sim().contact_count(), 0);
+}
+
+/// A metre on from (8, 5) the quarter circle left ends facing north just
+/// past the bench's end: the turn completes there, and the supervisor does
+/// not hold the robot for the bench it has turned past.
+#[test]
+fn turn_left_past_the_end_of_the_bench_completes_unheld() {
+    let vm = from_the_bench("goahead(1)\nturn(left)\n", 40.0);
+    let end = vm.hal().sim().true_pose();
+    println!(
+        "goahead(1), turn(left) from (8, 5): {:?}, end ({:.2}, {:.2}, {:.1} deg), faults {}",
+        harness::ended(&vm, "turn(left)"),
+        end.x,
+        end.y,
+        end.h.to_degrees(),
+        held(&vm)
+    );
+    assert_eq!(
+        harness::ended(&vm, "turn(left)").as_deref(),
+        Some("completed")
+    );
+    assert_eq!(held(&vm), 0, "never held");
+    assert!(
+        (end.h.to_degrees() - 90.0).abs() < 5.0,
+        "facing north: {end:?}"
+    );
+    assert_eq!(vm.hal().sim().contact_count(), 0);
+}

@@ -31,8 +31,10 @@ pub fn section(t: &Test7) -> String {
 world, whose corridors are 2 m wide as the laboratory's in Figure 59. Each `turn(left)`
 is a quarter circle at 1 m radius (three quarters of full lock, which leaves the
 controller steering in reserve), begun where MoRo's outline (1.2 x 0.6 m about its
-rear axle, grown by a 0.2 m margin) and the avoider's 0.72 m band have room along it
-and on after it (section 4.5.3): out of the door it turns at once, into the west
+rear axle, kept 0.2 m from anything, the margin round its corners as round as a
+margin is) and the avoider's 0.72 m band (section 4.5.7, its own margin in it) have
+room along it and on after it (section 4.5.3): out of the door it turns once the rear
+axle is in the corridor, within 0.1 m of the door's line, into the west
 corridor it follows the wall until the corner is passed, its leg stopping short of
 the corridor's end wall rather than driving into the avoider's area.
 Then `followpath(path_1)` is driven again from the start on a fresh robot (seed {}).

@@ -53,6 +53,19 @@ pub struct Outline {
     pub half_width: f64,
 }
 
+impl Outline {
+    /// How far the point `(x, y)` of the robot's frame (x ahead, y to the
+    /// left) lies from the outline, m; 0 on or inside it. The points within a
+    /// margin of the outline are the outline grown by the margin with
+    /// rounded corners: growing it square would ask for the margin's
+    /// diagonal, 1.4 times as much, past each corner.
+    pub fn clearance(&self, x: f64, y: f64) -> f64 {
+        let dx = (x - self.front).max(-self.rear - x).max(0.0);
+        let dy = (y.abs() - self.half_width).max(0.0);
+        dx.hypot(dy)
+    }
+}
+
 /// What a quarter turn needs room for.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct TurnRoom {
@@ -116,8 +129,12 @@ pub fn turn_space_free(pose: &Pose, side: Side, room: &TurnRoom, points: &[Point
         curvature: side.sign() * curvature,
         length: FRAC_PI_2 * radius,
     };
-    let way_half = lead_half_width.max(outline.half_width) + margin;
-    let way_ahead = lead_out.max(outline.front) + margin;
+    // The way on and the band are the avoider's area (equations (11) and
+    // (12)), which has its own margin in it: a point outside it is no
+    // obstacle to the avoider. Only the outline, where it reaches beyond
+    // that area, keeps the margin.
+    let way_half = lead_half_width.max(outline.half_width + margin);
+    let way_ahead = lead_out.max(outline.front + margin);
     let swept = |l: Point2<f64>| {
         let from_centre = l.coords - centre;
         let r = from_centre.norm();
@@ -131,7 +148,7 @@ pub fn turn_space_free(pose: &Pose, side: Side, room: &TurnRoom, points: &[Point
                 c * from_centre.x + s * from_centre.y,
                 -s * from_centre.x + c * from_centre.y,
             ) + centre;
-            (-behind..=ahead).contains(&q.x) && q.y.abs() <= half
+            outline.clearance(q.x, q.y) <= margin
         })
     };
     points.iter().all(|p| {
@@ -211,6 +228,59 @@ mod tests {
         // Half a metre short of the door, the door's posts are in the way.
         let short = Pose::new(5.0, 11.0, FRAC_PI_2);
         assert!(!turn_space_free(&short, Side::Left, &moro, &pts));
+    }
+
+    #[test]
+    fn the_margin_round_a_corner_of_the_outline_is_round() {
+        // Beside, ahead and behind the outline the clearance is the distance
+        // to its side; past a corner, to the corner.
+        assert_eq!(MORO.clearance(0.0, 0.0), 0.0);
+        assert!((MORO.clearance(0.0, -0.5) - 0.2).abs() < 1e-12);
+        assert!((MORO.clearance(1.15, 0.1) - 0.2).abs() < 1e-12);
+        assert!((MORO.clearance(-0.45, 0.0) - 0.2).abs() < 1e-12);
+        let diagonal = MORO.clearance(0.95 + 0.15, 0.3 + 0.15);
+        assert!((diagonal - 0.15 * 2f64.sqrt()).abs() < 1e-12);
+        // 0.21 m from the corner: outside a 0.2 m margin, though inside the
+        // square the margin would grow the outline to.
+        assert!(MORO.clearance(0.95 + 0.15, -0.3 - 0.14) > 0.2);
+    }
+
+    #[test]
+    fn figure_58_turns_out_of_the_door_when_the_robot_is_off_its_middle() {
+        // Seed 1002 of the calibrated MoRo (issue 15 item 4): through the
+        // door 5 cm right of its middle, heading 2 degrees right of north,
+        // with the far wall seen 5 cm near (the scan taken while moving).
+        // The avoider's area after the turn is 0.36 m each side of the way
+        // on, which runs 1 m from the far wall: a turn with the outline's
+        // 0.2 m margin fits while the rear axle is within 0.1 m of the
+        // door's line.
+        let pts = [
+            wall((0.5, 11.5), (4.4, 11.5)),
+            wall((5.6, 11.5), (12.0, 11.5)),
+            wall((0.5, 13.45), (12.0, 13.45)),
+            wall((0.5, 11.5), (0.5, 13.45)),
+        ]
+        .concat();
+        let moro = room(1.0, 0.2, 2.55);
+        let off = |y: f64| Pose::new(5.05, y, 88f64.to_radians());
+        assert!(turn_space_free(&off(11.5), Side::Left, &moro, &pts));
+        assert!(turn_space_free(&off(11.6), Side::Left, &moro, &pts));
+        // Further on the far wall is in the front's sweep; short of it, the
+        // door's posts are in the avoider's band.
+        assert!(!turn_space_free(&off(11.7), Side::Left, &moro, &pts));
+        assert!(!turn_space_free(&off(11.0), Side::Left, &moro, &pts));
+        // Grown square, the outline's corners would close the way: the
+        // margin's diagonal past the front's outer corner reaches the far wall.
+        let square = TurnRoom {
+            outline: Outline {
+                front: MORO.front + 0.2,
+                rear: MORO.rear + 0.2,
+                half_width: MORO.half_width + 0.2,
+            },
+            margin: 0.0,
+            ..moro
+        };
+        assert!(!turn_space_free(&off(11.6), Side::Left, &square, &pts));
     }
 
     #[test]
@@ -321,8 +391,7 @@ mod tests {
                 let a = side.sign() * FRAC_PI_2 * f64::from(i) / 1000.0;
                 let at = pose.advance(a * r * side.sign(), side.sign() * c);
                 let l = at.to_local(p);
-                (-MORO.rear - margin..=MORO.front + margin).contains(&l.x)
-                    && l.y.abs() <= MORO.half_width + margin
+                MORO.clearance(l.x, l.y) <= margin
             })
         };
         let mut state = 5u64;

@@ -3,9 +3,10 @@
 //! target moves, and an endless `goahead` extended before it runs out.
 
 use ilmr_hal::Hal;
+use ilmr_motion::controller::has_arrived;
 use ilmr_motion::path::straight;
-use ilmr_motion::wall::{FOLLOWWALL_REPLAN, turn_space_free};
-use ilmr_motion::{Path, Pose};
+use ilmr_motion::wall::FOLLOWWALL_REPLAN;
+use ilmr_motion::{Path, Pose, Side};
 
 use super::plan::{ENDLESS_LEG, SPACING};
 use super::{Mode, WallSide};
@@ -18,6 +19,15 @@ const TARGET_MOVED: f64 = 0.3;
 const TARGET_REPLAN_S: f64 = 1.0;
 /// An endless `goahead` is extended when less than this remains, m.
 const ENDLESS_MARGIN: f64 = 10.0;
+/// A behaviour's leg has brought the robot to rest below this speed, m/s.
+const STOOD_SPEED: f64 = 0.01;
+
+fn side_name(s: Side) -> &'static str {
+    match s {
+        Side::Left => "left",
+        Side::Right => "right",
+    }
+}
 
 impl<H: Hal, C: Clock> Vm<H, C> {
     /// Re-plans the running behaviour's reference if it is due.
@@ -30,6 +40,18 @@ impl<H: Hal, C: Clock> Vm<H, C> {
         // ahead: where the corner turn can begin.
         let near_wall =
             run.walled && run.path.remaining(run.k) <= 2.0 / self.cfg.turn_curvature.max(1e-9);
+        // Standing at the end of a leg cut short of a wall ahead: no re-plan
+        // moves the robot from there, so a turn that still has no room will
+        // never have it, and the command is refused rather than left standing.
+        let stuck = run.walled
+            && self.motion.v <= STOOD_SPEED
+            && has_arrived(
+                &run.path,
+                run.k,
+                &pose,
+                run.advance,
+                self.cfg.goal_tolerance,
+            );
         let next: Option<(Path, Mode, bool)> = match run.mode {
             Mode::Path => None,
             Mode::Endless => {
@@ -57,11 +79,22 @@ impl<H: Hal, C: Clock> Vm<H, C> {
                 // soon as the turn has room; until then the leg goes on, and
                 // at its end the robot stands short of the wall.
                 let away = wall.opposite();
-                let room = self.turn_room();
-                turn_space_free(&pose, away, &room, self.motion.map.points())
-                    .then(|| self.quarter_turn(pose, away).map(|p| (p, run.mode, false)))
-                    .transpose()?
+                if self.turn_has_room(&pose, away) {
+                    Some((self.quarter_turn(pose, away)?, run.mode, false))
+                } else if stuck {
+                    return Err(format!(
+                        "a wall ahead ends the wall on the {}, and there is no room to turn {} round the corner",
+                        side_name(wall),
+                        side_name(away)
+                    ));
+                } else {
+                    None
+                }
             }
+            Mode::Wall {
+                side: WallSide::Middle,
+                ..
+            } if stuck => return Err("a wall ahead ends the corridor".to_string()),
             // A corner turn is followed by a fresh leg as it ends.
             Mode::Wall { side, distance } => (s >= FOLLOWWALL_REPLAN
                 || (!run.walled && run.path.remaining(run.k) < self.cfg.link_distance))
@@ -71,8 +104,13 @@ impl<H: Hal, C: Clock> Vm<H, C> {
                 })
                 .transpose()?,
             Mode::TurnSide { side, distance } => {
-                if turn_space_free(&pose, side, &self.turn_room(), self.motion.map.points()) {
+                if self.turn_has_room(&pose, side) {
                     Some((self.quarter_turn(pose, side)?, Mode::Path, false))
+                } else if stuck {
+                    return Err(format!(
+                        "no room to turn {} before the wall ahead",
+                        side_name(side)
+                    ));
                 } else if s >= FOLLOWWALL_REPLAN {
                     let leg = self.wall_leg(pose, WallSide::Side(side), distance)?;
                     Some((leg.path, run.mode, leg.walled))

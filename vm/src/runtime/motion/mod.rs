@@ -211,6 +211,15 @@ impl Motion {
         self.run.as_ref().map(|r| (&r.path, r.k))
     }
 
+    /// The running movement's path where the command ends at its end (not a
+    /// behaviour, which plans on), and the reference index.
+    pub fn ending_path(&self) -> Option<(&Path, usize)> {
+        self.run
+            .as_ref()
+            .filter(|r| r.ends())
+            .map(|r| (&r.path, r.k))
+    }
+
     /// The direction the running movement's reference goes at its index.
     pub fn running_direction(&self) -> Option<ilmr_motion::Direction> {
         self.running_path()

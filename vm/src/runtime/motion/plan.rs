@@ -195,7 +195,7 @@ impl<H: Hal, C: Clock> Vm<H, C> {
             }
             MoveSpec::TurnSide { left } => {
                 let s = if left { Side::Left } else { Side::Right };
-                if turn_space_free(&start, s, &self.turn_room(), self.motion.map.points()) {
+                if self.turn_has_room(&start, s) {
                     Planned::path(self.quarter_turn(start, s)?)
                 } else {
                     let kept = self.wall_distance(&start, s);
@@ -312,6 +312,11 @@ impl<H: Hal, C: Clock> Vm<H, C> {
             lead_out: front + check_length(self.cfg.obstacle_curvature, self.motion.speed),
             lead_half_width: 0.5 * check_width(self.cfg.robot_width),
         }
+    }
+
+    /// Whether a quarter turn to `s` from `pose` has room.
+    pub(crate) fn turn_has_room(&self, pose: &Pose, s: Side) -> bool {
+        turn_space_free(pose, s, &self.turn_room(), self.motion.map.points())
     }
 
     /// `turn(left|right)` once there is room: a quarter circle at the

@@ -246,7 +246,11 @@ impl<H: Hal, C: Clock> Vm<H, C> {
             .running_direction()
             .unwrap_or(Direction::of(self.motion.last_sign()));
         let blind = direction == Direction::Backward;
-        if !moving {
+        // With no movement running the robot is only coming to rest after
+        // one ended: a hold would stop it no sooner, and what its last
+        // curvature, kept while it slows, points at is no way it will go.
+        let stopping = self.motion.running_path().is_none();
+        if !moving || stopping {
             self.set_fault(Fault::ObstacleNear, false, String::new);
             return;
         }
@@ -258,11 +262,21 @@ impl<H: Hal, C: Clock> Vm<H, C> {
         } else {
             braking_distance(v, decel) + margin
         };
-        let swept = self.swept_contact(
-            direction,
-            needed.max(braking_distance(v, decel) + margin),
-            scratch,
-        );
+        // A movement that ends at its path's end drives no further than the
+        // rest of it and its braking: what the commanded arc would meet beyond
+        // that is not in its way. At the end of a quarter turn the robot still
+        // steers at full curvature, and the arc swept on would cut into what it
+        // turned past (the end of the office's lab bench after `goahead(1)`,
+        // `turn(left)` from (8, 5)).
+        let here = Point2::new(self.snap.pose.x, self.snap.pose.y);
+        let needed = match self.motion.ending_path() {
+            Some((path, k)) => {
+                needed.min(path.remaining_from(k, &here) + braking_distance(v, decel))
+            }
+            None => needed,
+        };
+        let distance = needed.max(braking_distance(v, decel) + margin);
+        let swept = self.swept_contact(direction, distance, scratch);
         if self.motion.avoid_mode() != AvoidMode::Off && !blind {
             // The avoider steers round what it sees; the sweep catches it failing.
             self.set_fault(Fault::ObstacleNear, swept < needed, || {
