@@ -27,7 +27,7 @@ use rustc_hash::FxHashMap;
 
 use crate::ast::{Arg, Block, Call, ExprKind, FileKind, Name, SourceFile, Stmt, StmtKind};
 use crate::diagnostic::{Code, Diagnostic, FileId};
-use crate::kept::Kept;
+use crate::kept::{Kept, Past};
 use crate::parser;
 use crate::span::Span;
 
@@ -107,6 +107,33 @@ pub struct FileEntry<'s> {
     pub syntax_errors: usize,
     /// `Parsed::binds`: at least as many as the file's variables.
     pub binds: usize,
+}
+
+impl<'s> FileEntry<'s> {
+    /// The file parsed, with the parser's diagnostics and the count of those past the
+    /// limit.
+    fn parse(
+        path: &'s str,
+        text: &'s str,
+        file: FileId,
+        builtin: bool,
+        library: bool,
+    ) -> (FileEntry<'s>, Vec<Diagnostic>, Past) {
+        let parsed = parser::parse(text, file);
+        let syntax_errors =
+            parsed.diagnostics.iter().filter(|d| d.is_error()).count() + parsed.past.errors;
+        let entry = FileEntry {
+            path,
+            text,
+            tree: parsed.file,
+            builtin,
+            library,
+            break_patterns: parsed.break_patterns,
+            syntax_errors,
+            binds: parsed.binds,
+        };
+        (entry, parsed.diagnostics, parsed.past)
+    }
 }
 
 /// How much of what the checker resolves an analysis keeps. The diagnostics are the
@@ -226,23 +253,12 @@ pub fn analyze_given<'s>(
         .iter()
         .map(|s| (s.path.as_str(), s.text.as_str(), false, s.library));
     for (i, (path, text, builtin, library)) in user.chain(builtins).enumerate() {
-        let parsed = parser::parse(text, FileId(i as u32));
-        let syntax_errors =
-            parsed.diagnostics.iter().filter(|d| d.is_error()).count() + parsed.past.errors;
+        let (entry, found, past) = FileEntry::parse(path, text, FileId(i as u32), builtin, library);
         if !builtin {
-            diagnostics.extend(parsed.diagnostics);
-            diagnostics.add_past(parsed.past);
+            diagnostics.extend(found);
+            diagnostics.add_past(past);
         }
-        files.push(FileEntry {
-            path,
-            text,
-            tree: parsed.file,
-            builtin,
-            library,
-            break_patterns: parsed.break_patterns,
-            syntax_errors,
-            binds: parsed.binds,
-        });
+        files.push(entry);
     }
 
     let mut skills = skills::Skills::collect(&files, model, &mut diagnostics);
@@ -564,21 +580,10 @@ pub fn check_line<'s, 'n>(
 ) -> Analysis<'s> {
     let mut diagnostics = Kept::new();
     let mut files: Vec<FileEntry<'s>> = Vec::with_capacity(library.len() + 8);
-    let parsed = parser::parse(line, FileId(0));
-    let syntax_errors =
-        parsed.diagnostics.iter().filter(|d| d.is_error()).count() + parsed.past.errors;
-    diagnostics.extend(parsed.diagnostics);
-    diagnostics.add_past(parsed.past);
-    files.push(FileEntry {
-        path: LINE_FILE,
-        text: line,
-        tree: parsed.file,
-        builtin: false,
-        library: false,
-        break_patterns: parsed.break_patterns,
-        binds: parsed.binds,
-        syntax_errors,
-    });
+    let (entry, found, past) = FileEntry::parse(LINE_FILE, line, FileId(0), false, false);
+    diagnostics.extend(found);
+    diagnostics.add_past(past);
+    files.push(entry);
     let builtins = ilmr_stdlib::skills::BUILTIN_SKILL_FILES
         .iter()
         .map(|b| (b.path, b.source, true));
@@ -588,17 +593,8 @@ pub fn check_line<'s, 'n>(
     for (path, text, builtin) in given.chain(builtins) {
         // The library was checked when the program was; what it says of itself was
         // said then.
-        let parsed = parser::parse(text, FileId(files.len() as u32));
-        files.push(FileEntry {
-            path,
-            text,
-            tree: parsed.file,
-            builtin,
-            library: true,
-            break_patterns: parsed.break_patterns,
-            binds: parsed.binds,
-            syntax_errors: 0,
-        });
+        let file = FileId(files.len() as u32);
+        files.push(FileEntry::parse(path, text, file, builtin, true).0);
     }
     let mut skills = skills::Skills::collect(&files, model, &mut Kept::new());
     let constants = constants::Constants::new(model);
