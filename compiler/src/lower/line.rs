@@ -216,17 +216,7 @@ fn with_library(
         return Err(errors(said));
     }
 
-    let checked_units: HashMap<Reach, &crate::check::Unit> = analysis
-        .units
-        .iter()
-        .filter_map(|u| {
-            let reach = match u.special {
-                Some(i) => Reach::Special(i),
-                None => Reach::Skill(u.skill?),
-            };
-            Some((reach, u))
-        })
-        .collect();
+    let checked_units = super::checked_units(&analysis);
     let typed = live.files.iter().filter(|f| f.starts_with(TYPED)).count();
     let path = format!("{TYPED}{}>", typed + 1);
     let base_code = live.code.len();

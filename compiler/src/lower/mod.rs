@@ -72,19 +72,7 @@ pub fn lower(
         .map_err(|e| fail(e.to_string()))?;
     low.b.set_main(main);
 
-    // Each skill's checked unit (and each specialization's), found once rather than
-    // by a search per skill.
-    let checked_units: HashMap<Reach, &crate::check::Unit> = analysis
-        .units
-        .iter()
-        .filter_map(|u| {
-            let reach = match u.special {
-                Some(i) => Reach::Special(i),
-                None => Reach::Skill(u.skill?),
-            };
-            Some((reach, u))
-        })
-        .collect();
+    let checked_units = checked_units(analysis);
     let reached = reachable(analysis, task, &checked_units);
     let mut units: HashMap<Reach, UnitId> = HashMap::new();
     for &r in &reached {
@@ -266,4 +254,22 @@ pub(crate) fn build_error(file: FileId, span: Span, e: BuildError) -> Box<Diagno
         ),
         other => internal(file, span, other.to_string()),
     }
+}
+
+/// Each skill's checked unit (and each specialization's), found once rather than by a
+/// search per skill.
+pub(crate) fn checked_units<'a>(
+    analysis: &'a Analysis<'_>,
+) -> HashMap<Reach, &'a crate::check::Unit> {
+    analysis
+        .units
+        .iter()
+        .filter_map(|u| {
+            let reach = match u.special {
+                Some(i) => Reach::Special(i),
+                None => Reach::Skill(u.skill?),
+            };
+            Some((reach, u))
+        })
+        .collect()
 }
