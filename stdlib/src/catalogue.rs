@@ -602,7 +602,8 @@ pub static CATALOGUE: [CommandSpec; Command::COUNT] = [
         "Turns the robot to the left or right, by an exact arc or when there is room.",
         "`turn(d=..,c=..)` follows an arc of the given angle and curvature. `turn(left)` first \
          checks the room to turn with the scanner; if there is none it keeps its distance to \
-         that side with followwall until there is. `turn(door)` turns to a found position.",
+         that side with followwall until there is; if a wall ahead comes first and still leaves no \
+         room, the turn is refused with that reason. `turn(door)` turns to a found position.",
         &["turn(d=90,c=0.2)", "turn(left)", "turn(todoor)"],
         "4.5.3",
     ),
@@ -676,7 +677,9 @@ pub static CATALOGUE: [CommandSpec; Command::COUNT] = [
             "Moves along a nearby wall, or in the middle of a corridor.",
             "The wall's line is fitted from the environment map; the robot's position is projected \
          onto it, a goal three metres ahead at the wanted distance is driven to as by gotoxy, \
-         and this repeats every two metres until the command is broken.",
+         and this repeats every two metres until the command is broken. A wall ahead that ends \
+         the followed wall is turned round where there is room; where there is none, the command \
+         is refused with that reason rather than left standing.",
             &["followwall(middle)", "followwall(left,2.5)"],
             "4.5.3",
         ),
