@@ -165,6 +165,20 @@ pub struct Unit {
     pub targets: FxHashMap<Span, Target>,
 }
 
+impl Unit {
+    fn new(file: FileId, skill: Option<SkillId>, special: Option<u32>, vars: Vars) -> Unit {
+        Unit {
+            file,
+            skill,
+            special,
+            specials: FxHashMap::default(),
+            vars,
+            refs: Vec::new(),
+            targets: FxHashMap::default(),
+        }
+    }
+}
+
 #[derive(Debug)]
 pub struct Analysis<'s> {
     pub files: Vec<FileEntry<'s>>,
@@ -270,16 +284,9 @@ pub fn analyze_given<'s>(
         if entry.tree.kind != FileKind::Task || entry.library {
             continue;
         }
-        let mut unit = Unit {
-            file: FileId(i as u32),
-            skill: None,
-            special: None,
-            specials: FxHashMap::default(),
-            // Sized once: a large task's table would be copied as it doubles.
-            vars: Vars::with_capacity(entry.binds).with_detail(detail),
-            refs: Vec::new(),
-            targets: FxHashMap::default(),
-        };
+        // Sized once: a large task's table would be copied as it doubles.
+        let vars = Vars::with_capacity(entry.binds).with_detail(detail);
+        let mut unit = Unit::new(FileId(i as u32), None, None, vars);
         Walker::new(
             model,
             &constants,
@@ -295,20 +302,7 @@ pub fn analyze_given<'s>(
     }
     // Keyed as a skill's table looks them up; a later binding of a name replaces an
     // earlier one.
-    let skill_binds = skills.all_binds();
-    let mut globals = fold::FoldMap::with_capacity(
-        skill_binds.len() + units.iter().map(|u| u.vars.len()).sum::<usize>(),
-    );
-    let mut buf = String::new();
-    for (name, kind) in skill_binds {
-        globals.insert(constants::key(&name, &mut buf), kind);
-    }
-    for unit in &units {
-        for (key, id) in unit.vars.keys() {
-            globals.insert(key, unit.vars.get(id).kind);
-        }
-    }
-    let globals = std::rc::Rc::new(globals);
+    let globals = std::rc::Rc::new(skills_view(None, &skills, &units));
     // Skills of the files given to check first; then the library skills that anything
     // checked so far calls (library skills are checked only where called).
     for library in [false, true] {
@@ -406,15 +400,12 @@ fn check_skill<'s>(
 ) -> Unit {
     let skill = skills.get(id);
     let entry = &files[skill.file.0 as usize];
-    let mut unit = Unit {
-        file: skill.file,
-        skill: Some(id),
-        special: None,
-        specials: FxHashMap::default(),
-        vars: Vars::with_globals(c.globals.clone()).with_detail(c.detail),
-        refs: Vec::new(),
-        targets: FxHashMap::default(),
-    };
+    let mut unit = Unit::new(
+        skill.file,
+        Some(id),
+        None,
+        Vars::with_globals(c.globals.clone()).with_detail(c.detail),
+    );
     let blocks = &entry.tree.skills[skill.index].blocks;
     let abstract_blocks;
     let blocks = if skill.params.is_empty() {
@@ -477,15 +468,12 @@ fn check_specials<'s>(
             })
             .collect();
         let blocks = params::substitute(&entry.tree.skills[info.index].blocks, &info.params, &with);
-        let mut unit = Unit {
-            file: info.file,
-            skill: Some(special.skill),
-            special: Some(i as u32),
-            specials: FxHashMap::default(),
-            vars: Vars::with_globals(c.globals.clone()).with_detail(c.detail),
-            refs: Vec::new(),
-            targets: FxHashMap::default(),
-        };
+        let mut unit = Unit::new(
+            info.file,
+            Some(special.skill),
+            Some(i as u32),
+            Vars::with_globals(c.globals.clone()).with_detail(c.detail),
+        );
         let mut found = Kept::new();
         Walker::new(
             c.model,
@@ -530,21 +518,8 @@ pub fn check_fragment<'n>(
     let skills = skills::Skills::from_names(skill_names);
     let constants = constants::Constants::new(model);
     let names = names::Names::unindexed();
-    let mut table = fold::FoldMap::default();
-    let mut buf = String::new();
-    for (name, kind) in globals {
-        table.insert(constants::key(name, &mut buf), kind);
-    }
-    let globals = std::rc::Rc::new(table);
-    let mut unit = Unit {
-        file,
-        skill: None,
-        special: None,
-        specials: FxHashMap::default(),
-        vars: Vars::with_fixed_globals(globals),
-        refs: Vec::new(),
-        targets: FxHashMap::default(),
-    };
+    let globals = std::rc::Rc::new(keyed(globals));
+    let mut unit = Unit::new(file, None, None, Vars::with_fixed_globals(globals));
     let mut diagnostics = Kept::new();
     Walker::new(
         model,
@@ -601,20 +576,13 @@ pub fn check_line<'s, 'n>(
     let names = names::Names::new(&constants, &skills);
     let mut specials = params::Specials::default();
 
-    let mut buf = String::new();
-    let mut fixed = fold::FoldMap::default();
-    for (name, kind) in globals {
-        fixed.insert(constants::key(name, &mut buf), kind);
-    }
-    let mut unit = Unit {
-        file: FileId(0),
-        skill: None,
-        special: None,
-        specials: FxHashMap::default(),
-        vars: Vars::with_fixed_globals(std::rc::Rc::new(fixed.clone())),
-        refs: Vec::new(),
-        targets: FxHashMap::default(),
-    };
+    let fixed = keyed(globals);
+    let mut unit = Unit::new(
+        FileId(0),
+        None,
+        None,
+        Vars::with_fixed_globals(std::rc::Rc::new(fixed.clone())),
+    );
     Walker::new(
         model,
         &constants,
@@ -628,13 +596,11 @@ pub fn check_line<'s, 'n>(
     .blocks(&files[0].tree.blocks);
 
     // What a skill sees: the program's variables, the line's, and what skills bind.
-    for (name, kind) in skills.all_binds() {
-        fixed.insert(constants::key(&name, &mut buf), kind);
-    }
-    for (key, id) in unit.vars.keys() {
-        fixed.insert(key, unit.vars.get(id).kind);
-    }
-    let globals = std::rc::Rc::new(fixed);
+    let globals = std::rc::Rc::new(skills_view(
+        Some(fixed),
+        &skills,
+        std::slice::from_ref(&unit),
+    ));
     let called: Vec<SkillId> = unit
         .targets
         .values()
@@ -686,6 +652,43 @@ pub fn check_line<'s, 'n>(
         units,
         diagnostics: diagnostics.into_reported(),
     }
+}
+
+/// Variables named by a running program, keyed as the checker looks them up.
+fn keyed<'n>(vars: impl IntoIterator<Item = (&'n str, VarKind)>) -> fold::FoldMap<VarKind> {
+    let mut table = fold::FoldMap::default();
+    let mut buf = String::new();
+    for (name, kind) in vars {
+        table.insert(constants::key(name, &mut buf), kind);
+    }
+    table
+}
+
+/// What a skill sees: `base` (a running program's variables), then what skills bind,
+/// then the variables of `units`, keyed as a skill's table looks them up; a later
+/// binding of a name replaces an earlier one. Without a base the table is sized once:
+/// a large task's would be copied as it doubles.
+fn skills_view(
+    base: Option<fold::FoldMap<VarKind>>,
+    skills: &skills::Skills,
+    units: &[Unit],
+) -> fold::FoldMap<VarKind> {
+    let skill_binds = skills.all_binds();
+    let mut table = base.unwrap_or_else(|| {
+        fold::FoldMap::with_capacity(
+            skill_binds.len() + units.iter().map(|u| u.vars.len()).sum::<usize>(),
+        )
+    });
+    let mut buf = String::new();
+    for (name, kind) in skill_binds {
+        table.insert(constants::key(&name, &mut buf), kind);
+    }
+    for unit in units {
+        for (key, id) in unit.vars.keys() {
+            table.insert(key, unit.vars.get(id).kind);
+        }
+    }
+    table
 }
 
 /// W0502: a task variable that nothing reads, in the task or in any skill.
