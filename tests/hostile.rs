@@ -312,6 +312,14 @@ fn the_limits_table_quotes_the_constants() {
             "MAX_DIAGNOSTICS",
             format!("{}, the first", count(limits::MAX_DIAGNOSTICS)),
         ),
+        (
+            "SUGGESTION_STEPS",
+            format!("{} steps", count(limits::SUGGESTION_STEPS as usize)),
+        ),
+        (
+            "SUGGESTION_COMPARISON",
+            format!("an edit distance {}", limits::SUGGESTION_COMPARISON),
+        ),
         ("MAX_SOURCE_BYTES", mib(ilmr_files::MAX_SOURCE_BYTES)),
         (
             "MAX_ROBOT_MODEL_BYTES",

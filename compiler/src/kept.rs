@@ -10,6 +10,7 @@
 //! would be dropped, so it can skip composing it (a suggestion is an edit-distance
 //! search over every known name).
 
+use crate::check::suggest::Budget;
 use crate::diagnostic::{Code, Diagnostic, FileId, Severity};
 use crate::limits::MAX_DIAGNOSTICS;
 use crate::span::Span;
@@ -54,6 +55,8 @@ pub struct Kept {
     past: Past,
     /// The last place kept at the latest cut: anything after it is past the limit.
     cut: Option<Place>,
+    /// What "did you mean" may still spend on this program's diagnostics.
+    pub suggestions: Budget,
 }
 
 impl Default for Kept {
@@ -73,6 +76,7 @@ impl Kept {
             limit: limit.max(1),
             past: Past::default(),
             cut: None,
+            suggestions: Budget::default(),
         }
     }
 

@@ -28,6 +28,18 @@ const _: () = assert!(MAX_LINE_OPERATORS < ilmr_vm::bytecode::limits::EXPR_STACK
 /// millions of broken lines costs bounded memory and output.
 pub const MAX_DIAGNOSTICS: usize = 1000;
 
+/// Steps "did you mean" may take in one program (one analysis). A search over the
+/// program's own names (variables, skills) takes a step per name skipped on its length
+/// and [`SUGGESTION_COMPARISON`] steps per edit distance computed; once they are spent,
+/// misspelt names get no suggestion. That is a million edit distances, under a second
+/// of searching, where a file binding 200,000 names and misusing 3,000 others took five
+/// minutes.
+pub const SUGGESTION_STEPS: u64 = 100_000_000;
+
+/// What one edit distance costs in [`SUGGESTION_STEPS`]: about what a hundred names
+/// skipped on their length cost.
+pub const SUGGESTION_COMPARISON: u64 = 100;
+
 /// The native stack a thread that checks, lowers or formats a program is given: twice
 /// what an unoptimised build needs at the limits (`compiler/tests/limits.rs` runs there
 /// on half of it). Only touched pages cost memory.

@@ -6,7 +6,9 @@
 
 use ilmr_compiler::Code;
 use ilmr_compiler::check::{Source, analyze};
-use ilmr_compiler::limits::{MAX_BLOCK_DEPTH, MAX_LINE_OPERATORS};
+use ilmr_compiler::limits::{
+    MAX_BLOCK_DEPTH, MAX_LINE_OPERATORS, SUGGESTION_COMPARISON, SUGGESTION_STEPS,
+};
 use ilmr_model::RobotModel;
 
 /// Half the stack the tools give a thread that compiles, and the main thread's on Linux.
@@ -239,6 +241,41 @@ fn every_limit_at_once() {
 }
 
 /// The docs quote the limits: keep them in step.
+/// A program that binds many names of one length and then misuses others of that length
+/// makes every "did you mean" compare against every name: they stop once the program's
+/// budget is spent, and the errors are still reported, with the advice to bind them.
+#[test]
+fn suggestions_stop_when_the_budget_is_spent() {
+    let names = 20_000;
+    let misuses = 100;
+    let mut task: String = (0..names)
+        .map(|i| format!("v{}=1\nspeed(v{})\n", 10_000 + i, 10_000 + i))
+        .collect();
+    task.extend((0..misuses).map(|i| format!("speed(q{})\n", 10_000 + i)));
+    let model = RobotModel::builtin("moro").unwrap();
+    let sources = [Source::new("task.ilmr", task)];
+    let analysis = analyze(&sources, &model);
+    let unbound: Vec<_> = (analysis.diagnostics.iter())
+        .filter(|d| d.code == Code::UnboundVariable)
+        .collect();
+    assert_eq!(unbound.len(), misuses);
+    // Each search compares against every name: `q10000` is one edit from `v10000`.
+    let per_search = names as u64 * SUGGESTION_COMPARISON;
+    let affordable = (SUGGESTION_STEPS / per_search) as usize;
+    assert!(affordable < misuses, "the case no longer spends the budget");
+    let suggested = |d: &&ilmr_compiler::Diagnostic| d.fix.is_some();
+    // The model's own constants are candidates too, so the last affordable search may
+    // fall short.
+    assert!(unbound[..affordable - 1].iter().all(suggested));
+    assert_eq!(unbound[0].fix.as_ref().unwrap().replacement, "v10000");
+    assert!(!unbound[affordable..].iter().any(suggested));
+    assert!(unbound[affordable..].iter().all(|d| {
+        d.help
+            .as_deref()
+            .is_some_and(|h| h.starts_with("bind it first"))
+    }));
+}
+
 #[test]
 fn the_diagnostics_reference_quotes_the_limits() {
     let max = ilmr_vm::Config::default().max_call_depth;

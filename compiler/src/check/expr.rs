@@ -4,7 +4,6 @@
 use ilmr_stdlib::VarKind;
 
 use crate::ast::{BinOp, CmpOp, Expr, ExprKind, Name};
-use crate::check::suggest;
 use crate::check::{Cx, Findings, Resolved};
 use crate::diagnostic::{Code, Diagnostic};
 
@@ -95,12 +94,6 @@ impl Cx<'_, '_> {
         if self.quiet {
             return Diagnostic::new(Code::UnboundVariable, self.file, name.span, "");
         }
-        let candidates: Vec<String> = self
-            .vars
-            .bound_names()
-            .map(str::to_string)
-            .chain(self.model.parameters.iter().map(|p| p.name.clone()))
-            .collect();
         let d = Diagnostic::new(
             Code::UnboundVariable,
             self.file,
@@ -108,7 +101,11 @@ impl Cx<'_, '_> {
             format!("`{}` is used before anything binds it", name.text),
         )
         .with_label("no variable or model constant of this name yet");
-        match suggest::closest(name.text, candidates.iter().map(String::as_str)) {
+        let candidates = self
+            .vars
+            .bound_names()
+            .chain(self.model.parameters.iter().map(|p| p.name.as_str()));
+        match self.suggestions.closest(name.text, candidates) {
             Some(s) => d.with_help(format!("did you mean `{s}`?")).with_fix(
                 format!("replace with `{s}`"),
                 name.span,

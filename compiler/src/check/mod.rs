@@ -220,6 +220,8 @@ pub struct Cx<'m, 'v> {
     /// Whether the statement's diagnostics fall past the limit (`crate::kept`), so
     /// need no suggestions: they will be counted, not shown.
     pub quiet: bool,
+    /// What searches over the program's own names may still spend.
+    pub suggestions: &'v mut suggest::Budget,
 }
 
 impl Cx<'_, '_> {
@@ -786,6 +788,7 @@ impl<'a, 'm> Walker<'a, 'm> {
             buf: &mut self.buf,
             spare: &mut self.spare,
             quiet: !self.diagnostics.admits(self.unit.file, self.at),
+            suggestions: &mut self.diagnostics.suggestions,
         }
     }
 
@@ -1183,12 +1186,12 @@ impl<'a, 'm> Walker<'a, 'm> {
         ))
     }
 
-    fn call_suggestion(&self, name: &str) -> Option<&str> {
+    fn call_suggestion(&mut self, name: &str) -> Option<&'a str> {
         let candidates = Command::all()
             .filter(|c| c.spec().syntax == Syntax::Call)
             .map(|c| c.name())
             .chain(self.skills.names());
-        suggest::closest(name, candidates)
+        self.diagnostics.suggestions.closest(name, candidates)
     }
 
     fn bind(&mut self, name: &Name<'_>, kind: VarKind) {
