@@ -320,6 +320,14 @@ fn the_limits_table_quotes_the_constants() {
             "SUGGESTION_COMPARISON",
             format!("an edit distance {}", limits::SUGGESTION_COMPARISON),
         ),
+        (
+            "PATTERN_MATCHES",
+            format!("{} per program", count(limits::PATTERN_MATCHES as usize)),
+        ),
+        (
+            "MAX_PLACES_SHOWN",
+            format!("{}, the last", ilmr_compiler::diagnostic::MAX_PLACES_SHOWN),
+        ),
         ("MAX_SOURCE_BYTES", mib(ilmr_files::MAX_SOURCE_BYTES)),
         (
             "MAX_ROBOT_MODEL_BYTES",

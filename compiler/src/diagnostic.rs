@@ -158,6 +158,9 @@ pub struct Fix {
     pub replacement: String,
 }
 
+/// Secondary places [`Diagnostic::with_places`] shows.
+pub const MAX_PLACES_SHOWN: usize = 5;
+
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Label {
     pub file: FileId,
@@ -211,6 +214,27 @@ impl Diagnostic {
             span,
             message: message.into(),
         });
+        self
+    }
+
+    /// A secondary label at each of `places`, the first [`MAX_PLACES_SHOWN`] of them, the
+    /// last saying how many more there are. A warning about a statement that shares its
+    /// cause with thousands of others would otherwise list them all, once for each it
+    /// warns at: output that grows as the square of the file.
+    pub fn with_places(
+        mut self,
+        places: impl ExactSizeIterator<Item = (FileId, Span)>,
+        label: &str,
+    ) -> Diagnostic {
+        let more = places.len().saturating_sub(MAX_PLACES_SHOWN);
+        for (file, span) in places.take(MAX_PLACES_SHOWN) {
+            self = self.with_secondary(file, span, label);
+        }
+        if more > 0
+            && let Some(last) = self.secondary.last_mut()
+        {
+            last.message = format!("{label} (and {more} more like it)");
+        }
         self
     }
 

@@ -40,6 +40,13 @@ pub const SUGGESTION_STEPS: u64 = 100_000_000;
 /// skipped on their length cost.
 pub const SUGGESTION_COMPARISON: u64 = 100;
 
+/// Matches of `break(pattern)` needles in statements the checker enumerates for one
+/// program (W0701, W0702, W0904): each distinct needle is counted once per place it ends
+/// in a statement. Past it the checker says nothing about patterns, rather than
+/// something wrong. Only texts built for it come near: needles of a thousand lengths,
+/// each found at every place of megabytes of statements.
+pub const PATTERN_MATCHES: u64 = 50_000_000;
+
 /// The native stack a thread that checks, lowers or formats a program is given: twice
 /// what an unoptimised build needs at the limits (`compiler/tests/limits.rs` runs there
 /// on half of it). Only touched pages cost memory.

@@ -6,8 +6,9 @@
 
 use ilmr_compiler::Code;
 use ilmr_compiler::check::{Source, analyze};
+use ilmr_compiler::diagnostic::MAX_PLACES_SHOWN;
 use ilmr_compiler::limits::{
-    MAX_BLOCK_DEPTH, MAX_LINE_OPERATORS, SUGGESTION_COMPARISON, SUGGESTION_STEPS,
+    MAX_BLOCK_DEPTH, MAX_LINE_OPERATORS, PATTERN_MATCHES, SUGGESTION_COMPARISON, SUGGESTION_STEPS,
 };
 use ilmr_model::RobotModel;
 
@@ -274,6 +275,57 @@ fn suggestions_stop_when_the_budget_is_spent() {
             .as_deref()
             .is_some_and(|h| h.starts_with("bind it first"))
     }));
+}
+
+/// Fifty waits on one variable that fifty `followwall`s set: each W0904 shows five of
+/// them and counts the rest, where it listed all fifty (output that grew as the square
+/// of the file: 12 MB for 300 such pairs).
+#[test]
+fn a_warning_shows_a_few_of_its_places() {
+    let task = "t=followwall(left)\nwait(t)\n".repeat(50);
+    let model = RobotModel::builtin("moro").unwrap();
+    let sources = [Source::new("task.ilmr", task)];
+    let analysis = analyze(&sources, &model);
+    let waits: Vec<_> = (analysis.diagnostics.iter())
+        .filter(|d| d.code == Code::WaitNeverWakes)
+        .collect();
+    assert_eq!(waits.len(), 50);
+    for d in waits {
+        assert_eq!(d.secondary.len(), MAX_PLACES_SHOWN);
+        assert!(
+            d.secondary[MAX_PLACES_SHOWN - 1]
+                .message
+                .ends_with("(and 45 more like it)")
+        );
+    }
+}
+
+/// Patterns `a`, `aa`, ... up to 300 letters and statements of 300 `a`s: every pattern
+/// ends at nearly every place of every statement. A few statements are judged (each
+/// pattern is found in all of them, W0702); past [`PATTERN_MATCHES`] nothing is said.
+#[test]
+fn patterns_past_the_match_limit_are_not_judged() {
+    let judged = |statements: usize| {
+        let patterns: String = (1..=300)
+            .map(|k| format!("break({})\n", "a".repeat(k)))
+            .collect();
+        let task = patterns + &format!("x{}=1\n", "a".repeat(300)).repeat(statements);
+        let model = RobotModel::builtin("moro").unwrap();
+        let sources = [Source::new("task.ilmr", task)];
+        let analysis = analyze(&sources, &model);
+        (analysis.diagnostics.iter())
+            .filter(|d| {
+                matches!(
+                    d.code,
+                    Code::PatternMatchesSeveral | Code::PatternMatchesNothing
+                )
+            })
+            .count()
+    };
+    assert_eq!(judged(3), 300);
+    // Each statement ends about 300 * 300 / 2 matches.
+    let past = (PATTERN_MATCHES / (300 * 300 / 2)) as usize + 10;
+    assert_eq!(judged(past), 0);
 }
 
 #[test]

@@ -3,6 +3,7 @@
 
 use crate::ast::{Pattern, Stmt, StmtKind};
 use crate::check::FileEntry;
+use crate::check::needles::Needles;
 use crate::check::skills::Skills;
 use crate::diagnostic::{Code, Diagnostic, FileId};
 use crate::kept::Kept;
@@ -17,15 +18,21 @@ pub fn needle<'s>(pattern: &Pattern<'s>) -> &'s str {
     text.find(')').map_or(text, |i| &text[..i]).trim()
 }
 
-/// Whether a statement's text contains the needle, ignoring case.
+/// Whether a statement's text contains the needle, ignoring case: both lower-cased, as
+/// the VM matches them when the break runs.
 pub fn matches(statement: &str, needle: &str) -> bool {
     if needle.is_empty() {
         return false;
     }
-    let hay = statement.as_bytes();
-    let pat = needle.as_bytes();
-    hay.windows(pat.len()).any(|w| w.eq_ignore_ascii_case(pat))
-        || (!statement.is_ascii() && statement.to_lowercase().contains(&needle.to_lowercase()))
+    if statement.is_ascii() {
+        // A needle with other letters stays other letters lower-cased; an ASCII text
+        // holds none.
+        return needle.is_ascii()
+            && (statement.as_bytes())
+                .windows(needle.len())
+                .any(|w| w.eq_ignore_ascii_case(needle.as_bytes()));
+    }
+    statement.to_lowercase().contains(&needle.to_lowercase())
 }
 
 /// The statements a `break(pattern)` may end, with their text: every statement but
@@ -103,17 +110,34 @@ pub fn check_patterns(files: &[FileEntry<'_>], skills: &Skills, diags: &mut Kept
             }
         });
     }
-    for (file, pattern) in patterns {
-        let needle = needle(&pattern);
-        let hits: Vec<&(FileId, Span, &str)> = statements
-            .iter()
-            .filter(|(_, _, text)| matches(text, needle))
-            .collect();
-        match hits.len() {
+    let needles = Needles::new(patterns.iter().map(|(_, p)| needle(p)));
+    // For each distinct needle, how many statements contain it and the first few.
+    let mut hits: Vec<(usize, Vec<(FileId, Span)>)> = vec![(0, Vec::new()); needles.distinct()];
+    let mut seen = Vec::new();
+    for &(file, span, text) in &statements {
+        let found = needles.each_in(text, &mut seen, |id| {
+            let (n, first) = &mut hits[id as usize];
+            *n += 1;
+            if first.len() < SHOWN {
+                first.push((file, span));
+            }
+        });
+        // Past the limit nothing is known for certain: say nothing rather than wrong.
+        if found.is_none() {
+            return;
+        }
+    }
+    for (i, (file, pattern)) in patterns.iter().enumerate() {
+        let needle = needle(pattern);
+        let (n, first) = needles.id(i).map_or((0, &[][..]), |id| {
+            let (n, first) = &hits[id as usize];
+            (*n, &first[..])
+        });
+        match n {
             0 => diags.push(
                 Diagnostic::new(
                     Code::PatternMatchesNothing,
-                    file,
+                    *file,
                     pattern.span,
                     format!("no statement contains `{needle}`"),
                 )
@@ -123,19 +147,22 @@ pub fn check_patterns(files: &[FileEntry<'_>], skills: &Skills, diags: &mut Kept
             n => {
                 let mut d = Diagnostic::new(
                     Code::PatternMatchesSeveral,
-                    file,
+                    *file,
                     pattern.span,
                     format!("`{needle}` is found in {n} statements; the break ends every one that is running"),
                 )
                 .with_label("matches several statements");
-                for (f, span, _) in hits.iter().take(5) {
-                    d = d.with_secondary(*f, *span, "matches");
+                for &(f, span) in first {
+                    d = d.with_secondary(f, span, "matches");
                 }
                 diags.push(d);
             }
         }
     }
 }
+
+/// Statements a W0702 shows of those a pattern matches.
+const SHOWN: usize = 5;
 
 #[cfg(test)]
 mod tests {

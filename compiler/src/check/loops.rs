@@ -213,7 +213,7 @@ impl Walk<'_, '_> {
         }
         let quoted: Vec<String> = listed.iter().map(|n| format!("`{n}`")).collect();
         let what = quoted.join(", ");
-        let mut d = Diagnostic::new(
+        let d = Diagnostic::new(
             Code::FrozenLoop,
             self.file,
             stmt.span,
@@ -227,9 +227,11 @@ impl Walk<'_, '_> {
             "change {what} in the loop's body (`{0} = {0} + 1`), or end the loop with `break`; otherwise only a line typed while the task runs could change it",
             listed[0]
         ));
-        for span in set_before {
-            d = d.with_secondary(self.file, span, "set here, before the loop starts");
-        }
+        let file = self.file;
+        let d = d.with_places(
+            set_before.into_iter().map(|span| (file, span)),
+            "set here, before the loop starts",
+        );
         self.diags.push(d);
     }
 }

@@ -11,6 +11,7 @@ mod fold;
 mod keywords;
 mod loops;
 mod names;
+mod needles;
 mod owners;
 pub mod params;
 mod paths;

@@ -13,9 +13,10 @@ use ilmr_stdlib::{Command, Ends};
 
 use crate::ast::{Arg, Block, Expr, ExprKind, Stmt, StmtKind};
 use crate::check::FileEntry;
-use crate::check::breaks::{matches, needle};
+use crate::check::breaks::needle;
 use crate::check::constants;
 use crate::check::fold::{self, FoldMap};
+use crate::check::needles::Needles;
 use crate::diagnostic::{Code, Diagnostic, FileId};
 use crate::kept::Kept;
 use crate::span::Span;
@@ -108,6 +109,10 @@ pub fn check_waits(files: &[FileEntry<'_>], diags: &mut Kept) {
             others(stmt, &never, &mut set_other);
         });
     }
+    // Whether a break can end one of a variable's setters is the same for every wait
+    // on it: decided once, at its first wait.
+    let mut reachable: FoldMap<bool> = FoldMap::default();
+    let needles = Needles::new(scan.patterns.iter().copied());
     for (file, span, var) in &scan.waits {
         let Some((indices, other)) = suspects.get(fold::lookup(var, &mut buf)) else {
             continue;
@@ -115,21 +120,29 @@ pub fn check_waits(files: &[FileEntry<'_>], diags: &mut Kept) {
         if other.get() {
             continue;
         }
-        let setters: Vec<&Endless<'_>> = indices.iter().map(|&i| &scan.endless[i]).collect();
-        let reachable = setters.iter().any(|e| {
-            let text = files[e.file.0 as usize].text;
-            (e.in_skill && !scan.patterns.is_empty())
-                || std::iter::once(&e.stmt)
-                    .chain(&e.around)
-                    .any(|s| scan.patterns.iter().any(|p| matches(s.slice(text), p)))
-        });
-        if reachable {
+        let setters = || indices.iter().map(|&i| &scan.endless[i]);
+        let ends = match reachable.get(fold::lookup(var, &mut buf)) {
+            Some(&ends) => ends,
+            None => {
+                // Past the search's limit, a break may end it for all that is known.
+                let ends = setters().any(|e| {
+                    let text = files[e.file.0 as usize].text;
+                    (e.in_skill && !scan.patterns.is_empty())
+                        || std::iter::once(&e.stmt)
+                            .chain(&e.around)
+                            .any(|s| needles.any_in(s.slice(text)).unwrap_or(true))
+                });
+                reachable.insert(constants::key(var, &mut buf), ends);
+                ends
+            }
+        };
+        if ends {
             continue;
         }
-        let first = setters[0];
+        let first = &scan.endless[indices[0]];
         let shown = first.stmt.slice(files[first.file.0 as usize].text);
         let shown = shown.lines().next().unwrap_or("").trim();
-        let mut d = Diagnostic::new(
+        let d = Diagnostic::new(
             Code::WaitNeverWakes,
             *file,
             *span,
@@ -141,10 +154,11 @@ pub fn check_waits(files: &[FileEntry<'_>], diags: &mut Kept) {
         .with_help(format!(
             "end it with `{}` where it should stop (in a guard `if(...)`), or wait for something that ends; otherwise only a refusal, or a line typed while the task runs, wakes this wait",
             suggest_break(shown)
-        ));
-        for e in setters {
-            d = d.with_secondary(e.file, e.stmt, "never ends by itself, and no break ends it");
-        }
+        ))
+        .with_places(
+            setters().map(|e| (e.file, e.stmt)),
+            "never ends by itself, and no break ends it",
+        );
         diags.push(d);
     }
 }
