@@ -221,13 +221,15 @@ impl Diagnostic {
     /// last saying how many more there are. A warning about a statement that shares its
     /// cause with thousands of others would otherwise list them all, once for each it
     /// warns at: output that grows as the square of the file.
+    /// `places` may go on past what is shown; `total` is how many it holds.
     pub fn with_places(
         mut self,
-        places: impl ExactSizeIterator<Item = (FileId, Span)>,
+        places: impl IntoIterator<Item = (FileId, Span)>,
+        total: usize,
         label: &str,
     ) -> Diagnostic {
-        let more = places.len().saturating_sub(MAX_PLACES_SHOWN);
-        for (file, span) in places.take(MAX_PLACES_SHOWN) {
+        let more = total.saturating_sub(MAX_PLACES_SHOWN);
+        for (file, span) in places.into_iter().take(MAX_PLACES_SHOWN) {
             self = self.with_secondary(file, span, label);
         }
         if more > 0

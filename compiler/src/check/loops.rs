@@ -11,7 +11,8 @@
 //! block and the blocks round it, are over when it starts. Lines typed while the task
 //! runs could still change the variable; the help says so.
 
-use rustc_hash::FxHashSet;
+use std::cell::Cell;
+
 use smallvec::SmallVec;
 
 use crate::ast::{Block, Expr, ExprKind, Stmt, StmtKind};
@@ -31,6 +32,9 @@ struct Writes {
     /// Where it is assigned: most variables once or twice (a counter's start and
     /// step), kept without an allocation.
     assigned: SmallVec<[(FileId, Span); 2]>,
+    /// How many of those the walk has issued before the statement it is at: all of
+    /// them, when the loop it looks at is the only thing left that reads them.
+    issued: Cell<usize>,
 }
 
 /// W0901, and W0902 (`starve.rs`) for the same loops. `variables` is how many
@@ -66,7 +70,6 @@ pub fn check_frozen_loops(
             writes: &writes,
             program: &program,
             before: Vec::new(),
-            issued: FxHashSet::default(),
             diags,
         };
         walk.blocks(&entry.tree.blocks);
@@ -135,22 +138,23 @@ struct Walk<'a, 'd> {
     text: &'a str,
     writes: &'a FoldMap<Writes>,
     program: &'a starve::Program<'a>,
-    /// Assignments issued, one after another, before the statement being looked at;
-    /// `issued` holds the same for lookups, so a long block stays linear.
-    before: Vec<Span>,
-    issued: FxHashSet<Span>,
+    /// The variables of the assignments issued, one after another, before the
+    /// statement being looked at, each counted in its [`Writes::issued`].
+    before: Vec<&'a Writes>,
     diags: &'d mut Kept,
 }
 
-impl Walk<'_, '_> {
+impl<'a> Walk<'a, '_> {
     fn blocks(&mut self, blocks: &[Block<'_>]) {
         for block in blocks {
             let outer = self.before.len();
             for stmt in &block.stmts {
                 match &stmt.kind {
-                    StmtKind::Assign { .. } => {
-                        self.before.push(stmt.span);
-                        self.issued.insert(stmt.span);
+                    StmtKind::Assign { target, .. } => {
+                        let w = find(self.writes, target.text)
+                            .expect("the table of writes holds every assignment");
+                        w.issued.set(w.issued.get() + 1);
+                        self.before.push(w);
                     }
                     StmtKind::If(c) => self.blocks(&c.body),
                     StmtKind::While { body, .. } => {
@@ -171,8 +175,8 @@ impl Walk<'_, '_> {
                     _ => {}
                 }
             }
-            for span in self.before.drain(outer..) {
-                self.issued.remove(&span);
+            for w in self.before.drain(outer..) {
+                w.issued.set(w.issued.get() - 1);
             }
         }
     }
@@ -184,7 +188,7 @@ impl Walk<'_, '_> {
         if names.is_empty() {
             return;
         }
-        let mut set_before = Vec::new();
+        let mut set_before: Vec<&Writes> = Vec::new();
         let mut variables = Vec::new();
         for name in &names {
             // Never written: a model constant, or an unbound name the checker reports
@@ -193,14 +197,12 @@ impl Walk<'_, '_> {
                 continue;
             };
             variables.push(*name);
-            let only_before = !w.by_command
-                && w.assigned
-                    .iter()
-                    .all(|&(file, span)| file == self.file && self.issued.contains(&span));
+            // The walk issues only its own file's assignments, each once.
+            let only_before = !w.by_command && w.issued.get() == w.assigned.len();
             if !only_before {
                 return;
             }
-            set_before.extend(w.assigned.iter().map(|&(_, span)| span));
+            set_before.push(w);
         }
         if variables.is_empty() {
             return;
@@ -227,9 +229,9 @@ impl Walk<'_, '_> {
             "change {what} in the loop's body (`{0} = {0} + 1`), or end the loop with `break`; otherwise only a line typed while the task runs could change it",
             listed[0]
         ));
-        let file = self.file;
         let d = d.with_places(
-            set_before.into_iter().map(|span| (file, span)),
+            set_before.iter().flat_map(|w| w.assigned.iter().copied()),
+            set_before.iter().map(|w| w.assigned.len()).sum(),
             "set here, before the loop starts",
         );
         self.diags.push(d);

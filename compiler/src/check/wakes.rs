@@ -157,6 +157,7 @@ pub fn check_waits(files: &[FileEntry<'_>], diags: &mut Kept) {
         ))
         .with_places(
             setters().map(|e| (e.file, e.stmt)),
+            indices.len(),
             "never ends by itself, and no break ends it",
         );
         diags.push(d);
