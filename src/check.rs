@@ -202,9 +202,14 @@ fn report_with(
             let style = Style::on_terminal(std::io::stdout().is_terminal());
             let mut s = render::human(&diagnostics, &files, style);
             let count = |e: bool| diagnostics.iter().filter(|d| d.is_error() == e).count();
-            let checked = args.files.len();
+            // An unread file was not checked: said on stderr, and counted here.
+            let checked = args.files.len() - unread.len();
+            let unread = match unread.len() {
+                0 => String::new(),
+                n => format!("; {n} could not be read"),
+            };
             s.push_str(&format!(
-                "{checked} file(s) checked against robot `{}`: {} error(s), {} warning(s)\n",
+                "{checked} file(s) checked against robot `{}`: {} error(s), {} warning(s){unread}\n",
                 robot.model.name,
                 count(true),
                 count(false)

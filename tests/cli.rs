@@ -91,10 +91,16 @@ fn unreadable_files_are_diagnostics_in_json() {
         all.iter().any(|d| d["code"] == "E0301"),
         "the readable file is checked"
     );
-    // Human output says it on stderr, with the same place.
-    let (code, _, err) = ilmrc(&["check", bad.to_str().unwrap()]);
+    // Human output says it on stderr, with the same place, and counts only what it read.
+    let (code, out, err) = ilmrc(&["check", bad.to_str().unwrap(), "examples/short_task.ilmr"]);
     assert_eq!(code, 2);
     assert!(err.contains("invalid byte at line 2, column 3"), "{err}");
+    assert!(
+        out.contains(
+            "1 file(s) checked against robot `moro`: 0 error(s), 0 warning(s); 1 could not be read"
+        ),
+        "{out}"
+    );
 }
 
 /// `--skills` takes one skill file as well as a directory, and names the files of a
