@@ -94,3 +94,14 @@ fn the_scanner_mount_and_camera_head_are_x_y_tables() {
     let back: Option<RobotConfig> = serde_json::from_str(&text).ok();
     assert_eq!(back, Some(cfg));
 }
+
+#[test]
+fn a_scan_writes_its_mount_as_an_x_y_table() {
+    let mut s = common::sim(RobotConfig::moro(), common::open_floor(), 1);
+    common::run(&mut s, 20);
+    let Some(scan) = s.snapshot().scan else {
+        panic!("no scan after 0.2 s");
+    };
+    let text = serde_json::to_string(&*scan).unwrap_or_default();
+    assert!(text.contains(r#""mount":{"x":0.85,"y":0.0}"#), "{text}");
+}
