@@ -11,7 +11,7 @@
 //! the second run along the line between them, which tells a door from a
 //! gap between furniture.
 
-use crate::geometry::{PlaneVector, Point2, Pose, Vector2};
+use crate::geometry::{PlaneVector, Point2, Pose, Vector2, centroid};
 use crate::sensors::Scan;
 use ilmr_hal::{Detection, Side};
 use ilmr_model::RobotModel;
@@ -138,11 +138,6 @@ fn beside(scan: &Scan, jamb: Point2<f64>, order: impl Iterator<Item = usize>) ->
         })
         .take_while(|p| (p - jamb).hypot() <= WALL_REACH)
         .collect()
-}
-
-fn centroid(pts: &[Point2<f64>]) -> Point2<f64> {
-    let n = pts.len().max(1) as f64;
-    Point2::from(pts.iter().fold(Vector2::zeros(), |acc, p| acc + p.coords) * (1.0 / n))
 }
 
 /// The direction of the wall the jambs `a` (beam `i`) and `b` (beam `j`)

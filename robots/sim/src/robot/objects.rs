@@ -10,7 +10,7 @@
 //! a corner), so that pillars and people of the same width are not taken for
 //! boxes. Doors are found by `doors.rs`.
 
-use crate::geometry::{PlaneVector, Point2, Pose, Vector2};
+use crate::geometry::{PlaneVector, Point2, Pose, Vector2, centroid};
 use crate::sensors::Scan;
 use ilmr_hal::{Detection, Side};
 use ilmr_model::RobotModel;
@@ -247,11 +247,6 @@ impl Line {
         let t = (other.centre - self.centre).perp(&other.dir) / denom;
         Some(self.centre + self.dir * t)
     }
-}
-
-fn centroid(pts: &[Point2<f64>]) -> Point2<f64> {
-    let n = pts.len().max(1) as f64;
-    Point2::from(pts.iter().fold(Vector2::zeros(), |acc, p| acc + p.coords) * (1.0 / n))
 }
 
 #[cfg(test)]
