@@ -5,7 +5,6 @@
 use std::collections::BTreeSet;
 
 use ilmr_plot::{At, Mark, Sample};
-use ilmr_sim::geometry::Frame;
 
 use crate::harness::{Run, SimVm};
 
@@ -180,7 +179,7 @@ impl Hits {
         // The beams were cast from this tick's true pose: the robot steps in lockstep
         // with the VM.
         let p = sim.true_pose();
-        let o = p.transform(scan.mount);
+        let o = p.to_world(&scan.mount);
         for (i, &r) in scan.ranges.iter().enumerate() {
             if r <= 0.0 || r >= scan.max_range {
                 continue;

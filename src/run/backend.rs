@@ -5,7 +5,6 @@ use ilmr_hal::{
     AsyncOp, BodyPose, Hal, HalError, KnownMap, OpId, OpStatus, Pose, ScriptedRobot, Snapshot,
 };
 use ilmr_sim::SimRobot;
-use ilmr_sim::geometry::Frame;
 
 /// What the run loop needs beyond the HAL: whether the robot has come to rest, since a
 /// run does not end while it still moves, and, for a simulated robot, the ground truth
@@ -83,7 +82,7 @@ impl WorldScan {
     pub fn last_of(robot: &SimRobot) -> Option<(u64, WorldScan)> {
         let scan = robot.sim().snapshot().scan?;
         let p = robot.sim().true_pose();
-        let o = p.transform(scan.mount);
+        let o = p.to_world(&scan.mount);
         let world = WorldScan {
             t: scan.time,
             origin: Pose::new(o.x, o.y, p.h),

@@ -6,8 +6,8 @@ use foxglove::schemas::{
     LinePrimitive, Point3, Pose, Quaternion, SceneEntity, SceneUpdate, Timestamp, Vector3,
     line_primitive,
 };
-use ilmr_sim::World;
 use ilmr_sim::geometry::Shape;
+use ilmr_sim::{PlaneVector, World};
 
 use super::{FRAME, ROBOT_FRAME};
 
@@ -121,7 +121,7 @@ pub(super) fn strip(
 /// The world's solids as a scene: walls, obstacles and boxes as cubes, round things as
 /// cylinders, 1 m high.
 pub(super) fn scene(w: &World) -> SceneUpdate {
-    let cube = |center: ilmr_sim::Vec2, h: f64, length: f64, width: f64| CubePrimitive {
+    let cube = |center: ilmr_sim::Point2<f64>, h: f64, length: f64, width: f64| CubePrimitive {
         pose: Some(pose(center.x, center.y, 0.5, h)),
         size: Some(Vector3 {
             x: length,
@@ -134,9 +134,9 @@ pub(super) fn scene(w: &World) -> SceneUpdate {
     let mut cylinders = Vec::new();
     for wall in &w.walls {
         for &(a, b) in &wall.pieces {
-            let mid = ilmr_sim::Vec2::new((a.x + b.x) / 2.0, (a.y + b.y) / 2.0);
+            let mid = ilmr_sim::Point2::new((a.x + b.x) / 2.0, (a.y + b.y) / 2.0);
             let h = (b.y - a.y).atan2(b.x - a.x);
-            cubes.push(cube(mid, h, a.distance(b), wall.thickness));
+            cubes.push(cube(mid, h, (a - b).hypot(), wall.thickness));
         }
     }
     let mut obb = |o: &ilmr_sim::geometry::Obb| {

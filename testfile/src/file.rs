@@ -903,7 +903,7 @@ pub fn assigns(statement: &str) -> Option<String> {
 /// The world's named things: doors, boxes, targets (where they start) and the charger
 /// as points, walls as their segments.
 fn places(world: &ilmr_sim::World) -> Vec<Place> {
-    let point = |name: &str, p: ilmr_sim::Vec2| Place::Object {
+    let point = |name: &str, p: ilmr_sim::Point2<f64>| Place::Object {
         name: name.to_string(),
         from: (p.x, p.y),
         to: (p.x, p.y),

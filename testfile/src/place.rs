@@ -263,7 +263,7 @@ fn parse_start(text: &str, world: &World) -> Result<ilmr_sim::Pose, String> {
     if !(x.is_finite() && y.is_finite() && h.is_finite()) {
         return Err(bad());
     }
-    let at = ilmr_sim::Vec2::new(x, y);
+    let at = ilmr_sim::Point2::new(x, y);
     if !world.bounds.contains(at) {
         let b = world.bounds;
         return Err(format!(

@@ -117,7 +117,7 @@ impl View {
     }
 }
 
-fn v(p: ilmr_sim::Vec2) -> (f64, f64) {
+fn v(p: ilmr_sim::Point2<f64>) -> (f64, f64) {
     (p.x, p.y)
 }
 

@@ -2,7 +2,7 @@
 //! robots of the dissertation (sections 5.1-5.2); a later step builds these
 //! structs from a robot model file.
 
-use crate::geometry::Vec2;
+use crate::geometry::{Point2, xy};
 use serde::{Deserialize, Serialize};
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -106,7 +106,8 @@ pub struct ScannerConfig {
     pub max_range: f64,
     pub noise_sigma: f64,
     /// Scanner origin in the robot frame (x forward, y left).
-    pub mount: Vec2,
+    #[serde(with = "xy")]
+    pub mount: Point2<f64>,
     /// Probability that a beam which meets something returns nothing (reads
     /// `max_range`): dark, glossy or grazing surfaces.
     #[serde(default)]
@@ -210,7 +211,8 @@ pub struct CameraConfig {
     pub max_range: f64,
     pub image_width_px: f64,
     /// Head position in the robot frame.
-    pub head: Vec2,
+    #[serde(with = "xy")]
+    pub head: Point2<f64>,
     pub head_height: f64,
     pub max_pan_deg: f64,
     pub max_tilt_deg: f64,
@@ -310,7 +312,7 @@ impl RobotConfig {
                 fov_deg: 180.0,
                 max_range: 30.0,
                 noise_sigma: 0.01,
-                mount: Vec2::new(0.85, 0.0),
+                mount: Point2::new(0.85, 0.0),
                 dropout: 0.0,
                 mixed_pixel: 0.0,
                 sweep_time: 0.0,
@@ -385,7 +387,7 @@ impl RobotConfig {
                 fov_deg: 180.0,
                 max_range: 30.0,
                 noise_sigma: 0.01,
-                mount: Vec2::new(1.0, 0.0),
+                mount: Point2::new(1.0, 0.0),
                 dropout: 0.0,
                 mixed_pixel: 0.0,
                 sweep_time: 0.0,
@@ -427,7 +429,7 @@ impl RobotConfig {
                 fov_deg: 50.0,
                 max_range: 20.0,
                 image_width_px: 640.0,
-                head: Vec2::new(0.3, 0.0),
+                head: Point2::new(0.3, 0.0),
                 head_height: 1.6,
                 max_pan_deg: 170.0,
                 max_tilt_deg: 60.0,

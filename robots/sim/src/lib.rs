@@ -30,7 +30,7 @@ pub use ilmr_geometry::rng;
 
 pub use config::{RobotConfig, RobotKind};
 pub use faults::{FaultKind, FaultPlan, FaultSpec};
-pub use geometry::{Pose, Vec2};
+pub use geometry::{PlaneVector, Point2, Pose, Vector2};
 pub use kinematics::{BodyPose, MovementMode};
 pub use profile::SimProfile;
 pub use robot::{

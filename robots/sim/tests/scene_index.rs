@@ -3,14 +3,14 @@
 //! overlaps, point tests and scan fans, over random walls, obstacles and
 //! loose solids, with some switched off.
 
-use ilmr_sim::Vec2;
 use ilmr_sim::geometry::{Circle, Obb, Scene, Shape, Solid, SolidRef};
 use ilmr_sim::rng::Rng;
+use ilmr_sim::{PlaneVector, Point2, Vector2};
 
 fn scene(next: &mut impl FnMut() -> f64, n: usize, side: f64) -> Scene {
     let mut solids: Vec<Solid> = (0..n)
         .map(|i| {
-            let c = Vec2::new(side * next(), side * next());
+            let c = Point2::new(side * next(), side * next());
             let (shape, what) = match i % 5 {
                 0 => (
                     Shape::Circle(Circle::new(c, 0.05 + next())),
@@ -24,7 +24,7 @@ fn scene(next: &mut impl FnMut() -> f64, n: usize, side: f64) -> Scene {
                 // Walls long and short, on cell borders now and then.
                 _ => {
                     let c = if i % 7 == 0 {
-                        Vec2::new((c.x / 2.0).round() * 2.0, c.y)
+                        Point2::new((c.x / 2.0).round() * 2.0, c.y)
                     } else {
                         c
                     };
@@ -56,8 +56,8 @@ fn the_grid_answers_what_every_solid_answers() {
         let s = scene(&mut next, 40 + round * 5, side);
         let all = s.solids().len();
         for _ in 0..300 {
-            let o = Vec2::new(side * (1.4 * next() - 0.2), side * (1.4 * next() - 0.2));
-            let dir = Vec2::from_angle(7.0 * next());
+            let o = Point2::new(side * (1.4 * next() - 0.2), side * (1.4 * next() - 0.2));
+            let dir = Vector2::from_angle(7.0 * next());
             let range = [4.0, 30.0, 500.0][hits % 3];
             let want = s.ray_among(o, dir, range, 0..all);
             let got = s.ray(o, dir, range);
@@ -79,12 +79,12 @@ fn the_grid_answers_what_every_solid_answers() {
             assert_eq!(s.contains(o), inside, "round {round}");
         }
         // A scan's fan meets what every solid meets.
-        let o = Vec2::new(side * next(), side * next());
+        let o = Point2::new(side * next(), side * next());
         let (count, first) = (361, 7.0 * next());
         let step = std::f64::consts::PI / 360.0;
         let fan = s.fan(o, first, step, count, 30.0);
         for i in 0..count {
-            let dir = Vec2::from_angle(first + i as f64 * step);
+            let dir = Vector2::from_angle(first + i as f64 * step);
             let want = s.ray_among(o, dir, 30.0, 0..all);
             let got = fan.ray(&s, i, o, dir, 30.0);
             assert_eq!(

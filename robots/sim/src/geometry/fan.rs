@@ -6,7 +6,7 @@
 //! at least a beam's width past their outline, or they lie beyond the range),
 //! and the rest are tested in scene order, so ties go as they did.
 
-use super::{Scene, Shape, Vec2};
+use super::{PlaneVector, Point2, Scene, Shape, Vector2};
 use std::cmp::Ordering;
 use std::f64::consts::{PI, TAU};
 
@@ -26,11 +26,11 @@ const SLACK: f64 = 1e-6;
 
 /// The directions a solid covers, as angles relative to the direction of its
 /// centre from `origin`, or `None` when it covers them all.
-fn span(shape: &Shape, origin: Vec2) -> Option<(f64, f64)> {
+fn span(shape: &Shape, origin: Point2<f64>) -> Option<(f64, f64)> {
     let to_centre = shape.center() - origin;
     match shape {
         Shape::Circle(c) => {
-            let d = to_centre.length();
+            let d = to_centre.hypot();
             if d.partial_cmp(&(c.radius + NEAR)) != Some(Ordering::Greater) {
                 return None;
             }
@@ -38,7 +38,10 @@ fn span(shape: &Shape, origin: Vec2) -> Option<(f64, f64)> {
             Some((-a, a))
         }
         Shape::Box(b) => {
-            let l = Vec2::new(-to_centre.dot(b.axis), -to_centre.dot(b.axis.perp()));
+            let l = Vector2::new(
+                -to_centre.dot(&b.axis),
+                -to_centre.dot(&b.axis.rotated_left()),
+            );
             if l.x.abs() <= b.half.x + NEAR && l.y.abs() <= b.half.y + NEAR {
                 return None;
             }
@@ -48,7 +51,7 @@ fn span(shape: &Shape, origin: Vec2) -> Option<(f64, f64)> {
             let (mut lo, mut hi) = (0.0_f64, 0.0_f64);
             for corner in b.corners() {
                 let v = corner - origin;
-                let a = to_centre.cross(v).atan2(to_centre.dot(v));
+                let a = to_centre.perp(&v).atan2(to_centre.dot(&v));
                 lo = lo.min(a);
                 hi = hi.max(a);
             }
@@ -60,7 +63,14 @@ fn span(shape: &Shape, origin: Vec2) -> Option<(f64, f64)> {
 impl Scene {
     /// The fan of `count` beams from `origin` at angles `first + i * step`
     /// reaching `max_range`, for [`Fan::ray`].
-    pub fn fan(&self, origin: Vec2, first: f64, step: f64, count: usize, max_range: f64) -> Fan {
+    pub fn fan(
+        &self,
+        origin: Point2<f64>,
+        first: f64,
+        step: f64,
+        count: usize,
+        max_range: f64,
+    ) -> Fan {
         if count == 0 {
             return Fan {
                 starts: vec![0],
@@ -70,10 +80,11 @@ impl Scene {
         // Runs of beams (solid, first, last) in scene order: a solid's span,
         // and that span a turn either way, which never overlap.
         let mut runs: Vec<(usize, usize, usize)> = Vec::new();
-        let usable = step > 0.0 && step.is_finite() && first.is_finite() && origin.is_finite();
+        let usable =
+            step > 0.0 && step.is_finite() && first.is_finite() && origin.coords.is_finite();
         // Only the solids whose shape may lie within range: the rest would
         // be left out below anyway, or could not be met within the range.
-        let near = if origin.is_finite() && max_range.is_finite() {
+        let near = if origin.coords.is_finite() && max_range.is_finite() {
             self.within_reach(origin, max_range + NEAR)
         } else {
             (0..self.solids().len()).collect()
@@ -84,7 +95,7 @@ impl Scene {
                 continue;
             }
             let centre = s.shape.center();
-            let far = (centre - origin).length() - s.shape.bounding_radius();
+            let far = (centre - origin).hypot() - s.shape.bounding_radius();
             if far > max_range + NEAR {
                 continue;
             }
@@ -93,7 +104,7 @@ impl Scene {
                 runs.push((j, 0, count - 1));
                 continue;
             };
-            let base = ((centre - origin).angle() - first).rem_euclid(TAU);
+            let base = ((centre - origin).polar_angle() - first).rem_euclid(TAU);
             for turn in [-TAU, 0.0, TAU] {
                 let a = (base + lo - SLACK + turn) / step - 1.0;
                 let b = (base + hi + SLACK + turn) / step + 1.0;
@@ -134,8 +145,8 @@ impl Fan {
         &self,
         scene: &Scene,
         beam: usize,
-        origin: Vec2,
-        dir: Vec2,
+        origin: Point2<f64>,
+        dir: Vector2<f64>,
         max_range: f64,
     ) -> Option<super::Hit> {
         match (self.starts.get(beam), self.starts.get(beam + 1)) {
@@ -165,7 +176,7 @@ mod tests {
         for round in 0..300 {
             let mut solids: Vec<Solid> = (0..30)
                 .map(|i| {
-                    let c = Vec2::new(20.0 * next() - 10.0, 20.0 * next() - 10.0);
+                    let c = Point2::new(20.0 * next() - 10.0, 20.0 * next() - 10.0);
                     let shape = if i % 4 == 0 {
                         Shape::Circle(Circle::new(c, 0.05 + next()))
                     } else {
@@ -183,7 +194,7 @@ mod tests {
             let origin = match round % 5 {
                 // On a solid's outline or inside it.
                 0 => scene.solids()[1].shape.center(),
-                _ => Vec2::new(16.0 * next() - 8.0, 16.0 * next() - 8.0),
+                _ => Point2::new(16.0 * next() - 8.0, 16.0 * next() - 8.0),
             };
             let (count, fov) = match round % 3 {
                 0 => (361, PI),
@@ -195,7 +206,7 @@ mod tests {
             let range = [30.0, 4.0][round % 2];
             let fan = scene.fan(origin, first, step, count, range);
             for i in 0..count {
-                let dir = Vec2::from_angle(first + i as f64 * step);
+                let dir = Vector2::from_angle(first + i as f64 * step);
                 let want = scene.ray(origin, dir, range);
                 let got = fan.ray(&scene, i, origin, dir, range);
                 assert_eq!(
@@ -219,18 +230,18 @@ mod tests {
     #[test]
     fn a_beam_outside_the_fan_falls_back_to_every_solid() {
         let scene = Scene::new(vec![Solid::new(
-            Shape::Circle(Circle::new(Vec2::new(3.0, 0.0), 0.5)),
+            Shape::Circle(Circle::new(Point2::new(3.0, 0.0), 0.5)),
             SolidRef::Obstacle(0),
         )]);
-        let fan = scene.fan(Vec2::ZERO, 0.0, f64::NAN, 3, 10.0);
-        let dir = Vec2::new(1.0, 0.0);
+        let fan = scene.fan(Point2::origin(), 0.0, f64::NAN, 3, 10.0);
+        let dir = Vector2::new(1.0, 0.0);
         assert_eq!(
-            fan.ray(&scene, 0, Vec2::ZERO, dir, 10.0),
-            scene.ray(Vec2::ZERO, dir, 10.0)
+            fan.ray(&scene, 0, Point2::origin(), dir, 10.0),
+            scene.ray(Point2::origin(), dir, 10.0)
         );
         assert_eq!(
-            fan.ray(&scene, 7, Vec2::ZERO, dir, 10.0),
-            scene.ray(Vec2::ZERO, dir, 10.0)
+            fan.ray(&scene, 7, Point2::origin(), dir, 10.0),
+            scene.ray(Point2::origin(), dir, 10.0)
         );
     }
 }

@@ -5,7 +5,7 @@
 //! shape comes within `MARGIN` of, so a point on a shape is always in a cell
 //! that lists it, whatever rounding does at cell borders.
 
-use super::{Obb, Shape, Solid, Vec2};
+use super::{Obb, PlaneVector, Point2, Shape, Solid, Vector2};
 
 /// Side of a cell, m: a few beams' worth of wall at scanner range.
 const CELL: f64 = 2.0;
@@ -17,7 +17,7 @@ const MARGIN: f64 = 0.01;
 
 #[derive(Debug, Clone, Default, PartialEq)]
 pub(crate) struct SolidGrid {
-    origin: Vec2,
+    origin: Point2<f64>,
     cell: f64,
     cols: usize,
     rows: usize,
@@ -27,19 +27,19 @@ pub(crate) struct SolidGrid {
 }
 
 /// The axis-aligned box round a shape: (min, max).
-fn extent(shape: &Shape) -> (Vec2, Vec2) {
+fn extent(shape: &Shape) -> (Point2<f64>, Point2<f64>) {
     match shape {
         Shape::Circle(c) => (
-            Vec2::new(c.center.x - c.radius, c.center.y - c.radius),
-            Vec2::new(c.center.x + c.radius, c.center.y + c.radius),
+            Point2::new(c.center.x - c.radius, c.center.y - c.radius),
+            Point2::new(c.center.x + c.radius, c.center.y + c.radius),
         ),
         Shape::Box(b) => {
             let cs = b.corners();
             let mut lo = cs[0];
             let mut hi = cs[0];
             for p in &cs[1..] {
-                lo = Vec2::new(lo.x.min(p.x), lo.y.min(p.y));
-                hi = Vec2::new(hi.x.max(p.x), hi.y.max(p.y));
+                lo = Point2::new(lo.x.min(p.x), lo.y.min(p.y));
+                hi = Point2::new(hi.x.max(p.x), hi.y.max(p.y));
             }
             (lo, hi)
         }
@@ -49,24 +49,24 @@ fn extent(shape: &Shape) -> (Vec2, Vec2) {
 impl SolidGrid {
     /// Indexes `solids[i]` for each `i` in `members` (ascending).
     pub fn new(solids: &[Solid], members: &[usize]) -> SolidGrid {
-        let mut bounds: Option<(Vec2, Vec2)> = None;
+        let mut bounds: Option<(Point2<f64>, Point2<f64>)> = None;
         for &i in members {
             let (lo, hi) = extent(&solids[i].shape);
-            if !(lo.is_finite() && hi.is_finite()) {
+            if !(lo.coords.is_finite() && hi.coords.is_finite()) {
                 continue;
             }
             bounds = Some(match bounds {
                 None => (lo, hi),
                 Some((a, b)) => (
-                    Vec2::new(a.x.min(lo.x), a.y.min(lo.y)),
-                    Vec2::new(b.x.max(hi.x), b.y.max(hi.y)),
+                    Point2::new(a.x.min(lo.x), a.y.min(lo.y)),
+                    Point2::new(b.x.max(hi.x), b.y.max(hi.y)),
                 ),
             });
         }
         let Some((lo, hi)) = bounds else {
             return SolidGrid::default();
         };
-        let origin = Vec2::new(lo.x - MARGIN, lo.y - MARGIN);
+        let origin = Point2::new(lo.x - MARGIN, lo.y - MARGIN);
         let (w, h) = (hi.x - lo.x + 2.0 * MARGIN, hi.y - lo.y + 2.0 * MARGIN);
         let cell = CELL.max(w / MAX_SIDE as f64).max(h / MAX_SIDE as f64);
         let cols = ((w / cell).ceil() as usize).clamp(1, MAX_SIDE);
@@ -83,11 +83,11 @@ impl SolidGrid {
         for &i in members {
             let shape = &solids[i].shape;
             let (lo, hi) = extent(shape);
-            if !(lo.is_finite() && hi.is_finite()) {
+            if !(lo.coords.is_finite() && hi.coords.is_finite()) {
                 continue;
             }
-            let (c0, r0) = g.cell_of(Vec2::new(lo.x - MARGIN, lo.y - MARGIN));
-            let (c1, r1) = g.cell_of(Vec2::new(hi.x + MARGIN, hi.y + MARGIN));
+            let (c0, r0) = g.cell_of(Point2::new(lo.x - MARGIN, lo.y - MARGIN));
+            let (c1, r1) = g.cell_of(Point2::new(hi.x + MARGIN, hi.y + MARGIN));
             for r in r0..=r1 {
                 for c in c0..=c1 {
                     if g.touches(shape, c, r) {
@@ -121,7 +121,7 @@ impl SolidGrid {
     }
 
     /// The cell holding `p`, clamped to the table.
-    fn cell_of(&self, p: Vec2) -> (usize, usize) {
+    fn cell_of(&self, p: Point2<f64>) -> (usize, usize) {
         let f = |v: f64, o: f64, n: usize| {
             let k = ((v - o) / self.cell).floor();
             if k.is_nan() || k <= 0.0 {
@@ -138,13 +138,13 @@ impl SolidGrid {
 
     /// Whether `shape` comes within `MARGIN` of cell (c, r).
     fn touches(&self, shape: &Shape, c: usize, r: usize) -> bool {
-        let lo = Vec2::new(
+        let lo = Point2::new(
             self.origin.x + c as f64 * self.cell - MARGIN,
             self.origin.y + r as f64 * self.cell - MARGIN,
         );
         let side = self.cell + 2.0 * MARGIN;
         let square = Obb::new(
-            Vec2::new(lo.x + side / 2.0, lo.y + side / 2.0),
+            Point2::new(lo.x + side / 2.0, lo.y + side / 2.0),
             0.0,
             side,
             side,
@@ -159,11 +159,11 @@ impl SolidGrid {
 
     /// Appends the solids of every cell that meets the box `lo..hi` (with
     /// repeats; the caller sorts and dedups).
-    pub fn within(&self, lo: Vec2, hi: Vec2, out: &mut Vec<usize>) {
+    pub fn within(&self, lo: Point2<f64>, hi: Point2<f64>, out: &mut Vec<usize>) {
         if self.is_empty() {
             return;
         }
-        let far = Vec2::new(
+        let far = Point2::new(
             self.origin.x + self.cols as f64 * self.cell,
             self.origin.y + self.rows as f64 * self.cell,
         );
@@ -184,15 +184,15 @@ impl SolidGrid {
     /// and returns whether to go on. `origin` and `dir` must be finite.
     pub fn along(
         &self,
-        origin: Vec2,
-        dir: Vec2,
+        origin: Point2<f64>,
+        dir: Vector2<f64>,
         t_max: f64,
         mut visit: impl FnMut(&[usize], f64) -> bool,
     ) {
         if self.is_empty() {
             return;
         }
-        let size = Vec2::new(self.cols as f64 * self.cell, self.rows as f64 * self.cell);
+        let size = Vector2::new(self.cols as f64 * self.cell, self.rows as f64 * self.cell);
         // The part of the ray inside the table (slab test).
         let (mut t0, mut t1) = (0.0_f64, t_max);
         for (o, d, lo, len) in [
@@ -213,7 +213,7 @@ impl SolidGrid {
         if t0.partial_cmp(&t1).is_none_or(|o| o.is_gt()) {
             return;
         }
-        let p = origin + dir.scale(t0);
+        let p = origin + dir * t0;
         let (mut c, mut r) = self.cell_of(p);
         let next = |d: f64, pv: f64, k: usize, o: f64| -> (i64, f64, f64) {
             if d > 0.0 {

@@ -8,7 +8,7 @@
 //! direction (`fan.rs`).
 
 use super::index::SolidGrid;
-use super::{Obb, Shape, Vec2};
+use super::{Obb, PlaneVector, Point2, Shape, Vector2};
 use serde::{Deserialize, Serialize};
 
 /// What a solid is in the world, by index into the world's lists.
@@ -102,9 +102,9 @@ impl Scene {
 
     /// Ascending, without repeats: the loose solids and the fixed ones
     /// listed in the grid's cells that meet the box `lo..hi`.
-    fn near(&self, lo: Vec2, hi: Vec2) -> Vec<usize> {
+    fn near(&self, lo: Point2<f64>, hi: Point2<f64>) -> Vec<usize> {
         let mut out = self.loose.clone();
-        if lo.is_finite() && hi.is_finite() {
+        if lo.coords.is_finite() && hi.coords.is_finite() {
             self.grid.within(lo, hi, &mut out);
         } else {
             out.extend((0..self.solids.len()).filter(|&i| fixed(self.solids[i].what)));
@@ -115,16 +115,16 @@ impl Scene {
     }
 
     /// Ascending: every solid whose shape may come within `reach` of `origin`.
-    pub(crate) fn within_reach(&self, origin: Vec2, reach: f64) -> Vec<usize> {
-        let r = Vec2::new(reach, reach);
+    pub(crate) fn within_reach(&self, origin: Point2<f64>, reach: f64) -> Vec<usize> {
+        let r = Vector2::new(reach, reach);
         self.near(origin - r, origin + r)
     }
 
     /// The nearest solid along a ray with unit direction `dir`, within `max_range`.
     /// Ties go to the solid listed first, so results never depend on anything
     /// but the scene's order.
-    pub fn ray(&self, origin: Vec2, dir: Vec2, max_range: f64) -> Option<Hit> {
-        if !(origin.is_finite() && dir.is_finite() && max_range.is_finite()) {
+    pub fn ray(&self, origin: Point2<f64>, dir: Vector2<f64>, max_range: f64) -> Option<Hit> {
+        if !(origin.coords.is_finite() && dir.is_finite() && max_range.is_finite()) {
             return self.ray_among(origin, dir, max_range, 0..self.solids.len());
         }
         // The nearest so far and its index: ties go to the lower index, as
@@ -159,8 +159,8 @@ impl Scene {
     /// only.
     pub fn ray_among(
         &self,
-        origin: Vec2,
-        dir: Vec2,
+        origin: Point2<f64>,
+        dir: Vector2<f64>,
         max_range: f64,
         among: impl Iterator<Item = usize>,
     ) -> Option<Hit> {
@@ -171,11 +171,11 @@ impl Scene {
                 continue;
             }
             let oc = s.shape.center() - origin;
-            let proj = oc.dot(dir);
+            let proj = oc.dot(&dir);
             if proj + s.bound < 0.0 || proj - s.bound > limit {
                 continue;
             }
-            let perp = oc.cross(dir);
+            let perp = oc.perp(&dir);
             if perp.abs() > s.bound {
                 continue;
             }
@@ -200,13 +200,13 @@ impl Scene {
             .into_iter()
             .map(|i| &self.solids[i])
             .filter(|s| s.active)
-            .filter(|s| (s.shape.center() - footprint.center).length() <= s.bound + fr)
+            .filter(|s| (s.shape.center() - footprint.center).hypot() <= s.bound + fr)
             .find(|s| s.shape.overlaps_box(footprint))
             .map(|s| s.what)
     }
 
     /// Whether a point lies inside any active solid.
-    pub fn contains(&self, p: Vec2) -> bool {
+    pub fn contains(&self, p: Point2<f64>) -> bool {
         self.near(p, p)
             .into_iter()
             .any(|i| self.solids[i].active && self.solids[i].shape.contains(p))
@@ -222,14 +222,14 @@ mod tests {
         Scene::new(vec![
             Solid::new(
                 Shape::Box(Obb::from_segment(
-                    Vec2::new(4.0, -5.0),
-                    Vec2::new(4.0, 5.0),
+                    Point2::new(4.0, -5.0),
+                    Point2::new(4.0, 5.0),
                     0.2,
                 )),
                 SolidRef::Wall(0),
             ),
             Solid::new(
-                Shape::Circle(Circle::new(Vec2::new(2.0, 0.0), 0.5)),
+                Shape::Circle(Circle::new(Point2::new(2.0, 0.0), 0.5)),
                 SolidRef::Obstacle(0),
             ),
         ])
@@ -238,11 +238,11 @@ mod tests {
     #[test]
     fn nearest_solid_wins() {
         let s = scene();
-        let h = s.ray(Vec2::ZERO, Vec2::new(1.0, 0.0), 30.0);
+        let h = s.ray(Point2::origin(), Vector2::new(1.0, 0.0), 30.0);
         assert_eq!(h.map(|h| h.what), Some(SolidRef::Obstacle(0)));
         assert!((h.map_or(0.0, |h| h.distance) - 1.5).abs() < 1e-12);
         // Past the circle's side the wall face is at 3.9.
-        let h = s.ray(Vec2::new(0.0, 1.0), Vec2::new(1.0, 0.0), 30.0);
+        let h = s.ray(Point2::new(0.0, 1.0), Vector2::new(1.0, 0.0), 30.0);
         assert_eq!(h.map(|h| h.what), Some(SolidRef::Wall(0)));
         assert!((h.map_or(0.0, |h| h.distance) - 3.9).abs() < 1e-12);
     }
@@ -250,20 +250,20 @@ mod tests {
     #[test]
     fn range_limit_and_inactive_solids() {
         let mut s = scene();
-        assert_eq!(s.ray(Vec2::ZERO, Vec2::new(1.0, 0.0), 1.0), None);
+        assert_eq!(s.ray(Point2::origin(), Vector2::new(1.0, 0.0), 1.0), None);
         if let Some(c) = s.find_mut(SolidRef::Obstacle(0)) {
             c.active = false;
         }
-        let h = s.ray(Vec2::ZERO, Vec2::new(1.0, 0.0), 30.0);
+        let h = s.ray(Point2::origin(), Vector2::new(1.0, 0.0), 30.0);
         assert_eq!(h.map(|h| h.what), Some(SolidRef::Wall(0)));
     }
 
     #[test]
     fn footprint_overlap() {
         let s = scene();
-        let fp = Obb::new(Vec2::new(3.5, 3.0), 0.0, 1.2, 0.6);
+        let fp = Obb::new(Point2::new(3.5, 3.0), 0.0, 1.2, 0.6);
         assert_eq!(s.overlapping(&fp), Some(SolidRef::Wall(0)));
-        let fp = Obb::new(Vec2::new(0.0, 3.0), 0.0, 1.2, 0.6);
+        let fp = Obb::new(Point2::new(0.0, 3.0), 0.0, 1.2, 0.6);
         assert_eq!(s.overlapping(&fp), None);
     }
 }

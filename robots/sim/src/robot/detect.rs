@@ -2,21 +2,21 @@
 //! (Figure 33), and where the laser pointer on the same head points
 //! (`savepos(name,laser)`), as the HAL reports them.
 
-use crate::geometry::{Frame, Pose, Vec2};
+use crate::geometry::{PlaneVector, Point2, Pose, Vector2};
 use crate::sensors::{CameraFrame, Scan};
 use ilmr_hal::{Detection, Side};
 use ilmr_model::RobotModel;
 
 /// World points of the scan's beams that returned, with their bearing from
 /// the robot's heading.
-pub fn scan_points(scan: &Scan, pose: Pose) -> Vec<(usize, Vec2)> {
+pub fn scan_points(scan: &Scan, pose: Pose) -> Vec<(usize, Point2<f64>)> {
     scan.ranges
         .iter()
         .enumerate()
         .filter(|(_, r)| **r < scan.max_range)
         .map(|(i, r)| {
-            let local = scan.mount + Vec2::from_angle(scan.bearing(i)).scale(*r);
-            (i, pose.transform(local))
+            let local = scan.mount + Vector2::from_angle(scan.bearing(i)) * (*r);
+            (i, pose.to_world(&local))
         })
         .collect()
 }
@@ -37,12 +37,12 @@ fn side_of(bearing: f64) -> Side {
 pub fn camera_objects(
     model: &RobotModel,
     frame: &CameraFrame,
-    eye: Vec2,
+    eye: Point2<f64>,
     pose: Pose,
     scan: &Scan,
     out: &mut Vec<Detection>,
 ) {
-    let mut points: Option<Vec<(usize, Vec2)>> = None;
+    let mut points: Option<Vec<(usize, Point2<f64>)>> = None;
     for d in &frame.detections {
         let colour = format!("{:?}", d.colour);
         let Some(object) = model.objects.iter().find(|o| {
@@ -59,15 +59,15 @@ pub fn camera_objects(
             .iter()
             .filter(|(_, p)| {
                 let to = *p - eye;
-                crate::geometry::wrap_angle(to.angle() - bearing).abs() <= half
+                crate::geometry::wrap_angle(to.polar_angle() - bearing).abs() <= half
             })
-            .map(|(_, p)| p.distance(eye))
+            .map(|(_, p)| (p - eye).hypot())
             .fold(f64::INFINITY, f64::min);
         if !nearest.is_finite() {
             continue;
         }
         let radius = nearest * (d.angular_size / 2.0).tan();
-        let centre = eye + Vec2::from_angle(bearing).scale(nearest + radius);
+        let centre = eye + Vector2::from_angle(bearing) * (nearest + radius);
         out.push(Detection {
             sensor: "camera".into(),
             object: object.name.clone(),
@@ -86,7 +86,7 @@ pub fn camera_objects(
 pub fn laser_spot(
     model: &RobotModel,
     frame: &CameraFrame,
-    eye: Vec2,
+    eye: Point2<f64>,
     pose: Pose,
     out: &mut Vec<Detection>,
 ) {
@@ -95,8 +95,8 @@ pub fn laser_spot(
     };
     let along = slant * frame.tilt.cos();
     let bearing = pose.h + frame.pan;
-    let spot = eye + Vec2::from_angle(bearing).scale(along);
-    if !spot.is_finite() {
+    let spot = eye + Vector2::from_angle(bearing) * along;
+    if !spot.coords.is_finite() {
         return;
     }
     out.push(Detection {

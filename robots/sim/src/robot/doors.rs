@@ -11,7 +11,7 @@
 //! the second run along the line between them, which tells a door from a
 //! gap between furniture.
 
-use crate::geometry::{Frame, Pose, Vec2};
+use crate::geometry::{PlaneVector, Point2, Pose, Vector2, centroid};
 use crate::sensors::Scan;
 use ilmr_hal::{Detection, Side};
 use ilmr_model::RobotModel;
@@ -62,7 +62,7 @@ pub fn doors(model: &RobotModel, scan: &Scan, pose: Pose, out: &mut Vec<Detectio
     };
     let r = &scan.ranges;
     let hit = |i: usize| r[i].is_finite() && r[i] < scan.max_range;
-    let local = |i: usize| scan.mount + Vec2::from_angle(scan.bearing(i)).scale(r[i]);
+    let local = |i: usize| scan.mount + Vector2::from_angle(scan.bearing(i)) * r[i];
     let window = (SEARCH_WINDOW / scan.angle_increment.abs().max(1e-6)).ceil() as usize;
     let mut i = 0;
     while i + 1 < r.len() {
@@ -78,7 +78,7 @@ pub fn doors(model: &RobotModel, scan: &Scan, pose: Pose, out: &mut Vec<Detectio
             .filter(|&j| hit(j) && r[j - 1] - r[j] >= EDGE_JUMP)
             .find_map(|j| {
                 let b = local(j);
-                let width = a.distance(b);
+                let width = (a - b).hypot();
                 // A jamb is measured to a beam's spacing, and a beam may graze its face.
                 let slack = JAMB_SLACK + r[i].max(r[j]) * scan.angle_increment.abs();
                 let fits = (min_w - slack..=max_w + slack).contains(&width);
@@ -91,19 +91,19 @@ pub fn doors(model: &RobotModel, scan: &Scan, pose: Pose, out: &mut Vec<Detectio
             i += 1;
             continue;
         };
-        let (wa, wb) = (pose.transform(a), pose.transform(b));
-        let mid = (wa + wb).scale(0.5);
-        let mut normal = Vec2::from_angle(pose.h + along.angle()).perp();
-        if normal.dot(mid - pose.origin()) < 0.0 {
-            normal = normal.scale(-1.0);
+        let (wa, wb) = (pose.to_world(&a), pose.to_world(&b));
+        let mid = nalgebra::center(&wa, &wb);
+        let mut normal = Vector2::from_angle(pose.h + along.polar_angle()).rotated_left();
+        if normal.dot(&(mid - pose.position())) < 0.0 {
+            normal *= -1.0;
         }
-        let rel = crate::geometry::wrap_angle((mid - pose.origin()).angle() - pose.h);
+        let rel = crate::geometry::wrap_angle((mid - pose.position()).polar_angle() - pose.h);
         out.push(Detection {
             sensor: "scanner".into(),
             object: name.clone(),
             x: mid.x,
             y: mid.y,
-            h: normal.angle(),
+            h: normal.polar_angle(),
             side: if rel >= 0.0 { Side::Left } else { Side::Right },
         });
         i = j;
@@ -112,39 +112,32 @@ pub fn doors(model: &RobotModel, scan: &Scan, pose: Pose, out: &mut Vec<Detectio
 
 /// Whether every beam between the jambs `i` and `j` passes the line `a`-`b`
 /// by at least `BEHIND` (or returns nothing).
-fn through(scan: &Scan, i: usize, j: usize, a: Vec2, b: Vec2) -> bool {
+fn through(scan: &Scan, i: usize, j: usize, a: Point2<f64>, b: Point2<f64>) -> bool {
     let o = scan.mount;
     (i + 1..j).all(|k| {
-        let dir = Vec2::from_angle(scan.bearing(k));
+        let dir = Vector2::from_angle(scan.bearing(k));
         // Where the beam crosses the line through the jambs.
         let ab = b - a;
-        let denom = dir.cross(ab);
+        let denom = dir.perp(&ab);
         if denom.abs() < 1e-12 {
             return false;
         }
-        let t = (a - o).cross(ab) / denom;
+        let t = (a - o).perp(&ab) / denom;
         scan.ranges[k] >= t + BEHIND
     })
 }
 
 /// The returns in `order` within `WALL_REACH` of `jamb`, up to the first
 /// beam without one.
-fn beside(scan: &Scan, jamb: Vec2, order: impl Iterator<Item = usize>) -> Vec<Vec2> {
+fn beside(scan: &Scan, jamb: Point2<f64>, order: impl Iterator<Item = usize>) -> Vec<Point2<f64>> {
     order
         .map_while(|k| {
             let r = scan.ranges[k];
             (r.is_finite() && r < scan.max_range)
-                .then(|| scan.mount + Vec2::from_angle(scan.bearing(k)).scale(r))
+                .then(|| scan.mount + Vector2::from_angle(scan.bearing(k)) * r)
         })
-        .take_while(|p| p.distance(jamb) <= WALL_REACH)
+        .take_while(|p| (p - jamb).hypot() <= WALL_REACH)
         .collect()
-}
-
-fn centroid(pts: &[Vec2]) -> Vec2 {
-    let n = pts.len().max(1) as f64;
-    pts.iter()
-        .fold(Vec2::new(0.0, 0.0), |acc, p| acc + *p)
-        .scale(1.0 / n)
 }
 
 /// The direction of the wall the jambs `a` (beam `i`) and `b` (beam `j`)
@@ -152,7 +145,13 @@ fn centroid(pts: &[Vec2]) -> Vec2 {
 /// each jamb, outside the gap, all within `WALL_OFF` of the line through the
 /// two sides' centroids, and the jambs on that line too. `None` when the
 /// gap is not in a wall.
-fn wall_line(scan: &Scan, a: Vec2, b: Vec2, i: usize, j: usize) -> Option<Vec2> {
+fn wall_line(
+    scan: &Scan,
+    a: Point2<f64>,
+    b: Point2<f64>,
+    i: usize,
+    j: usize,
+) -> Option<Vector2<f64>> {
     let near = beside(scan, a, (0..i).rev());
     let far = beside(scan, b, j + 1..scan.ranges.len());
     if near.len() < WALL_RETURNS || far.len() < WALL_RETURNS {
@@ -160,16 +159,16 @@ fn wall_line(scan: &Scan, a: Vec2, b: Vec2, i: usize, j: usize) -> Option<Vec2> 
     }
     let (c0, c1) = (centroid(&near), centroid(&far));
     let along = c1 - c0;
-    let len = along.length();
+    let len = along.hypot();
     if len < 1e-9 {
         return None;
     }
-    let u = along.scale(1.0 / len);
-    let off = |p: Vec2| (p - c0).cross(u).abs();
-    let (sa, sb) = ((a - c0).dot(u), (b - c0).dot(u));
+    let u = along * (1.0 / len);
+    let off = |p: Point2<f64>| (p - c0).perp(&u).abs();
+    let (sa, sb) = ((a - c0).dot(&u), (b - c0).dot(&u));
     let (lo, hi) = (sa.min(sb), sa.max(sb));
-    let beside_gap = |p: &Vec2| {
-        let s = (*p - c0).dot(u);
+    let beside_gap = |p: &Point2<f64>| {
+        let s = (*p - c0).dot(&u);
         s <= lo + 0.05 || s >= hi - 0.05
     };
     let straight = near
@@ -188,8 +187,8 @@ mod tests {
     fn wall(x0: f64, y0: f64, x1: f64, y1: f64, id: usize) -> Solid {
         Solid::new(
             Shape::Box(Obb::from_segment(
-                Vec2::new(x0, y0),
-                Vec2::new(x1, y1),
+                Point2::new(x0, y0),
+                Point2::new(x1, y1),
                 0.15,
             )),
             SolidRef::Wall(id),
@@ -278,11 +277,11 @@ mod tests {
         // Two cabinets 1 m apart, their faces not in line with each other.
         let scene = Scene::new(vec![
             Solid::new(
-                Shape::Box(Obb::new(Vec2::new(4.0, 2.5), 0.0, 0.5, 0.5)),
+                Shape::Box(Obb::new(Point2::new(4.0, 2.5), 0.0, 0.5, 0.5)),
                 SolidRef::Obstacle(0),
             ),
             Solid::new(
-                Shape::Box(Obb::new(Vec2::new(5.5, 3.5), 0.0, 0.5, 0.5)),
+                Shape::Box(Obb::new(Point2::new(5.5, 3.5), 0.0, 0.5, 0.5)),
                 SolidRef::Obstacle(1),
             ),
             wall(-5.0, 6.0, 15.0, 6.0, 0),

@@ -4,7 +4,7 @@
 //! targets and faults that put obstacles in the way are what the scanner has
 //! to find, so they are left out.
 
-use crate::geometry::{Shape, Vec2};
+use crate::geometry::{PlaneVector, Point2, Shape};
 use crate::world::World;
 use ilmr_hal::{KnownMap, Solid};
 
@@ -37,7 +37,7 @@ pub(crate) fn known_map(world: &World) -> KnownMap {
 /// is exact) and a core along its long axis (so that a point inside it is
 /// inside a solid).
 fn furniture(shape: &Shape, out: &mut Vec<Solid>) {
-    let p = |v: Vec2| (v.x, v.y);
+    let p = |v: Point2<f64>| (v.x, v.y);
     match shape {
         Shape::Circle(c) => out.push(Solid {
             a: p(c.center),
@@ -58,9 +58,9 @@ fn furniture(shape: &Shape, out: &mut Vec<Solid>) {
             let (long, short, axis) = if obb.half.x >= obb.half.y {
                 (obb.half.x, obb.half.y, obb.axis)
             } else {
-                (obb.half.y, obb.half.x, obb.axis.perp())
+                (obb.half.y, obb.half.x, obb.axis.rotated_left())
             };
-            let reach = axis.scale(long - short);
+            let reach = axis * (long - short);
             out.push(Solid {
                 a: p(obb.center - reach),
                 b: p(obb.center + reach),

@@ -16,7 +16,6 @@ pub use model::config_from_model;
 pub use ops::{BALL_SECONDS, INIT_SECONDS, LEAVE_SECONDS, MOVEMODE_SECONDS, TAKE_SECONDS};
 
 use crate::config::RobotKind;
-use crate::geometry::Frame;
 use crate::kinematics::{BodyPose as SimBodyPose, MovementMode};
 use crate::sim::{SimError, Simulator};
 use crate::world::World;
@@ -289,13 +288,13 @@ impl Hal for SimRobot {
                 objects::objects(&self.model, scan, stamp, &mut out.detections);
             }
             if let (Some(frame), Some(cam)) = (&seen.camera, &self.sim.config().camera) {
-                let eye = stamp.transform(cam.head);
+                let eye = stamp.to_world(&cam.head);
                 let found = &mut out.detections;
                 detect::camera_objects(&self.model, frame, eye, stamp, scan, found);
             }
         }
         if let (Some(frame), Some(cam)) = (&seen.camera, &self.sim.config().camera) {
-            let eye = stamp.transform(cam.head);
+            let eye = stamp.to_world(&cam.head);
             detect::laser_spot(&self.model, frame, eye, stamp, &mut out.detections);
         }
         Ok(())

@@ -10,7 +10,7 @@
 //! a corner), so that pillars and people of the same width are not taken for
 //! boxes. Doors are found by `doors.rs`.
 
-use crate::geometry::{Frame, Pose, Vec2};
+use crate::geometry::{PlaneVector, Point2, Pose, Vector2, centroid};
 use crate::sensors::Scan;
 use ilmr_hal::{Detection, Side};
 use ilmr_model::RobotModel;
@@ -94,7 +94,7 @@ pub fn objects(model: &RobotModel, scan: &Scan, pose: Pose, out: &mut Vec<Detect
     };
     let r = &scan.ranges;
     let hit = |i: usize| r[i].is_finite() && r[i] < scan.max_range;
-    let local = |i: usize| scan.mount + Vec2::from_angle(scan.bearing(i)).scale(r[i]);
+    let local = |i: usize| scan.mount + Vector2::from_angle(scan.bearing(i)) * r[i];
     // The beam beside an end passes behind it: it finds nothing, or something
     // further. Past a face seen edge-on that something must not be the face
     // going on: a door jamb's end and the wall beside it, seen along the wall,
@@ -103,8 +103,8 @@ pub fn objects(model: &RobotModel, scan: &Scan, pose: Pose, out: &mut Vec<Detect
         if !hit(beside) {
             return true;
         }
-        let beam = Vec2::from_angle(scan.bearing(end));
-        let edge_on = face.dir.cross(beam).abs() < EDGE_ON.sin();
+        let beam = Vector2::from_angle(scan.bearing(end));
+        let edge_on = face.dir.perp(&beam).abs() < EDGE_ON.sin();
         r[beside] - r[end] >= SEPARATION && !(edge_on && face.off(local(beside)) < GOES_ON)
     };
     let mut a = 1;
@@ -119,17 +119,17 @@ pub fn objects(model: &RobotModel, scan: &Scan, pose: Pose, out: &mut Vec<Detect
         }
         let near = r[a..=b].iter().copied().fold(f64::INFINITY, f64::min) <= MAX_RANGE;
         // A run wider than any kind is a wall: it is not fitted.
-        let narrow = local(a).distance(local(b)) <= widest + WIDTH_SLACK;
+        let narrow = (local(a) - local(b)).hypot() <= widest + WIDTH_SLACK;
         if b + 1 < r.len() && b + 1 - a >= MIN_RETURNS && near && narrow {
-            let pts: Vec<Vec2> = (a..=b).map(local).collect();
+            let pts: Vec<Point2<f64>> = (a..=b).map(local).collect();
             let spacing = r[a].max(r[b]) * scan.angle_increment.abs();
             if let Some(outline) = Outline::of(&pts, spacing)
                 && clear(a, a - 1, &outline.first_face)
                 && clear(b, b + 1, &outline.last_face)
             {
                 let centre = centroid(&pts);
-                let seen = pose.transform(centre);
-                let rel = centre.angle();
+                let seen = pose.to_world(&centre);
+                let rel = centre.coords.polar_angle();
                 for k in &kinds {
                     // The outline's ends may lie up to half a beam's spacing
                     // inside the object's edges on either side.
@@ -164,8 +164,8 @@ struct Outline {
 impl Outline {
     /// `None` for anything rounder than a box. `spacing` is the distance
     /// between neighbouring beams there, m.
-    fn of(pts: &[Vec2], spacing: f64) -> Option<Outline> {
-        let width = pts[0].distance(pts[pts.len() - 1]);
+    fn of(pts: &[Point2<f64>], spacing: f64) -> Option<Outline> {
+        let width = (pts[0] - pts[pts.len() - 1]).hypot();
         let whole = Line::fit(pts);
         if whole.worst(pts) <= FLAT {
             return Some(Outline {
@@ -184,11 +184,11 @@ impl Outline {
                 let cost = |(a, b): &(Line, Line)| a.spread + b.spread;
                 cost(x).total_cmp(&cost(y))
             })?;
-        let angle = near.dir.cross(far.dir).abs().asin();
+        let angle = near.dir.perp(&far.dir).abs().asin();
         let corner = near.meet(&far)?;
         let on_outline = pts
             .iter()
-            .map(|p| p.distance(corner))
+            .map(|p| (p - corner).hypot())
             .fold(f64::INFINITY, f64::min)
             <= CORNER_OFF + spacing;
         ((std::f64::consts::FRAC_PI_2 - angle) <= CORNER_SLACK && on_outline).then_some(Outline {
@@ -202,15 +202,15 @@ impl Outline {
 /// A straight line fitted to returns by total least squares.
 #[derive(Debug, Clone, Copy)]
 struct Line {
-    centre: Vec2,
+    centre: Point2<f64>,
     /// Unit direction.
-    dir: Vec2,
+    dir: Vector2<f64>,
     /// Sum of the squared distances of the fitted returns from it.
     spread: f64,
 }
 
 impl Line {
-    fn fit(pts: &[Vec2]) -> Line {
+    fn fit(pts: &[Point2<f64>]) -> Line {
         let centre = centroid(pts);
         let (mut xx, mut xy, mut yy) = (0.0, 0.0, 0.0);
         for p in pts {
@@ -220,8 +220,8 @@ impl Line {
             yy += d.y * d.y;
         }
         let theta = 0.5 * (2.0 * xy).atan2(xx - yy);
-        let dir = Vec2::from_angle(theta);
-        let spread = pts.iter().map(|p| (*p - centre).cross(dir).powi(2)).sum();
+        let dir = Vector2::from_angle(theta);
+        let spread = pts.iter().map(|p| (*p - centre).perp(&dir).powi(2)).sum();
         Line {
             centre,
             dir,
@@ -229,31 +229,24 @@ impl Line {
         }
     }
 
-    fn off(&self, p: Vec2) -> f64 {
-        (p - self.centre).cross(self.dir).abs()
+    fn off(&self, p: Point2<f64>) -> f64 {
+        (p - self.centre).perp(&self.dir).abs()
     }
 
     /// The furthest of `pts` from the line.
-    fn worst(&self, pts: &[Vec2]) -> f64 {
+    fn worst(&self, pts: &[Point2<f64>]) -> f64 {
         pts.iter().map(|p| self.off(*p)).fold(0.0, f64::max)
     }
 
     /// Where two lines cross; `None` when they are parallel.
-    fn meet(&self, other: &Line) -> Option<Vec2> {
-        let denom = self.dir.cross(other.dir);
+    fn meet(&self, other: &Line) -> Option<Point2<f64>> {
+        let denom = self.dir.perp(&other.dir);
         if denom.abs() < 1e-9 {
             return None;
         }
-        let t = (other.centre - self.centre).cross(other.dir) / denom;
-        Some(self.centre + self.dir.scale(t))
+        let t = (other.centre - self.centre).perp(&other.dir) / denom;
+        Some(self.centre + self.dir * t)
     }
-}
-
-fn centroid(pts: &[Vec2]) -> Vec2 {
-    let n = pts.len().max(1) as f64;
-    pts.iter()
-        .fold(Vec2::new(0.0, 0.0), |acc, p| acc + *p)
-        .scale(1.0 / n)
 }
 
 #[cfg(test)]
@@ -281,7 +274,7 @@ mod tests {
 
     fn pickup(x: f64, y: f64, heading: f64) -> Solid {
         Solid::new(
-            Shape::Box(Obb::new(Vec2::new(x, y), heading, 0.4, 0.3)),
+            Shape::Box(Obb::new(Point2::new(x, y), heading, 0.4, 0.3)),
             SolidRef::PickupBox(0),
         )
     }
@@ -290,8 +283,8 @@ mod tests {
     fn back_wall() -> Solid {
         Solid::new(
             Shape::Box(Obb::from_segment(
-                Vec2::new(5.0, -5.0),
-                Vec2::new(5.0, 5.0),
+                Point2::new(5.0, -5.0),
+                Point2::new(5.0, 5.0),
                 0.15,
             )),
             SolidRef::Wall(0),
@@ -329,7 +322,7 @@ mod tests {
     #[test]
     fn round_things_and_walls_of_a_box_width_are_not_boxes() {
         let pillar = Solid::new(
-            Shape::Circle(Circle::new(Vec2::new(2.5, -1.0), 0.22)),
+            Shape::Circle(Circle::new(Point2::new(2.5, -1.0), 0.22)),
             SolidRef::Obstacle(0),
         );
         let scene = Scene::new(vec![pillar, back_wall()]);
@@ -337,7 +330,7 @@ mod tests {
         assert!(d.is_empty(), "{d:?}");
         // Something flat on the wall does not stand clear of it.
         let plate = Solid::new(
-            Shape::Box(Obb::new(Vec2::new(4.85, 0.0), 0.0, 0.15, 0.4)),
+            Shape::Box(Obb::new(Point2::new(4.85, 0.0), 0.0, 0.15, 0.4)),
             SolidRef::Obstacle(0),
         );
         let scene = Scene::new(vec![plate, back_wall()]);
@@ -351,7 +344,7 @@ mod tests {
         // Face on, the 0.3 m side shows.
         assert!(found("charger 0.5 0.7", &scene, pose).is_empty());
         let crate_box = Solid::new(
-            Shape::Box(Obb::new(Vec2::new(2.5, 0.0), 0.0, 0.5, 0.5)),
+            Shape::Box(Obb::new(Point2::new(2.5, 0.0), 0.0, 0.5, 0.5)),
             SolidRef::Obstacle(0),
         );
         let scene = Scene::new(vec![crate_box, back_wall()]);
@@ -388,13 +381,13 @@ mod tests {
         let m = model("box 0.3 0.5\ncharger 0.5 0.7");
         for d in [1.5, 2.5, 4.0, 6.0, 9.0] {
             let person = Solid::new(
-                Shape::Circle(Circle::new(Vec2::new(0.85 + d, 0.4), 0.25)),
+                Shape::Circle(Circle::new(Point2::new(0.85 + d, 0.4), 0.25)),
                 SolidRef::Target(0),
             );
             let wall = Solid::new(
                 Shape::Box(Obb::from_segment(
-                    Vec2::new(d + 3.0, -9.0),
-                    Vec2::new(d + 3.0, 9.0),
+                    Point2::new(d + 3.0, -9.0),
+                    Point2::new(d + 3.0, 9.0),
                     0.15,
                 )),
                 SolidRef::Wall(0),
@@ -417,7 +410,7 @@ mod tests {
             .and_then(Result::ok)
             .unwrap_or_else(|| unreachable!("the office world ships"));
         let scene = office.scene();
-        let real: Vec<Vec2> = office
+        let real: Vec<Point2<f64>> = office
             .pickup_boxes
             .iter()
             .map(|b| b.shape.center)
@@ -446,9 +439,9 @@ mod tests {
             let mut out = Vec::new();
             objects(&m, &noisy_scan_at(&scene, pose, seed), pose, &mut out);
             for d in out.iter().filter(|d| d.object == "box") {
-                let at = Vec2::new(d.x, d.y);
+                let at = Point2::new(d.x, d.y);
                 assert!(
-                    real.iter().any(|c| c.distance(at) < 0.5),
+                    real.iter().any(|c| (c - at).hypot() < 0.5),
                     "from {pose:?}: {d:?}"
                 );
             }

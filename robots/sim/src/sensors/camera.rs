@@ -3,7 +3,7 @@
 //! measures the distance along the head's direction.
 
 use crate::config::CameraConfig;
-use crate::geometry::{Frame, Pose, Scene, SolidRef, Vec2};
+use crate::geometry::{PlaneVector, Point2, Pose, Scene, SolidRef, Vector2};
 use crate::rng::Rng;
 use crate::world::Colour;
 use serde::Serialize;
@@ -13,7 +13,7 @@ use serde::Serialize;
 pub struct Visible {
     pub name: String,
     pub colour: Colour,
-    pub position: Vec2,
+    pub position: Point2<f64>,
     pub radius: f64,
     /// The solid standing for it, which may block its own sight line.
     pub solid: Option<SolidRef>,
@@ -58,22 +58,22 @@ pub fn observe(
     head: &Head,
     rng: &mut Rng,
 ) -> (Vec<Detection>, Option<f64>) {
-    let eye = robot.transform(cfg.head);
+    let eye = robot.to_world(&cfg.head);
     let axis = robot.h + head.pan;
     let half_fov = cfg.fov_deg.to_radians() / 2.0;
     let mut detections: Vec<Detection> = things
         .iter()
         .filter_map(|t| {
             let to = t.position - eye;
-            let dist = to.length();
+            let dist = to.hypot();
             if dist <= t.radius || dist > cfg.max_range {
                 return None;
             }
-            let off_axis = crate::geometry::wrap_angle(to.angle() - axis);
+            let off_axis = crate::geometry::wrap_angle(to.polar_angle() - axis);
             if off_axis.abs() > half_fov {
                 return None;
             }
-            let dir = to.scale(1.0 / dist);
+            let dir = to * (1.0 / dist);
             let blocked = scene
                 .ray(eye, dir, dist)
                 .is_some_and(|h| Some(h.what) != t.solid && h.distance < dist - t.radius);
@@ -84,7 +84,7 @@ pub fn observe(
             Some(Detection {
                 name: t.name.clone(),
                 colour: t.colour,
-                bearing: crate::geometry::wrap_angle(to.angle() - robot.h),
+                bearing: crate::geometry::wrap_angle(to.polar_angle() - robot.h),
                 angular_size,
                 size_px: angular_size / (2.0 * half_fov) * cfg.image_width_px,
             })
@@ -102,7 +102,7 @@ pub fn observe(
 fn laser_pointer(
     cfg: &CameraConfig,
     scene: &Scene,
-    eye: Vec2,
+    eye: Point2<f64>,
     axis: f64,
     tilt: f64,
     rng: &mut Rng,
@@ -110,7 +110,7 @@ fn laser_pointer(
     let cos_t = tilt.cos();
     let horizontal_limit = cfg.laser_max_range * cos_t;
     let wall = scene
-        .ray(eye, Vec2::from_angle(axis), horizontal_limit)
+        .ray(eye, Vector2::from_angle(axis), horizontal_limit)
         .map(|h| h.distance / cos_t);
     let floor = (tilt < 0.0).then(|| cfg.head_height / (-tilt).sin());
     let d = match (wall, floor) {
@@ -137,7 +137,7 @@ mod tests {
         let user = Visible {
             name: "user".into(),
             colour: Colour::Yellow,
-            position: Vec2::new(10.3, 1.0),
+            position: Point2::new(10.3, 1.0),
             radius: 0.3,
             solid: Some(SolidRef::Target(0)),
         };
@@ -178,8 +178,8 @@ mod tests {
         let mut solids = scene.solids().to_vec();
         solids.push(Solid::new(
             Shape::Box(Obb::from_segment(
-                Vec2::new(5.0, -3.0),
-                Vec2::new(5.0, 3.0),
+                Point2::new(5.0, -3.0),
+                Point2::new(5.0, 3.0),
                 0.2,
             )),
             SolidRef::Wall(0),

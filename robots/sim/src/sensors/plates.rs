@@ -2,7 +2,7 @@
 //! passes over a floor plate and tells how far off-centre the plate was.
 
 use crate::config::PlateSensorConfig;
-use crate::geometry::{Frame, Pose};
+use crate::geometry::Pose;
 use crate::world::Plate;
 use serde::Serialize;
 
@@ -31,8 +31,8 @@ pub fn crossings(
         .iter()
         .enumerate()
         .filter_map(|(i, p)| {
-            let l0 = before.inverse_transform(p.position);
-            let l1 = after.inverse_transform(p.position);
+            let l0 = before.to_local(&p.position);
+            let l1 = after.to_local(&p.position);
             let a0 = l0.x - cfg.offset;
             let a1 = l1.x - cfg.offset;
             if (a0 > 0.0) == (a1 > 0.0) {
@@ -52,7 +52,7 @@ pub fn quantise(value: f64, resolution: f64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::geometry::Vec2;
+    use crate::geometry::Point2;
 
     #[test]
     fn crossing_reports_lateral_offset_and_misses_far_plates() {
@@ -64,11 +64,11 @@ mod tests {
         };
         let plates = [
             Plate {
-                position: Vec2::new(1.0, 0.12),
+                position: Point2::new(1.0, 0.12),
                 radius: 0.05,
             },
             Plate {
-                position: Vec2::new(1.0, 0.5),
+                position: Point2::new(1.0, 0.5),
                 radius: 0.05,
             },
         ];

@@ -2,7 +2,7 @@
 //! (-90 degrees for 180) and the last on the left, ranges in metres.
 
 use crate::config::{MIXED_PIXEL_JUMP, ScannerConfig};
-use crate::geometry::{Frame, Hit, Pose, Scene, Vec2};
+use crate::geometry::{Hit, PlaneVector, Point2, Pose, Scene, Vector2, xy};
 use crate::kinematics::advance;
 use crate::rng::Rng;
 use serde::Serialize;
@@ -21,7 +21,8 @@ pub struct Scan {
     pub angle_increment: f64,
     pub max_range: f64,
     /// Scanner origin in the robot frame.
-    pub mount: crate::geometry::Vec2,
+    #[serde(with = "xy")]
+    pub mount: Point2<f64>,
     /// Metres; exactly `max_range` where a beam found nothing.
     pub ranges: Vec<f64>,
 }
@@ -39,14 +40,14 @@ pub fn cast_scan(scene: &Scene, cfg: &ScannerConfig, robot: Pose) -> Vec<f64> {
 
 /// What each beam meets from a robot standing at `robot`.
 fn cast_hits(scene: &Scene, cfg: &ScannerConfig, robot: Pose) -> Vec<Option<Hit>> {
-    let origin = robot.transform(cfg.mount);
+    let origin = robot.to_world(&cfg.mount);
     let fov = cfg.fov_deg.to_radians();
     let inc = fov / (cfg.readings - 1) as f64;
     let first = robot.h - fov / 2.0;
     let fan = scene.fan(origin, first, inc, cfg.readings, cfg.max_range);
     (0..cfg.readings)
         .map(|i| {
-            let dir = Vec2::from_angle(first + i as f64 * inc);
+            let dir = Vector2::from_angle(first + i as f64 * inc);
             fan.ray(scene, i, origin, dir, cfg.max_range)
         })
         .collect()
@@ -89,11 +90,11 @@ fn cast_skewed_hits(
         let middle = start as f64 + (count - 1) as f64 / 2.0;
         let ago = cfg.sweep_time * (1.0 - middle / last);
         let at = advance(end, -speed * ago, -turn_rate * ago);
-        let origin = at.transform(cfg.mount);
+        let origin = at.to_world(&cfg.mount);
         let first = at.h - fov / 2.0 + start as f64 * inc;
         let fan = scene.fan(origin, first, inc, count, cfg.max_range);
         hits.extend((0..count).map(|i| {
-            let dir = Vec2::from_angle(first + i as f64 * inc);
+            let dir = Vector2::from_angle(first + i as f64 * inc);
             fan.ray(scene, i, origin, dir, cfg.max_range)
         }));
     }

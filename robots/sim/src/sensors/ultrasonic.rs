@@ -2,7 +2,7 @@
 //! within its cone, facing backwards from the rear edge.
 
 use crate::config::UltrasonicConfig;
-use crate::geometry::{Frame, Pose, Scene, Vec2};
+use crate::geometry::{PlaneVector, Point2, Pose, Scene, Vector2};
 use crate::rng::Rng;
 use serde::Serialize;
 
@@ -26,13 +26,13 @@ pub fn measure_ultrasonic(
     let cone = cfg.cone_deg.to_radians();
     let mut out = [cfg.max_range; 4];
     for (k, &lat) in cfg.lateral.iter().enumerate() {
-        let origin = robot.transform(Vec2::new(-rear, lat));
+        let origin = robot.to_world(&Point2::new(-rear, lat));
         let nearest = (0..RAYS_PER_CONE)
             .filter_map(|j| {
                 let a = robot.h + std::f64::consts::PI - cone / 2.0
                     + cone * j as f64 / (RAYS_PER_CONE - 1) as f64;
                 scene
-                    .ray(origin, Vec2::from_angle(a), cfg.max_range)
+                    .ray(origin, Vector2::from_angle(a), cfg.max_range)
                     .map(|h| h.distance)
             })
             .fold(f64::INFINITY, f64::min);

@@ -4,7 +4,7 @@
 
 use super::{EventKind, SimError, Simulator};
 use crate::faults::{FaultKind, FaultPlan, ObstacleChange};
-use crate::geometry::{Circle, Frame, Shape, Solid, SolidRef, Vec2};
+use crate::geometry::{Circle, Point2, Shape, Solid, SolidRef};
 
 impl Simulator {
     /// Checks the world's faults against this robot, adds a hidden solid for
@@ -24,7 +24,7 @@ impl Simulator {
         for (i, s) in specs.iter().enumerate() {
             if let FaultKind::ObstacleAppears { radius, .. } = s.kind {
                 let mut solid = Solid::new(
-                    Shape::Circle(Circle::new(Vec2::new(0.0, 0.0), radius)),
+                    Shape::Circle(Circle::new(Point2::new(0.0, 0.0), radius)),
                     SolidRef::Fault(i),
                 );
                 solid.active = false;
@@ -69,7 +69,7 @@ impl Simulator {
     fn show_obstacle(&mut self, c: ObstacleChange) {
         let b = &self.cfg.body;
         let ahead = b.length - b.rear_overhang + c.distance + c.radius;
-        let center = self.pose.transform(Vec2::new(ahead, 0.0));
+        let center = self.pose.to_world(&Point2::new(ahead, 0.0));
         if let Some(s) = self.scene.find_mut(SolidRef::Fault(c.index)) {
             s.shape.translate_to(center);
             s.active = c.appear;

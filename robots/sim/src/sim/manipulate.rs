@@ -3,7 +3,7 @@
 
 use super::{EventKind, SimError, Simulator};
 use crate::config::RobotKind;
-use crate::geometry::{Frame, Shape, SolidRef, Vec2};
+use crate::geometry::{PlaneVector, Point2, Shape, SolidRef, Vector2};
 
 /// How far from the gripper point a box can be taken, m.
 const REACH: f64 = 0.8;
@@ -21,14 +21,14 @@ impl Simulator {
         let b = &self.cfg.body;
         let grip = self
             .pose
-            .transform(Vec2::new(b.length - b.rear_overhang + 0.3, 0.0));
+            .to_world(&Point2::new(b.length - b.rear_overhang + 0.3, 0.0));
         let nearest = self
             .scene
             .solids()
             .iter()
             .filter(|s| s.active)
             .filter_map(|s| match s.what {
-                SolidRef::PickupBox(i) => Some((i, s.shape.center().distance(grip))),
+                SolidRef::PickupBox(i) => Some((i, (s.shape.center() - grip).hypot())),
                 _ => None,
             })
             .filter(|&(_, d)| d <= REACH)
@@ -64,11 +64,11 @@ impl Simulator {
                 "the carried box is not a box".into(),
             ));
         };
-        shape.center = self.pose.transform(Vec2::new(
+        shape.center = self.pose.to_world(&Point2::new(
             b.length - b.rear_overhang + 0.1 + shape.half.x,
             0.0,
         ));
-        shape.axis = self.pose.heading();
+        shape.axis = Vector2::from_angle(self.pose.h);
         if self
             .scene
             .solids()

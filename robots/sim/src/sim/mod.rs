@@ -18,7 +18,7 @@ pub use snapshot::{EventKind, SensorSnapshot, SimEvent};
 
 use crate::config::{RobotConfig, SlipConfig};
 use crate::faults::FaultPlan;
-use crate::geometry::{Frame, Obb, Pose, Scene, SolidRef, Vec2};
+use crate::geometry::{Obb, Point2, Pose, Scene, SolidRef};
 use crate::kinematics::{
     BodyPose, MovementMode, advance, next_curvature, next_speed, slide, steering_angle,
     wheel_travel,
@@ -255,7 +255,7 @@ impl Simulator {
     }
 
     /// Where each target stands now, in world order.
-    pub fn target_positions(&self) -> Vec<(String, Vec2)> {
+    pub fn target_positions(&self) -> Vec<(String, Point2<f64>)> {
         self.world
             .targets
             .iter()
@@ -359,7 +359,7 @@ impl Simulator {
     /// The footprint rectangle at a reference pose.
     pub fn footprint(&self, at: Pose) -> Obb {
         let b = &self.cfg.body;
-        let center = at.transform(Vec2::new(b.length / 2.0 - b.rear_overhang, 0.0));
+        let center = at.to_world(&Point2::new(b.length / 2.0 - b.rear_overhang, 0.0));
         Obb::new(center, at.h, b.length, b.width)
     }
 

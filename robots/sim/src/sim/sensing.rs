@@ -4,7 +4,7 @@
 
 use super::estimate::Estimator;
 use super::{EventKind, Simulator};
-use crate::geometry::{Frame, Pose, Shape, SolidRef};
+use crate::geometry::{PlaneVector, Pose, Shape, SolidRef};
 use crate::kinematics::MovementMode;
 use crate::sensors::{
     CameraFrame, Head, Load, NavFix, PlateEvent, Scan, ScanNoise, ScanPose, UltrasonicReading,
@@ -40,7 +40,7 @@ impl Simulator {
             .world
             .charger
             .as_ref()
-            .is_some_and(|c| c.position.distance(self.pose.origin()) <= c.radius);
+            .is_some_and(|c| (c.position - self.pose.position()).hypot() <= c.radius);
         self.charging = at_charger && self.v.abs() < 1e-3 && !self.faults.dead_battery;
         let rolling_factor = match (self.mode, &self.cfg.rolking) {
             (MovementMode::Rolking, Some(r)) => r.power_factor,

@@ -1,13 +1,13 @@
 //! Moving targets walk their waypoints at constant speed.
 
-use crate::geometry::Vec2;
+use crate::geometry::{PlaneVector, Point2};
 use crate::world::{PathMode, Target};
 
 #[derive(Debug, Clone, PartialEq)]
 pub struct Walker {
     /// Start followed by the waypoints.
-    points: Vec<Vec2>,
-    pub position: Vec2,
+    points: Vec<Point2<f64>>,
+    pub position: Point2<f64>,
     next: usize,
     forward: bool,
     speed: f64,
@@ -22,10 +22,10 @@ impl Walker {
     pub fn new(t: &Target) -> Self {
         let mut points = vec![t.start];
         points.extend(t.waypoints.iter().copied());
-        let length: f64 = points.windows(2).map(|w| w[0].distance(w[1])).sum();
+        let length: f64 = points.windows(2).map(|w| (w[0] - w[1]).hypot()).sum();
         let cycle = match t.path {
             PathMode::Once => 0.0,
-            PathMode::Loop => length + points[points.len() - 1].distance(points[0]),
+            PathMode::Loop => length + (points[points.len() - 1] - points[0]).hypot(),
             PathMode::BackAndForth => 2.0 * length,
         };
         Walker {
@@ -54,9 +54,9 @@ impl Walker {
         }
         while left > 0.0 && !self.standing {
             let goal = self.points[self.next];
-            let d = self.position.distance(goal);
+            let d = (self.position - goal).hypot();
             if d > left {
-                self.position = self.position + (goal - self.position).scale(left / d);
+                self.position = self.position + (goal - self.position) * (left / d);
                 return;
             }
             self.position = goal;
@@ -102,10 +102,10 @@ mod tests {
         Target {
             name: "user".into(),
             colour: Colour::Yellow,
-            start: Vec2::new(0.0, 0.0),
+            start: Point2::new(0.0, 0.0),
             radius: 0.25,
             speed: 1.0,
-            waypoints: vec![Vec2::new(2.0, 0.0), Vec2::new(2.0, 1.0)],
+            waypoints: vec![Point2::new(2.0, 0.0), Point2::new(2.0, 1.0)],
             path,
         }
     }
@@ -114,22 +114,22 @@ mod tests {
     fn walks_once_loops_and_turns_back() {
         let mut w = Walker::new(&target(PathMode::Once));
         w.step(2.5);
-        assert!(w.position.distance(Vec2::new(2.0, 0.5)) < 1e-12);
+        assert!((w.position - Point2::new(2.0, 0.5)).hypot() < 1e-12);
         w.step(10.0);
-        assert!(w.position.distance(Vec2::new(2.0, 1.0)) < 1e-12);
+        assert!((w.position - Point2::new(2.0, 1.0)).hypot() < 1e-12);
 
         let mut w = Walker::new(&target(PathMode::Loop));
         // 2 + 1 + sqrt(5) round; 0.5 m past the start.
         w.step(3.0 + 5f64.sqrt() + 0.5);
-        assert!(w.position.distance(Vec2::new(0.5, 0.0)) < 1e-9);
+        assert!((w.position - Point2::new(0.5, 0.0)).hypot() < 1e-9);
 
         let mut w = Walker::new(&target(PathMode::BackAndForth));
         w.step(3.5);
-        assert!(w.position.distance(Vec2::new(2.0, 0.5)) < 1e-12);
+        assert!((w.position - Point2::new(2.0, 0.5)).hypot() < 1e-12);
         w.step(2.5);
-        assert!(w.position.distance(Vec2::new(0.0, 0.0)) < 1e-12);
+        assert!((w.position - Point2::new(0.0, 0.0)).hypot() < 1e-12);
         w.step(1.0);
-        assert!(w.position.distance(Vec2::new(1.0, 0.0)) < 1e-12);
+        assert!((w.position - Point2::new(1.0, 0.0)).hypot() < 1e-12);
     }
 
     #[test]
@@ -141,7 +141,7 @@ mod tests {
             for _ in 0..100 {
                 w.step(0.01);
             }
-            assert!(w.position.is_finite(), "{path:?}");
+            assert!(w.position.coords.is_finite(), "{path:?}");
             assert!(
                 (0.0..=2.0).contains(&w.position.x) && (0.0..=1.0).contains(&w.position.y),
                 "{path:?}: {:?}",
@@ -150,13 +150,13 @@ mod tests {
             t.speed = f64::MAX;
             let mut w = Walker::new(&t);
             w.step(1.0);
-            assert!(w.position.is_finite(), "{path:?}");
+            assert!(w.position.coords.is_finite(), "{path:?}");
         }
         // Whole rounds: back where it started.
         let mut w = Walker::new(&target(PathMode::Loop));
         w.step(10.0 * (3.0 + 5f64.sqrt()));
         assert!(
-            w.position.distance(Vec2::new(0.0, 0.0)) < 1e-6,
+            (w.position - Point2::new(0.0, 0.0)).hypot() < 1e-6,
             "{:?}",
             w.position
         );

@@ -10,7 +10,7 @@ mod validate;
 pub use error::WorldError;
 pub use shipped::{SHIPPED, shipped};
 
-use crate::geometry::{Circle, Obb, Pose, Scene, Shape, Solid, SolidRef, Vec2};
+use crate::geometry::{Circle, Obb, Point2, Pose, Scene, Shape, Solid, SolidRef, xy};
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 
@@ -41,12 +41,14 @@ pub enum PathMode {
 
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct Bounds {
-    pub min: Vec2,
-    pub max: Vec2,
+    #[serde(with = "xy")]
+    pub min: Point2<f64>,
+    #[serde(with = "xy")]
+    pub max: Point2<f64>,
 }
 
 impl Bounds {
-    pub fn contains(&self, p: Vec2) -> bool {
+    pub fn contains(&self, p: Point2<f64>) -> bool {
         p.x >= self.min.x && p.x <= self.max.x && p.y >= self.min.y && p.y <= self.max.y
     }
 }
@@ -54,11 +56,14 @@ impl Bounds {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Wall {
     pub id: String,
-    pub from: Vec2,
-    pub to: Vec2,
+    #[serde(with = "xy")]
+    pub from: Point2<f64>,
+    #[serde(with = "xy")]
+    pub to: Point2<f64>,
     pub thickness: f64,
     /// The solid parts left between the door openings, in order from `from`.
-    pub pieces: Vec<(Vec2, Vec2)>,
+    #[serde(with = "xy::pairs")]
+    pub pieces: Vec<(Point2<f64>, Point2<f64>)>,
 }
 
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -68,9 +73,11 @@ pub struct Door {
     pub wall: usize,
     pub width: f64,
     /// Middle of the opening on the wall's centre line.
-    pub center: Vec2,
+    #[serde(with = "xy")]
+    pub center: Point2<f64>,
     /// The two jambs, in the wall's direction.
-    pub jambs: (Vec2, Vec2),
+    #[serde(with = "xy::pair")]
+    pub jambs: (Point2<f64>, Point2<f64>),
 }
 
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -84,17 +91,20 @@ pub struct PickupBox {
 pub struct Target {
     pub name: String,
     pub colour: Colour,
-    pub start: Vec2,
+    #[serde(with = "xy")]
+    pub start: Point2<f64>,
     pub radius: f64,
     /// Walking speed, m/s; 0 keeps the target still.
     pub speed: f64,
-    pub waypoints: Vec<Vec2>,
+    #[serde(with = "xy::seq")]
+    pub waypoints: Vec<Point2<f64>>,
     pub path: PathMode,
 }
 
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Charger {
-    pub position: Vec2,
+    #[serde(with = "xy")]
+    pub position: Point2<f64>,
     /// Radians: the direction a docked robot faces.
     pub heading: f64,
     /// A robot whose reference point stands within this radius, stopped, charges.
@@ -104,7 +114,8 @@ pub struct Charger {
 
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct Plate {
-    pub position: Vec2,
+    #[serde(with = "xy")]
+    pub position: Point2<f64>,
     pub radius: f64,
 }
 

@@ -7,7 +7,7 @@ use super::error::{field_line, line_of};
 use super::format::{Point, WorldFile};
 use super::limits::*;
 use super::{Bounds, Charger, Door, PickupBox, Plate, Target, Wall, World, WorldError};
-use crate::geometry::{Circle, Obb, Pose, Shape, Vec2};
+use crate::geometry::{Circle, Obb, PlaneVector, Point2, Pose, Shape};
 use toml::Spanned;
 
 const DEFAULT_WALL_THICKNESS: f64 = 0.15;
@@ -47,16 +47,22 @@ impl Checker<'_> {
         }
     }
 
-    fn point(&self, e: Entry<'_>, key: &str, p: Point) -> Result<Vec2, WorldError> {
+    fn point(&self, e: Entry<'_>, key: &str, p: Point) -> Result<Point2<f64>, WorldError> {
         let max = MAX_COORDINATE;
         let expected = format!("-{max:e} to {max:e} m");
         for v in p {
             self.range(e, key, v, v.abs() <= max, &expected)?;
         }
-        Ok(Vec2::new(p[0], p[1]))
+        Ok(Point2::new(p[0], p[1]))
     }
 
-    fn inside(&self, e: Entry<'_>, key: &str, b: &Bounds, p: Point) -> Result<Vec2, WorldError> {
+    fn inside(
+        &self,
+        e: Entry<'_>,
+        key: &str,
+        b: &Bounds,
+        p: Point,
+    ) -> Result<Point2<f64>, WorldError> {
         let v = self.point(e, key, p)?;
         if b.contains(v) {
             Ok(v)
@@ -214,7 +220,7 @@ impl Checker<'_> {
             let d = w.get_ref();
             let from = self.inside(e, "from", &bounds, d.from)?;
             let to = self.inside(e, "to", &bounds, d.to)?;
-            if from.distance(to) < 1e-6 {
+            if (from - to).hypot() < 1e-6 {
                 return Err(self.err(e, "to", "a wall needs two distinct ends"));
             }
             let thickness = self.size(
@@ -223,7 +229,7 @@ impl Checker<'_> {
                 d.thickness.unwrap_or(DEFAULT_WALL_THICKNESS),
                 MAX_WALL_THICKNESS,
             )?;
-            self.outline(e, "to", &mut outline, from.distance(to))?;
+            self.outline(e, "to", &mut outline, (from - to).hypot())?;
             let id = d.id.clone().unwrap_or_else(|| format!("wall{}", i + 1));
             self.unique(e, "id", &id, &mut wall_ids)?;
             walls.push(Wall {
@@ -461,7 +467,7 @@ impl Checker<'_> {
                 .get(def.wall.as_str())
                 .ok_or_else(|| self.err(e, "wall", format!("no wall has the id `{}`", def.wall)))?;
             let wall = &walls[wi];
-            let len = wall.from.distance(wall.to);
+            let len = (wall.from - wall.to).hypot();
             let width = self.range(
                 e,
                 "width",
@@ -488,29 +494,29 @@ impl Checker<'_> {
                 ));
             }
             cuts[wi].push((a, b, i));
-            let dir = (wall.to - wall.from).scale(1.0 / len);
+            let dir = (wall.to - wall.from) * (1.0 / len);
             doors.push(Door {
                 id,
                 wall: wi,
                 width,
-                center: wall.from + dir.scale(def.at),
-                jambs: (wall.from + dir.scale(a), wall.from + dir.scale(b)),
+                center: wall.from + dir * def.at,
+                jambs: (wall.from + dir * a, wall.from + dir * b),
             });
         }
         for (w, c) in walls.iter_mut().zip(cuts.iter_mut()) {
             c.sort_by(|x, y| x.0.total_cmp(&y.0));
-            let len = w.from.distance(w.to);
-            let dir = (w.to - w.from).scale(1.0 / len);
+            let len = (w.from - w.to).hypot();
+            let dir = (w.to - w.from) * (1.0 / len);
             let mut pieces = Vec::new();
             let mut s = 0.0;
             for &(a, b, _) in c.iter() {
                 if a > s + 1e-9 {
-                    pieces.push((w.from + dir.scale(s), w.from + dir.scale(a)));
+                    pieces.push((w.from + dir * s, w.from + dir * a));
                 }
                 s = b;
             }
             if len > s + 1e-9 {
-                pieces.push((w.from + dir.scale(s), w.to));
+                pieces.push((w.from + dir * s, w.to));
             }
             w.pieces = pieces;
         }
