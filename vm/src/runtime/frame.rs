@@ -786,7 +786,7 @@ impl<H: Hal, C: Clock> Vm<H, C> {
     /// first in the queue.
     pub(super) fn run_frame(&mut self, idx: u32) -> bool {
         if !self.tracing()
-            && let Some(overrun) = self.run_quick(idx, false)
+            && let Some(overrun) = self.run_quick::<false>(idx)
         {
             return overrun;
         }
@@ -905,10 +905,10 @@ impl<H: Hal, C: Clock> Vm<H, C> {
     /// forms, as Lua's `luaV_execute` runs: a dense array, a `match`, the state in
     /// locals, nothing allocated. Returns what [`Vm::run_frame`] returns, or `None`
     /// at a [`Quick::Slow`] instruction, the frame's state stored, for the general
-    /// loop to go on from. `fuse` (from [`Vm::run_round`] only) runs on where the
+    /// loop to go on from. `FUSE` (from [`Vm::run_round`] only) runs on where the
     /// frame would queue itself, as its later visits of the round would.
     #[inline]
-    fn run_quick(&mut self, idx: u32, fuse: bool) -> Option<bool> {
+    fn run_quick<const FUSE: bool>(&mut self, idx: u32) -> Option<bool> {
         let Vm {
             nodes,
             vars,
@@ -963,7 +963,7 @@ impl<H: Hal, C: Clock> Vm<H, C> {
                     let var = var_at(var, f.base);
                     vars.assign(var, v);
                     // In a round run in one go nothing hears it (`Vm::run_round`).
-                    if !fuse && vars.queue_wake(var) {
+                    if !FUSE && vars.queue_wake(var) {
                         ready.push_back(Ready::Wake(var).into());
                     }
                     f.pc += 1;
@@ -976,7 +976,7 @@ impl<H: Hal, C: Clock> Vm<H, C> {
                     *ops_left = (*ops_left - 1).saturating_sub(Quick::SET_K - 1);
                     let var = var_at(var, f.base);
                     vars.assign(var, k);
-                    if !fuse && vars.queue_wake(var) {
+                    if !FUSE && vars.queue_wake(var) {
                         ready.push_back(Ready::Wake(var).into());
                     }
                     f.pc += 1;
@@ -1017,7 +1017,7 @@ impl<H: Hal, C: Clock> Vm<H, C> {
                     if cmp.holds(vars.field(var_at(src, f.base), field), k) {
                         f.pc += 1;
                         step(next);
-                        if fuse {
+                        if FUSE {
                             continue;
                         }
                         queue = true;
@@ -1032,7 +1032,7 @@ impl<H: Hal, C: Clock> Vm<H, C> {
                     *end_code = None;
                     f.pc = check;
                     step(back);
-                    if fuse {
+                    if FUSE {
                         continue;
                     }
                     queue = true;
@@ -1120,7 +1120,7 @@ impl<H: Hal, C: Clock> Vm<H, C> {
                 continue;
             }
             n.queued = false;
-            self.run_quick(r.idx, true);
+            self.run_quick::<true>(r.idx);
         }
         self.rounds_fused += 1;
         true
