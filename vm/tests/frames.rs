@@ -405,3 +405,204 @@ fn a_parked_frame_under_a_tree_loop_ends_with_it() {
     assert_eq!(trace(&tree), trace(&flat));
     assert_eq!(flat.live(), 0);
 }
+
+/// Frame-shaped blocks and nothing else, each on variables of its own (`a0`, `a1`,
+/// ...), or all on the same: the ready queue of a tick is then
+/// often run in one go (`Vm::rounds_fused`), each frame's visits one after the other
+/// rather than round by round. Small budgets, loops that end, bound waits and
+/// divisions (which the one-go path refuses) mixed in.
+fn independent_program(seed: u64) -> (ilmr_vm::Module, u32, Vec<String>) {
+    let mut g = Gen {
+        rng: Rng(seed.wrapping_mul(0x9e37_79b9_7f4a_7c15) | 1),
+        n: 0,
+        suffix: String::new(),
+    };
+    let mut a = Asm::new();
+    let mut blocks: Vec<BlockId> = Vec::new();
+    let count = 1 + g.rng.below(6);
+    // Half the programs: every block on the same four variables, which must keep
+    // the tree's order.
+    let shared = g.rng.below(2) == 0;
+    for i in 0..count {
+        g.suffix = if shared { "0".into() } else { i.to_string() };
+        let depth = 1 + g.rng.below(2) as u32;
+        let code = g.frame_block(&mut a, depth);
+        if !blocks.is_empty() {
+            a.blank();
+        }
+        blocks.push(a.block(code));
+    }
+    let budget = match g.rng.below(3) {
+        0 => 2 + g.rng.below(40) as u32,
+        _ => 200_000,
+    };
+    let names = (0..count)
+        .flat_map(|i| VARS.iter().map(move |v| format!("{v}{i}")))
+        .collect();
+    (a.task(&blocks), budget, names)
+}
+
+#[test]
+fn frames_run_in_one_go_as_the_tree() {
+    let seeds: u64 = std::env::var("FRAMES_SEEDS")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(150);
+    let (mut fused, mut programs) = (0, 0);
+    for seed in 0..seeds {
+        let (module, budget, names) = independent_program(seed);
+        let cfg = |frames| Config {
+            budget_ops: budget,
+            frames,
+            trace: TraceLevel::Off,
+            ..config()
+        };
+        let mut tree = vm(module.clone(), robot(), cfg(false));
+        let mut flat = vm(module, robot(), cfg(true));
+        let what = |v: &common::TestVm| {
+            let vars: Vec<_> = names.iter().map(|n| v.var(n)).collect();
+            (
+                v.activity(),
+                v.live(),
+                v.live_statements(),
+                v.finished(),
+                format!("{vars:?}"),
+            )
+        };
+        for tick in 0..200 {
+            if tree.finished() && flat.finished() {
+                break;
+            }
+            tree.tick();
+            flat.tick();
+            assert_eq!(what(&tree), what(&flat), "seed {seed}, tick {tick}");
+        }
+        assert_eq!(tree.rounds_fused(), 0, "the tree has no frames");
+        fused += flat.rounds_fused();
+        programs += usize::from(flat.rounds_fused() > 0);
+    }
+    assert!(
+        programs > 20 && fused > 400,
+        "{fused} rounds in one go in {programs} programs"
+    );
+}
+
+#[test]
+fn a_frame_that_reads_what_another_writes_keeps_the_tree_order() {
+    // The second block's check reads `a`, which the first block's body writes: in
+    // the tree's order the check comes first (a turn of the queue before the body),
+    // so at a=4 it still holds and `b` counts once more. Run in one go it would not.
+    let program = || {
+        let mut a = Asm::new();
+        let count = |a: &mut Asm, var: &str, tag: &str| {
+            let step = format!("{var}={var}+1 #{tag}");
+            vec![a.while_(
+                &format!("while(a<5) #{tag}"),
+                &[X::V("a"), X::N(5.0), X::Op(ExprOp::Lt)],
+                None,
+                |a| {
+                    vec![
+                        a.assign(&step, var, &[X::V(var), X::N(1.0), X::Op(ExprOp::Add)]),
+                        a.wait(&format!("wait(0.01) #{tag}"), 0.01),
+                    ]
+                },
+            )]
+        };
+        let first = count(&mut a, "a", "1");
+        let b1 = a.block(first);
+        a.blank();
+        let second = count(&mut a, "b", "2");
+        let b2 = a.block(second);
+        a.task(&[b1, b2])
+    };
+    let cfg = |frames| Config {
+        frames,
+        trace: TraceLevel::Off,
+        ..config()
+    };
+    let mut tree = vm(program(), robot(), cfg(false));
+    let mut flat = vm(program(), robot(), cfg(true));
+    for tick in 0..20 {
+        tree.tick();
+        flat.tick();
+        assert_eq!(
+            (
+                tree.var("a").map(|r| r.value),
+                tree.var("b").map(|r| r.value)
+            ),
+            (
+                flat.var("a").map(|r| r.value),
+                flat.var("b").map(|r| r.value)
+            ),
+            "tick {tick}"
+        );
+    }
+    assert_eq!(flat.rounds_fused(), 0, "the two frames share `a`");
+    assert_eq!(tree.var("b").map(|r| r.value), Some(5.0));
+}
+
+#[test]
+fn frames_that_sleep_in_different_turns_keep_the_tree_order() {
+    // Woken together, the first frame sleeps again in the third turn of the queue
+    // (its body's end, its check, its body) and the second in the first (`b=b+1`
+    // and its wait): the tree sets the second's alarm first, and they wake in that
+    // order next tick, where a budget that runs out decides which body runs. Run
+    // in one go they would be set the other way round.
+    let program = || {
+        let mut a = Asm::new();
+        let first = vec![a.while_(
+            "while(a<100) #1",
+            &[X::V("a"), X::N(100.0), X::Op(ExprOp::Lt)],
+            None,
+            |a| {
+                vec![
+                    a.assign("a=a+1 #1", "a", &[X::V("a"), X::N(1.0), X::Op(ExprOp::Add)]),
+                    a.wait("wait(0.01) #1", 0.01),
+                ]
+            },
+        )];
+        let b1 = a.block(first);
+        a.blank();
+        let second = vec![a.while_(
+            "while(b<100) #2",
+            &[X::V("b"), X::N(100.0), X::Op(ExprOp::Lt)],
+            None,
+            |a| {
+                vec![
+                    a.wait("wait(0.01) #2", 0.01),
+                    a.assign("b=b+1 #2", "b", &[X::V("b"), X::N(1.0), X::Op(ExprOp::Add)]),
+                    a.wait("wait(0.01) #3", 0.01),
+                    a.assign(
+                        "c=(c+b)/b #2",
+                        "c",
+                        &[
+                            X::V("c"),
+                            X::V("b"),
+                            X::Op(ExprOp::Add),
+                            X::V("b"),
+                            X::Op(ExprOp::Div),
+                        ],
+                    ),
+                ]
+            },
+        )];
+        let b2 = a.block(second);
+        a.task(&[b1, b2])
+    };
+    for budget in 12..=26 {
+        let cfg = |frames| Config {
+            frames,
+            budget_ops: budget,
+            trace: TraceLevel::Off,
+            ..config()
+        };
+        let mut tree = vm(program(), robot(), cfg(false));
+        let mut flat = vm(program(), robot(), cfg(true));
+        let values = |v: &common::TestVm| ["a", "b", "c"].map(|n| v.var(n).map(|r| r.value));
+        for tick in 0..40 {
+            tree.tick();
+            flat.tick();
+            assert_eq!(values(&tree), values(&flat), "budget {budget}, tick {tick}");
+        }
+    }
+}

@@ -175,6 +175,12 @@ pub(crate) enum Quick {
 }
 
 impl Quick {
+    /// The ops each form charges the budget: its statement's and its expression's.
+    const SET_VK: u32 = 1 + 3;
+    const SET_K: u32 = 1 + 1;
+    const SLEEP: u32 = 1 + 1;
+    const CHECK_VK: u32 = 1 + 3;
+
     fn of(code: &[FInstr], pc: usize, decoded: &[Decoded]) -> Quick {
         let shape = |e: u32| decoded.get(e as usize).map(|d| (d.shape, d.len));
         let next = Moved::between(code, pc, pc + 1);
@@ -243,6 +249,10 @@ pub(crate) struct Ctx {
     pub var: u32,
     pub expr: u32,
     pub stmt: u32,
+    /// The quick forms name variables `var..var + span` only; NONE when they
+    /// name one below `var` (shared with other blocks). [`Vm::run_round`] tells
+    /// frames apart by it.
+    pub span: u32,
 }
 
 /// rustc's FxHash: the shapes' table hashes a block's code once at load, where
@@ -444,6 +454,8 @@ pub(crate) struct Frames {
     pub code: Vec<FInstr>,
     /// Per pc, the trace-off form of `code`'s instruction, variables relative too.
     pub quick: Vec<Quick>,
+    /// Per pc, the way to the next sleep with every check true ([`Plan`]).
+    plans: Vec<Plan>,
     /// Per block: the pc its frame starts at, or NONE when it keeps the tree.
     entry: Vec<u32>,
     /// Per block: where its ids start.
@@ -476,6 +488,13 @@ impl Frames {
             self.entry.push(entry);
             self.ctx.push(ctx);
         }
+    }
+
+    /// How many variables from its frame's base block `b`'s quick forms name
+    /// ([`Ctx::span`]).
+    #[inline]
+    pub fn span(&self, b: u32) -> u32 {
+        self.ctx.get(b as usize).map_or(NONE, |c| c.span)
     }
 
     /// The pc of the program that runs `local` (a block's code, ids absolute, pcs
@@ -513,6 +532,7 @@ impl Frames {
             var: zero(var),
             expr: zero(expr),
             stmt: zero(stmt),
+            span: 0,
         };
         relative.clear();
         relative.extend(local.iter().map(|i| {
@@ -523,8 +543,16 @@ impl Frames {
                 |p| p,
             )
         }));
+        let mut ctx = ctx;
         for q in &mut quick {
             *q = q.map(|v| rel(v, ctx.var), |p| p);
+            for v in q.vars() {
+                ctx.span = match v {
+                    NONE => ctx.span,
+                    v if v & ABSOLUTE != 0 || ctx.span == NONE => NONE,
+                    v => ctx.span.max(v + 1),
+                };
+            }
         }
         let hash = {
             let mut h = Fx::default();
@@ -554,6 +582,9 @@ impl Frames {
                 self.code
                     .extend(relative.iter().map(|r| r.map(|v| v, |x| x, |x| x, at(e))));
                 self.quick.extend(quick.iter().map(|q| q.map(|v| v, at(e))));
+                for pc in e as usize..self.quick.len() {
+                    self.plans.push(Plan::of(&self.quick, pc));
+                }
                 self.shapes.entry(hash).or_default().push(e);
                 e
             }
@@ -755,7 +786,7 @@ impl<H: Hal, C: Clock> Vm<H, C> {
     /// first in the queue.
     pub(super) fn run_frame(&mut self, idx: u32) -> bool {
         if !self.tracing()
-            && let Some(overrun) = self.run_quick(idx)
+            && let Some(overrun) = self.run_quick::<false>(idx)
         {
             return overrun;
         }
@@ -874,9 +905,10 @@ impl<H: Hal, C: Clock> Vm<H, C> {
     /// forms, as Lua's `luaV_execute` runs: a dense array, a `match`, the state in
     /// locals, nothing allocated. Returns what [`Vm::run_frame`] returns, or `None`
     /// at a [`Quick::Slow`] instruction, the frame's state stored, for the general
-    /// loop to go on from.
+    /// loop to go on from. `FUSE` (from [`Vm::run_round`] only) runs on where the
+    /// frame would queue itself, as its later visits of the round would.
     #[inline]
-    fn run_quick(&mut self, idx: u32) -> Option<bool> {
+    fn run_quick<const FUSE: bool>(&mut self, idx: u32) -> Option<bool> {
         let Vm {
             nodes,
             vars,
@@ -920,7 +952,7 @@ impl<H: Hal, C: Clock> Vm<H, C> {
                         break Some(true);
                     }
                     // The statement's op and its expression's three.
-                    *ops_left = (*ops_left - 1).saturating_sub(3);
+                    *ops_left = (*ops_left - 1).saturating_sub(Quick::SET_VK - 1);
                     let a = vars.field(var_at(src, f.base), field);
                     let v = match op {
                         Arith::Add => a + k,
@@ -930,7 +962,8 @@ impl<H: Hal, C: Clock> Vm<H, C> {
                     // What `assign` does after its evaluation, with the trace off.
                     let var = var_at(var, f.base);
                     vars.assign(var, v);
-                    if vars.queue_wake(var) {
+                    // In a round run in one go nothing hears it (`Vm::run_round`).
+                    if !FUSE && vars.queue_wake(var) {
                         ready.push_back(Ready::Wake(var).into());
                     }
                     f.pc += 1;
@@ -940,10 +973,10 @@ impl<H: Hal, C: Clock> Vm<H, C> {
                     if *ops_left == 0 {
                         break Some(true);
                     }
-                    *ops_left = (*ops_left - 1).saturating_sub(1);
+                    *ops_left = (*ops_left - 1).saturating_sub(Quick::SET_K - 1);
                     let var = var_at(var, f.base);
                     vars.assign(var, k);
-                    if vars.queue_wake(var) {
+                    if !FUSE && vars.queue_wake(var) {
                         ready.push_back(Ready::Wake(var).into());
                     }
                     f.pc += 1;
@@ -954,7 +987,7 @@ impl<H: Hal, C: Clock> Vm<H, C> {
                         break Some(true);
                     }
                     // The statement's op and its constant's.
-                    *ops_left = (*ops_left - 1).saturating_sub(1);
+                    *ops_left = (*ops_left - 1).saturating_sub(Quick::SLEEP - 1);
                     f.pc += 1;
                     step(next);
                     f.nap = f.nap.wrapping_add(1);
@@ -978,12 +1011,15 @@ impl<H: Hal, C: Clock> Vm<H, C> {
                     k,
                 }) => {
                     // The check's op and its expression's three.
-                    *ops_left = ops_left.saturating_sub(1 + 3);
+                    *ops_left = ops_left.saturating_sub(Quick::CHECK_VK);
                     // The loop's iteration is counted only for `start` events: with
                     // the trace on, which takes the general path.
                     if cmp.holds(vars.field(var_at(src, f.base), field), k) {
                         f.pc += 1;
                         step(next);
+                        if FUSE {
+                            continue;
+                        }
                         queue = true;
                         break Some(false);
                     }
@@ -996,6 +1032,9 @@ impl<H: Hal, C: Clock> Vm<H, C> {
                     *end_code = None;
                     f.pc = check;
                     step(back);
+                    if FUSE {
+                        continue;
+                    }
                     queue = true;
                     break Some(false);
                 }
@@ -1012,6 +1051,79 @@ impl<H: Hal, C: Clock> Vm<H, C> {
             ready.push_back(Ready::Node(NodeRef { idx, epoch }).into());
         }
         result
+    }
+
+    /// Runs the whole ready queue in one go, each frame's visits of this tick one
+    /// after the other (its check and its body right after its body's end, as Lua
+    /// runs a loop), where the tree's order would visit every queued frame once,
+    /// then each again in a later turn of the queue, and so on. Returns false, having
+    /// done nothing, unless the two orders are provably the same to anything that
+    /// can look, which holds when, with the trace off:
+    /// - every entry is a frame that reaches its next sleep on quick forms alone
+    ///   ([`foresee`]), so none ends, none runs the general path, and no entry but
+    ///   these frames runs in the tick;
+    /// - no variable they write is heard (no wait, guard or queued wake), and no two
+    ///   of them name one variable (the variables each names lie above the last
+    ///   one's, [`Ctx::span`]), so no frame reads what another writes and each
+    ///   computes what it would in the tree's order;
+    /// - the visits each takes do not fall along the queue, so their alarms are set
+    ///   in the tree's order (it sets them round by round) and fire in it;
+    /// - the budget covers every op of the round, so none overruns in either order.
+    ///
+    /// What is left to see after the tick (variables, counts, alarms, naps, the
+    /// frames' pcs) is then the same.
+    pub(super) fn run_round(&mut self) -> bool {
+        if self.tracing() || self.ready.is_empty() {
+            return false;
+        }
+        // `visits`: the most any frame so far takes; `free`: the first variable no
+        // frame so far names.
+        let (mut ops, mut visits, mut free) = (0u64, 0u32, 0u32);
+        for p in &self.ready {
+            let Ready::Node(r) = Ready::from(*p) else {
+                return false;
+            };
+            // Entries of ended nodes, skipped in either order.
+            let Some(n) = self.nodes.all.get(r.idx as usize) else {
+                continue;
+            };
+            if n.epoch != r.epoch || matches!(n.kind, Kind::Free) {
+                continue;
+            }
+            let Kind::Frame(f) = &n.kind else {
+                return false;
+            };
+            let span = self.frames.span(f.block);
+            if f.asleep || f.parked || span == NONE || f.base < free {
+                return false;
+            }
+            free = f.base.saturating_add(span);
+            match self.frames.foresee(&self.vars, f) {
+                Some((v, o)) if v >= visits => {
+                    visits = v;
+                    ops += u64::from(o);
+                }
+                _ => return false,
+            }
+        }
+        if ops > u64::from(self.ops_left) {
+            return false;
+        }
+        while let Some(p) = self.ready.pop_front() {
+            let Ready::Node(r) = Ready::from(p) else {
+                continue;
+            };
+            let Some(n) = self.nodes.all.get_mut(r.idx as usize) else {
+                continue;
+            };
+            if n.epoch != r.epoch || matches!(n.kind, Kind::Free) {
+                continue;
+            }
+            n.queued = false;
+            self.run_quick::<true>(r.idx);
+        }
+        self.rounds_fused += 1;
+        true
     }
 
     /// The iterations of frame `idx`'s open loops, for their `start` events: kept
@@ -1228,6 +1340,194 @@ impl<H: Hal, C: Clock> Vm<H, C> {
             &mut |_, stmt| out.push(StmtId(stmt)),
         );
     }
+}
+
+/// Visits a frame may take in a round that [`Vm::run_round`] runs in one go: past
+/// them it is taken for a loop that does not sleep.
+const ROUND_VISITS: u32 = 8;
+
+/// Variables a frame may write in a round that [`Vm::run_round`] runs in one go.
+const ROUND_WRITES: usize = 4;
+
+/// The way from a pc to the next sleep on quick forms with every check true, worked
+/// out when the code is compiled, so that [`Frames::foresee`] evaluates its checks
+/// and looks at its writes and nothing else. It has one only where no check on the
+/// way reads a variable written before it on the way (the counting loop's: from its
+/// body's end, `c<100`, then `c=c+1` and the sleep); elsewhere `visits` is 0.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub(crate) struct Plan {
+    visits: u8,
+    ops: u32,
+    /// The checks' pcs, NONE beyond.
+    checks: [u32; 2],
+    /// The variables written, relative to the frame's base, NONE beyond.
+    writes: [u32; 2],
+}
+
+impl Plan {
+    fn of(quick: &[Quick], from: usize) -> Plan {
+        let none = Plan::default();
+        let mut plan = Plan {
+            visits: 1,
+            ops: 0,
+            checks: [NONE; 2],
+            writes: [NONE; 2],
+        };
+        let add =
+            |list: &mut [u32; 2], x: u32| match list.iter_mut().find(|s| **s == NONE || **s == x) {
+                Some(s) => {
+                    *s = x;
+                    true
+                }
+                None => false,
+            };
+        let mut pc = from;
+        while u32::from(plan.visits) <= ROUND_VISITS {
+            let (ops, wrote) = match quick.get(pc) {
+                Some(&Quick::SetVK { var, .. }) => (Quick::SET_VK, var),
+                Some(&Quick::SetK { var, .. }) => (Quick::SET_K, var),
+                Some(Quick::Sleep { .. }) => {
+                    plan.ops += Quick::SLEEP;
+                    return plan;
+                }
+                Some(&Quick::CheckVK { src, .. }) => {
+                    if plan.writes.contains(&src) || !add(&mut plan.checks, pc as u32) {
+                        return none;
+                    }
+                    plan.visits += 1;
+                    (Quick::CHECK_VK, NONE)
+                }
+                Some(&Quick::EndBody { check, .. }) => {
+                    plan.visits += 1;
+                    pc = check as usize;
+                    continue;
+                }
+                _ => return none,
+            };
+            plan.ops += ops;
+            if wrote != NONE && !add(&mut plan.writes, wrote) {
+                return none;
+            }
+            pc += 1;
+        }
+        none
+    }
+}
+
+impl Frames {
+    /// What frame `f`'s visits from the ready queue come to, up to its next sleep,
+    /// with the trace off: how many visits and the ops charged ([`trace_ahead`]),
+    /// from the pc's [`Plan`] where it has one and its checks hold.
+    #[inline]
+    fn foresee(&self, vars: &super::vars::Vars, f: &FrameState) -> Option<(u32, u32)> {
+        let plan = self.plans.get(f.pc as usize).copied().unwrap_or_default();
+        if plan.visits == 0 {
+            return trace_ahead(self, vars, f);
+        }
+        for c in plan.checks {
+            if c == NONE {
+                break;
+            }
+            if let Some(&Quick::CheckVK {
+                src, field, cmp, k, ..
+            }) = self.quick.get(c as usize)
+                && !cmp.holds(vars.field(var_at(src, f.base), field), k)
+            {
+                // Another way: out of the loop.
+                return trace_ahead(self, vars, f);
+            }
+        }
+        for w in plan.writes {
+            if w != NONE && !vars.quiet(var_at(w, f.base)) {
+                return None;
+            }
+        }
+        Some((u32::from(plan.visits), plan.ops))
+    }
+}
+
+/// What frame `f`'s visits from the ready queue come to, up to its next sleep, with
+/// the trace off: how many visits (it queues itself after a body's end and a true
+/// check) and the ops charged. Follows the quick forms without running them: the
+/// values the frame writes are kept aside for its own later reads. None when it
+/// reaches any other form, writes a variable something hears, or writes more than
+/// [`ROUND_WRITES`] variables or takes more than [`ROUND_VISITS`] visits.
+fn trace_ahead(frames: &Frames, vars: &super::vars::Vars, f: &FrameState) -> Option<(u32, u32)> {
+    let mut written = [(NONE, 0.0); ROUND_WRITES];
+    // What an assignment leaves: the value, and status 1.
+    let read =
+        |written: &[(u32, f64)], v: u32, field: Field| match written.iter().find(|w| w.0 == v) {
+            Some(&(_, value)) if field == Field::Value => value,
+            Some(_) if field == Field::Status => 1.0,
+            _ => vars.field(v, field),
+        };
+    let write = |written: &mut [(u32, f64)], v: u32, value: f64| {
+        if !vars.quiet(v) {
+            return false;
+        }
+        match written.iter_mut().find(|w| w.0 == v || w.0 == NONE) {
+            Some(w) => {
+                *w = (v, value);
+                true
+            }
+            None => false,
+        }
+    };
+    let (mut pc, mut visits, mut ops) = (f.pc, 1, 0);
+    while visits <= ROUND_VISITS {
+        match *frames.quick.get(pc as usize)? {
+            Quick::SetVK {
+                var,
+                src,
+                field,
+                op,
+                k,
+                ..
+            } => {
+                ops += Quick::SET_VK;
+                let a = read(&written, var_at(src, f.base), field);
+                let v = match op {
+                    Arith::Add => a + k,
+                    Arith::Sub => a - k,
+                    Arith::Mul => a * k,
+                };
+                if !write(&mut written, var_at(var, f.base), v) {
+                    return None;
+                }
+                pc += 1;
+            }
+            Quick::SetK { var, k, .. } => {
+                ops += Quick::SET_K;
+                if !write(&mut written, var_at(var, f.base), k) {
+                    return None;
+                }
+                pc += 1;
+            }
+            Quick::Sleep { .. } => return Some((visits, ops + Quick::SLEEP)),
+            Quick::CheckVK {
+                src,
+                field,
+                cmp,
+                exit,
+                k,
+                ..
+            } => {
+                ops += Quick::CHECK_VK;
+                if cmp.holds(read(&written, var_at(src, f.base), field), k) {
+                    pc += 1;
+                    visits += 1;
+                } else {
+                    pc = exit;
+                }
+            }
+            Quick::EndBody { check, .. } => {
+                pc = check;
+                visits += 1;
+            }
+            Quick::Slow => return None,
+        }
+    }
+    None
 }
 
 /// Something of a frame `break(pattern)` ends.
@@ -1495,7 +1795,8 @@ mod tests {
                 Ctx {
                     var: 3,
                     expr: 4,
-                    stmt: 10
+                    stmt: 10,
+                    span: 1,
                 }
             ))
         );

@@ -99,6 +99,8 @@ pub struct Vm<H: Hal, C: Clock> {
     /// Per node, the iterations of a frame's open loops, with the trace on only
     /// (`Vm::frame_iters`).
     frame_iters: Vec<[u32; frame::MAX_LOOPS]>,
+    /// Ready queues run in one go (`Vm::run_round`).
+    rounds_fused: u64,
     supervisor: safety::supervisor::Supervisor,
     /// The robot's static map, asked for once at the start.
     known_map: Option<KnownMap>,
@@ -192,6 +194,7 @@ impl<H: Hal, C: Clock> Vm<H, C> {
             decoded: decode::Decoder::default(),
             frames: frame::Frames::default(),
             frame_iters: Vec::new(),
+            rounds_fused: 0,
             supervisor: Default::default(),
             known_map,
             map_from_estimate: ilmr_hal::Pose::default(),
@@ -326,6 +329,13 @@ impl<H: Hal, C: Clock> Vm<H, C> {
 
     pub fn ticks(&self) -> u64 {
         self.tick
+    }
+
+    /// Ticks whose ready queue ran in one go, each frame's visits one after the
+    /// other, because no one could tell the order from the tree's (`Vm::run_round`
+    /// in `frame.rs`; docs/performance.md, issue 14, session 12).
+    pub fn rounds_fused(&self) -> u64 {
+        self.rounds_fused
     }
 
     /// Live nodes: commands, guards, loops, calls and blocks.

@@ -279,6 +279,16 @@ impl Vars {
         self.records.get(v as usize).map_or(0.0, |r| r.get(f))
     }
 
+    /// Nothing would hear a write of `v`: no wait or guard subscribes to it or
+    /// watches it, and no wake of it is queued ([`Vars::queue_wake`] would queue
+    /// nothing).
+    #[inline]
+    pub fn quiet(&self, v: u32) -> bool {
+        self.heads
+            .get(v as usize)
+            .is_none_or(|h| !h.queued && h.first == NONE && self.watches.live(v) == 0)
+    }
+
     /// Marks a wake of `v` as queued; returns false if one already was or nothing
     /// subscribes to `v`.
     pub fn queue_wake(&mut self, v: u32) -> bool {
