@@ -164,6 +164,20 @@ impl<H: Hal, C: Clock> Vm<H, C> {
             .map(|o| (o.x, o.y))
     }
 
+    /// The arc of `turn(d=deg,c=c)`.
+    pub(crate) fn turn_spec(&self, deg: f32, c: f32) -> Result<TurnSpec, Refusal> {
+        let (deg, c) = (f64::from(deg), f64::from(c));
+        if !(c.is_finite() && c != 0.0) {
+            return Err("a turn needs a curvature other than 0".to_string().into());
+        }
+        // A curvature beyond the robot's is driven at the robot's: the
+        // arc is longer, but it turns through `d`. Planned as given, the
+        // controller's output is clipped (Figure 48) and the turn ended
+        // where the path did, up to half the angle short on Workpartner
+        // (maximum 0.25 1/m) at c = 1.
+        Ok(TurnSpec::degrees(deg, c.abs().min(self.cfg.max_curvature)))
+    }
+
     pub(crate) fn plan_spec(&self, spec: MoveSpec, start: Pose) -> Result<Planned, Refusal> {
         let dir = self.travel_direction();
         Ok(match spec {
@@ -181,16 +195,7 @@ impl<H: Hal, C: Clock> Vm<H, C> {
                 Planned::path(straight(start, signed, SPACING).map_err(err)?)
             }
             MoveSpec::TurnExact { deg, c } => {
-                let (deg, c) = (f64::from(deg), f64::from(c));
-                if !(c.is_finite() && c != 0.0) {
-                    return Err("a turn needs a curvature other than 0".to_string().into());
-                }
-                // A curvature beyond the robot's is driven at the robot's: the
-                // arc is longer, but it turns through `d`. Planned as given, the
-                // controller's output is clipped (Figure 48) and the turn ended
-                // where the path did, up to half the angle short on Workpartner
-                // (maximum 0.25 1/m) at c = 1.
-                let spec = TurnSpec::degrees(deg, c.abs().min(self.cfg.max_curvature));
+                let spec = self.turn_spec(deg, c)?;
                 Planned::path(turn(start, &spec, dir, SPACING).map_err(err)?)
             }
             MoveSpec::TurnSide { left } => {
