@@ -43,7 +43,7 @@ fn every_example_has_a_test_file_and_they_pass() {
     let (code, out, err) = ilmrc(&["test", "examples"]);
     assert_eq!(code, 0, "{out}\n{err}");
     assert!(
-        out.contains("test result: ok. 7 passed; 0 failed; 8 run(s)"),
+        out.contains("test result: ok. 7 passed; 0 failed; 46 run(s)"),
         "{out}"
     );
 }

@@ -600,7 +600,9 @@ pub static CATALOGUE: [CommandSpec; Command::COUNT] = [
             ),
         ],
         "Turns the robot to the left or right, by an exact arc or when there is room.",
-        "`turn(d=..,c=..)` follows an arc of the given angle and curvature. `turn(left)` first \
+        "`turn(d=..,c=..)` follows an arc of the given angle and curvature; reversing with no \
+         movement linked after it, it ends on the planned heading rather than where the arc does \
+         (there is no scanner behind to line up on afterwards). `turn(left)` first \
          checks the room to turn with the scanner; if there is none it keeps its distance to \
          that side with followwall until there is; if a wall ahead comes first and still leaves no \
          room, the turn is refused with that reason. `turn(door)` turns to a found position.",

@@ -60,7 +60,10 @@ oblique view never gives (the far jamb is further away), so it never reported th
 door. `gotoxy(door)` now arrives with the variable's heading, through the door:
 arriving facing the door's middle from where the robot stood, MoRo reached it 38
 degrees off square and the avoider (equation (12), 0.72 m wide) blocked it on the
-jamb.
+jamb. It drives the last 1.15 m (MoRo's front, 0.95 m ahead of its rear axle, and
+0.2 m) straight along that heading: ending the curve at the door itself lined the
+rear axle up there with the front still turning past the line, and on seed 11 of the
+calibrated MoRo the supervisor held it 0.2 m from the door's west post.
 
 The picture is Figure 59's: the walls the scanner saw (its hits, one per 10 cm, a scan
 a second) with the world drawn under them, the way out, path_1 as recorded (dashed)

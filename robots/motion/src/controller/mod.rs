@@ -11,8 +11,10 @@
 //! whatever the path asks for.
 
 mod speed;
+mod turn_end;
 
 pub use speed::{SpeedLimits, braking_distance, has_arrived, link_distance, next_speed, stop_in};
+pub use turn_end::{HEADING_WINDOW, HeadingEnd, OVERRUN};
 
 use crate::arc::Arc;
 use crate::path::{Direction, Path};

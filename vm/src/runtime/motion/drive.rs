@@ -107,6 +107,19 @@ impl<H: Hal, C: Clock> Vm<H, C> {
         };
         let here = pose.position();
         run.k = run.path.closest_index(&here, run.k, params.max_lookahead);
+        if let Some(end) = run.heading_end.filter(|_| !run.overrun && !linkable) {
+            // The last stretch of a turn that ends standing: from here the
+            // heading says where it ends, and the arc goes on for a robot
+            // that is still short of it at the planned end.
+            let in_window = end.to_turn(&pose, run.along(&here)).is_some();
+            if let Some(longer) = in_window
+                .then(|| end.overrun(&run.path, super::plan::SPACING).ok())
+                .flatten()
+            {
+                run.path = longer;
+                run.overrun = true;
+            }
+        }
         if let Some(j) = past_cusp(&run.path, run.k, &pose, v_now) {
             run.k = j;
         }
@@ -169,10 +182,16 @@ impl<H: Hal, C: Clock> Vm<H, C> {
         } else {
             // Behaviours re-plan before their leg ends: never brake for it.
             let drive_through = linked || !(run.ends() || run.walled);
-            (
-                target_speed,
-                stop_in(&run.path, run.k, &pose, run.advance, drive_through),
-            )
+            let on_path = stop_in(&run.path, run.k, &pose, run.advance, drive_through);
+            let on_heading = run
+                .ending_heading()
+                .and_then(|end| end.to_drive(&pose, run.along(&here)))
+                .map(|d| (d - run.advance).max(0.0));
+            let stop = match (on_path, on_heading) {
+                (Some(a), Some(b)) => Some(a.min(b)),
+                (a, b) => a.or(b),
+            };
+            (target_speed, stop)
         };
         // The braking curve towards a stop point falls a little faster than the
         // deceleration in its last steps (and wins over it for a late
@@ -192,16 +211,14 @@ impl<H: Hal, C: Clock> Vm<H, C> {
         let dist = run.dist(&here);
         // A movement that nothing is linked to ends standing: the next one
         // starts from rest, as `wait(m)` between them asks.
+        let tolerance = self.cfg.goal_tolerance;
         let arrived = run.ends()
             && !obs_control
             && v <= ARRIVED_SPEED
-            && has_arrived(
-                &run.path,
-                run.k,
-                &pose,
-                run.advance,
-                self.cfg.goal_tolerance,
-            );
+            && (has_arrived(&run.path, run.k, &pose, run.advance, tolerance)
+                || run.ending_heading().is_some_and(|end| {
+                    end.reached(&pose, run.along(&here), tolerance + run.advance)
+                }));
         let near_end = linked
             && !obs_control
             && !stopped

@@ -10,13 +10,13 @@ use std::f64::consts::FRAC_PI_2;
 
 use ilmr_hal::Hal;
 use ilmr_motion::obstacle::{check_length, check_width};
-use ilmr_motion::path::{TurnSpec, straight, taught, turn};
+use ilmr_motion::path::{JOIN_TOLERANCE, TurnSpec, straight, taught, turn};
 use ilmr_motion::wall::{
     FOLLOWWALL_AHEAD, Outline, TurnRoom, WallParams, fit_wall, followwall_goal, leg_short_of_wall,
     middle_goal, turn_space_free,
 };
 use ilmr_motion::{Direction, Path, PlanError, PlanParams, Pose, Side, plan_with};
-use nalgebra::Point2;
+use nalgebra::{Point2, Vector2};
 
 use super::{Mode, WallSide};
 use crate::bytecode::{NameId, VarId};
@@ -34,6 +34,10 @@ pub(crate) const ENDLESS_LEG: f64 = 30.0;
 /// circle at its start before it catches up (MoRo at 0.3 m/s: a few
 /// centimetres), and the map's cells are 5 cm.
 pub(crate) const TURN_MARGIN: f64 = 0.2;
+/// How much further than the robot's leading end the straight into a
+/// position with a heading begins, m: the controller's lag behind a bend
+/// (MoRo at 0.3 m/s, calibrated: a few centimetres) and the map's 5 cm cells.
+const LINE_UP_MARGIN: f64 = 0.2;
 /// `followpath` may join its path this many turning radii past the first
 /// point. A three-point turn at a path's end leaves the robot a radius
 /// back and a radius aside, facing across the path; the Bezier of
@@ -127,6 +131,47 @@ impl<H: Hal, C: Clock> Vm<H, C> {
         self.bezier(start, Pose::new(to.x, to.y, h), dir, r)
     }
 
+    /// To `to` arriving with heading `h`, the last stretch straight along it
+    /// for as far as the robot's leading end reaches past its reference point
+    /// (and `LINE_UP_MARGIN`), so that the whole body crosses a door's line
+    /// already facing through it. Ending the Bezier at the door point itself,
+    /// the reference point (MoRo's rear axle) lines up there, when its front,
+    /// 0.95 m ahead, has long crossed the line still turning, its corner
+    /// swung out towards the door post (Figure 58's `gotoxy(door)`, seed 11:
+    /// held 0.2 m from the lab door's west post). Where the robot is already
+    /// past where the straight would begin, or the shorter curve is too
+    /// tight, the Bezier ends at the point as before.
+    fn goto_lined_up(
+        &self,
+        start: Pose,
+        to: Point2<f64>,
+        h: f64,
+        r: bool,
+    ) -> Result<Path, Refusal> {
+        let dir = self.travel_direction();
+        let reach = match dir {
+            Direction::Forward => self.cfg.front_offset,
+            Direction::Backward => self.cfg.robot_length - self.cfg.front_offset,
+        };
+        let lead = reach.max(0.0) + LINE_UP_MARGIN;
+        let travel = dir.sign() * Vector2::new(h.cos(), h.sin());
+        let from = to - lead * travel;
+        if (from - start.position()).dot(&travel) > 0.0 {
+            let lined = self
+                .bezier(start, Pose::new(from.x, from.y, h), dir, r)
+                .and_then(|bend| {
+                    let last =
+                        straight(bend.end_pose(), dir.sign() * lead, SPACING).map_err(err)?;
+                    bend.concat(&last, JOIN_TOLERANCE)
+                        .map_err(|e| err(e).into())
+                });
+            if let Ok(path) = lined {
+                return Ok(path);
+            }
+        }
+        self.goto(start, to, Some(h), r)
+    }
+
     fn approach_point(&self, start: Pose, tx: f64, ty: f64, d: f64) -> Result<Path, Refusal> {
         let target = Point2::new(tx, ty);
         let dist = start.distance_to(&target);
@@ -164,6 +209,20 @@ impl<H: Hal, C: Clock> Vm<H, C> {
             .map(|o| (o.x, o.y))
     }
 
+    /// The arc of `turn(d=deg,c=c)`.
+    pub(crate) fn turn_spec(&self, deg: f32, c: f32) -> Result<TurnSpec, Refusal> {
+        let (deg, c) = (f64::from(deg), f64::from(c));
+        if !(c.is_finite() && c != 0.0) {
+            return Err("a turn needs a curvature other than 0".to_string().into());
+        }
+        // A curvature beyond the robot's is driven at the robot's: the
+        // arc is longer, but it turns through `d`. Planned as given, the
+        // controller's output is clipped (Figure 48) and the turn ended
+        // where the path did, up to half the angle short on Workpartner
+        // (maximum 0.25 1/m) at c = 1.
+        Ok(TurnSpec::degrees(deg, c.abs().min(self.cfg.max_curvature)))
+    }
+
     pub(crate) fn plan_spec(&self, spec: MoveSpec, start: Pose) -> Result<Planned, Refusal> {
         let dir = self.travel_direction();
         Ok(match spec {
@@ -181,16 +240,7 @@ impl<H: Hal, C: Clock> Vm<H, C> {
                 Planned::path(straight(start, signed, SPACING).map_err(err)?)
             }
             MoveSpec::TurnExact { deg, c } => {
-                let (deg, c) = (f64::from(deg), f64::from(c));
-                if !(c.is_finite() && c != 0.0) {
-                    return Err("a turn needs a curvature other than 0".to_string().into());
-                }
-                // A curvature beyond the robot's is driven at the robot's: the
-                // arc is longer, but it turns through `d`. Planned as given, the
-                // controller's output is clipped (Figure 48) and the turn ended
-                // where the path did, up to half the angle short on Workpartner
-                // (maximum 0.25 1/m) at c = 1.
-                let spec = TurnSpec::degrees(deg, c.abs().min(self.cfg.max_curvature));
+                let spec = self.turn_spec(deg, c)?;
                 Planned::path(turn(start, &spec, dir, SPACING).map_err(err)?)
             }
             MoveSpec::TurnSide { left } => {
@@ -236,7 +286,7 @@ impl<H: Hal, C: Clock> Vm<H, C> {
                 // Figures 20 and 58 need to turn on from there; where that
                 // curve is too tight and `r` is not given, the robot arrives
                 // facing the point instead.
-                let path = match self.goto(start, to, Some(h), r) {
+                let path = match self.goto_lined_up(start, to, h, r) {
                     Ok(path) => path,
                     Err(_) => self.goto(start, to, None, r)?,
                 };
