@@ -245,6 +245,7 @@ mod tests {
     /// The tree of a large task is most of what checking it writes to memory: a node
     /// that grows makes every check of a large file slower (docs/performance.md).
     #[test]
+    #[cfg(target_pointer_width = "64")]
     fn nodes_keep_their_sizes() {
         assert_eq!(size_of::<Name<'_>>(), 24);
         assert_eq!(size_of::<Expr<'_>>(), 40);
