@@ -129,10 +129,11 @@ pub struct Args<'s> {
 #[derive(Debug, Clone)]
 pub enum Arg<'s> {
     Positional(Expr<'s>),
-    /// `key = value`, as in `turn(d=90,c=0.5)`.
+    /// `key = value`, as in `turn(d=90,c=0.5)`. The value is boxed: settings are rare,
+    /// and inline it would make every argument 64 bytes instead of 40.
     Setting {
         key: Name<'s>,
-        value: Expr<'s>,
+        value: Box<Expr<'s>>,
     },
 }
 
@@ -234,5 +235,22 @@ impl<'s> SourceFile<'s> {
         for skill in &self.skills {
             walk(&skill.blocks, f);
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The tree of a large task is most of what checking it writes to memory: a node
+    /// that grows makes every check of a large file slower (docs/performance.md).
+    #[test]
+    #[cfg(target_pointer_width = "64")]
+    fn nodes_keep_their_sizes() {
+        assert_eq!(size_of::<Name<'_>>(), 24);
+        assert_eq!(size_of::<Expr<'_>>(), 40);
+        assert_eq!(size_of::<Arg<'_>>(), 40);
+        assert_eq!(size_of::<Stmt<'_>>(), 88);
+        assert_eq!(size_of::<Block<'_>>(), 24);
     }
 }

@@ -54,7 +54,7 @@ pub fn params<'a, 's>(
 pub fn unit_of(command: Command, param: &Param, arg: &Arg<'_>) -> Option<Unit> {
     let value = match arg {
         Arg::Positional(e) => e,
-        Arg::Setting { value, .. } => value,
+        Arg::Setting { value, .. } => &**value,
     };
     // A keyword (`turn(left)`) has no unit, though a number could stand in its place.
     if let ExprKind::Name(n) = &value.kind

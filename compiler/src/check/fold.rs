@@ -171,6 +171,29 @@ impl<V> FoldMap<V> {
         &mut entry.into_mut().1
     }
 
+    /// The value under `name` in any case, inserted by `make` if absent: an ASCII name is
+    /// looked up as it is written and lower-cased only when it is new (`buf` holds a
+    /// lower-cased copy of any other).
+    pub fn get_or_insert_named(
+        &mut self,
+        name: &str,
+        buf: &mut String,
+        make: impl FnOnce() -> V,
+    ) -> &mut V {
+        if !name.is_ascii() {
+            return self.get_or_insert_with(super::constants::key(name, buf), make);
+        }
+        let entry = match self.entry(name) {
+            (Entry::Occupied(o), _, _) => o,
+            (Entry::Vacant(v), keys, first) => {
+                let at = push_key(keys, name, first);
+                keys[at.start as usize..].make_ascii_lowercase();
+                v.insert((at, make()))
+            }
+        };
+        &mut entry.into_mut().1
+    }
+
     /// Sets the value under `key` (lower-cased by the caller), replacing any before.
     pub fn insert(&mut self, key: &str, value: V) {
         match self.entry(key) {
@@ -246,6 +269,15 @@ mod tests {
         assert_eq!(m.get("cntx"), None);
         m.insert("cnt", 6);
         assert_eq!(m.get("cNT"), Some(&6));
+        let mut buf = String::new();
+        *m.get_or_insert_named("CNT", &mut buf, || 0) += 10;
+        *m.get_or_insert_named("NewName", &mut buf, || 1) += 10;
+        *m.get_or_insert_named("KÄÄNNÖS", &mut buf, || 0) += 10;
+        assert_eq!(m.get("cnt"), Some(&16));
+        assert_eq!(m.get("newname"), Some(&11));
+        assert!(m.iter().any(|(k, v)| k == "newname" && *v == 11));
+        assert_eq!(m.get("käännös"), Some(&12));
+        m.insert("cnt", 6);
         for i in 0..1000 {
             m.get_or_insert_with(&format!("v{i}"), || i);
         }

@@ -45,16 +45,9 @@ pub fn check_frozen_loops(
     variables: usize,
     diags: &mut Kept,
 ) {
-    let mut any_loop = false;
-    for entry in files {
-        entry.tree.for_each_stmt(&mut |s: &Stmt<'_>| {
-            any_loop |= matches!(s.kind, StmtKind::While { .. });
-        });
-    }
-    if !any_loop {
+    let Some(writes) = writes(files, variables) else {
         return;
-    }
-    let writes = writes(files, variables);
+    };
     let is_variable = |name: &str| find(&writes, name).is_some();
     let program = starve::Program {
         skills,
@@ -70,6 +63,7 @@ pub fn check_frozen_loops(
             writes: &writes,
             program: &program,
             before: Vec::new(),
+            names: Vec::new(),
             diags,
         };
         walk.blocks(&entry.tree.blocks);
@@ -89,12 +83,14 @@ fn find<'w>(writes: &'w FoldMap<Writes>, name: &str) -> Option<&'w Writes> {
 }
 
 /// Keyed without a copy of each name: the table is filled from every statement of
-/// the program.
-fn writes(files: &[FileEntry<'_>], variables: usize) -> FoldMap<Writes> {
+/// the program, and most names are found in it (a variable is bound, then named or
+/// assigned again). One walk also tells whether there is a loop. `None` when the program has no loop, which is all it is for.
+fn writes(files: &[FileEntry<'_>], variables: usize) -> Option<FoldMap<Writes>> {
     let mut writes: FoldMap<Writes> = FoldMap::with_capacity(variables);
+    let mut any_loop = false;
     let mut buf = String::new();
     fn entry<'w>(writes: &'w mut FoldMap<Writes>, buf: &mut String, name: &str) -> &'w mut Writes {
-        writes.get_or_insert_with(crate::check::constants::key(name, buf), Writes::default)
+        writes.get_or_insert_named(name, buf, Writes::default)
     }
     for (i, entry_file) in files.iter().enumerate() {
         let file = FileId(i as u32);
@@ -102,23 +98,24 @@ fn writes(files: &[FileEntry<'_>], variables: usize) -> FoldMap<Writes> {
             .tree
             .for_each_stmt(&mut |s: &Stmt<'_>| match &s.kind {
                 StmtKind::Call { bind, call } => {
-                    let named = call
-                        .args
-                        .iter()
-                        .flat_map(|a| a.items.iter())
-                        .filter_map(|arg| match arg {
-                            crate::ast::Arg::Positional(Expr {
-                                kind: ExprKind::Name(n),
-                                ..
-                            }) => Some(n.text),
-                            _ => None,
-                        });
-                    for name in bind.iter().map(|b| b.text).chain(named) {
-                        entry(&mut writes, &mut buf, name).by_command = true;
+                    if let Some(b) = bind {
+                        entry(&mut writes, &mut buf, b.text).by_command = true;
+                    }
+                    for arg in call.args.iter().flat_map(|a| a.items.iter()) {
+                        if let crate::ast::Arg::Positional(Expr {
+                            kind: ExprKind::Name(n),
+                            ..
+                        }) = arg
+                        {
+                            entry(&mut writes, &mut buf, n.text).by_command = true;
+                        }
                     }
                 }
-                StmtKind::While { bind: Some(b), .. } => {
-                    entry(&mut writes, &mut buf, b.text).by_command = true;
+                StmtKind::While { bind, .. } => {
+                    any_loop = true;
+                    if let Some(b) = bind {
+                        entry(&mut writes, &mut buf, b.text).by_command = true;
+                    }
                 }
                 StmtKind::Assign { target, value } => {
                     // `v = Skill` or `v = command` bound bare: a command's variable.
@@ -130,7 +127,7 @@ fn writes(files: &[FileEntry<'_>], variables: usize) -> FoldMap<Writes> {
                 _ => {}
             });
     }
-    writes
+    any_loop.then_some(writes)
 }
 
 struct Walk<'a, 'd> {
@@ -141,11 +138,13 @@ struct Walk<'a, 'd> {
     /// The variables of the assignments issued, one after another, before the
     /// statement being looked at, each counted in its [`Writes::issued`].
     before: Vec<&'a Writes>,
+    /// The names of the condition being looked at, reused from loop to loop.
+    names: Vec<&'a str>,
     diags: &'d mut Kept,
 }
 
 impl<'a> Walk<'a, '_> {
-    fn blocks(&mut self, blocks: &[Block<'_>]) {
+    fn blocks(&mut self, blocks: &'a [Block<'a>]) {
         for block in blocks {
             let outer = self.before.len();
             for stmt in &block.stmts {
@@ -182,15 +181,21 @@ impl<'a> Walk<'a, '_> {
     }
 
     /// W0901 when no variable of the loop's condition can change while it runs.
-    fn frozen(&mut self, stmt: &Stmt<'_>, cond: &Expr<'_>) {
-        let mut names = Vec::new();
+    fn frozen(&mut self, stmt: &Stmt<'_>, cond: &'a Expr<'a>) {
+        let mut names = std::mem::take(&mut self.names);
+        names.clear();
         names_in(cond, &mut names);
+        self.frozen_names(stmt, &names);
+        self.names = names;
+    }
+
+    fn frozen_names(&mut self, stmt: &Stmt<'_>, names: &[&str]) {
         if names.is_empty() {
             return;
         }
         let mut set_before: Vec<&Writes> = Vec::new();
         let mut variables = Vec::new();
-        for name in &names {
+        for name in names {
             // Never written: a model constant, or an unbound name the checker reports
             // itself.
             let Some(w) = find(self.writes, name) else {

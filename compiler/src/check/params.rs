@@ -281,7 +281,7 @@ impl<'s> Sub<'_, 's> {
                     Arg::Positional(e) => Arg::Positional(self.expr(e)),
                     Arg::Setting { key, value } => Arg::Setting {
                         key: *key,
-                        value: self.expr(value),
+                        value: Box::new(self.expr(value)),
                     },
                 })
                 .collect(),

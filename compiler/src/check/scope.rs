@@ -56,11 +56,14 @@ impl Vars {
         self.index.iter().map(|(key, id)| (key, *id))
     }
 
-    /// An empty table with room for `n` variables.
+    /// An empty table with room for `n` variables in its lists, whose room is written
+    /// only as variables come. The index grows as names come instead: its slots are
+    /// written where names hash, all over the table, and a program that binds its
+    /// names again and again (counters, the corpus ten times) would write a table many
+    /// times its variables, and look names up across it.
     pub(crate) fn with_capacity(n: usize) -> Vars {
         Vars {
             vars: Vec::with_capacity(n),
-            index: FoldMap::with_capacity(n),
             bound: Vec::with_capacity(n),
             ..Vars::default()
         }

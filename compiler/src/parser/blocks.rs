@@ -117,7 +117,8 @@ pub struct Builder<'s> {
     skipped: usize,
     diagnostics: Kept,
     /// Statements that bind a variable (`v = ...`, `v = command(...)`, `v = while`):
-    /// at least as many as the file's variables, so the checker sizes its table once.
+    /// at least as many as the file's variables, so the checker sizes its lists of
+    /// variables once.
     pub binds: usize,
 }
 

@@ -240,7 +240,10 @@ impl<'s> Reader<'_, 's> {
             // A setting whose value does not parse makes the grammar fall back to a
             // positional name followed by a stray `=`: an error, so decline.
             let value = self.expr()?;
-            return Some(Arg::Setting { key, value });
+            return Some(Arg::Setting {
+                key,
+                value: Box::new(value),
+            });
         }
         self.expr().map(Arg::Positional)
     }

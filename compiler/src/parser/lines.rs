@@ -282,7 +282,10 @@ where
     let setting = name(source)
         .then_ignore(just(Token::Assign))
         .then(expr.clone().labelled("value"))
-        .map(|(key, value)| Arg::Setting { key, value });
+        .map(|(key, value)| Arg::Setting {
+            key,
+            value: Box::new(value),
+        });
     let arg = setting.or(expr.map(Arg::Positional)).labelled("argument");
     just(Token::LParen)
         .ignore_then(arg.separated_by(just(Token::Comma)).collect::<Vec<_>>())
