@@ -220,8 +220,8 @@ impl Diagnostic {
     /// A secondary label at each of `places`, the first [`MAX_PLACES_SHOWN`] of them, the
     /// last saying how many more there are. A warning about a statement that shares its
     /// cause with thousands of others would otherwise list them all, once for each it
-    /// warns at: output that grows as the square of the file.
-    /// `places` may go on past what is shown; `total` is how many it holds.
+    /// warns at: output that grows as the square of the file. `places` may go on past
+    /// what is shown; `total` is how many it holds.
     pub fn with_places(
         mut self,
         places: impl IntoIterator<Item = (FileId, Span)>,

@@ -5,7 +5,7 @@ use crate::ast::{Pattern, Stmt, StmtKind};
 use crate::check::FileEntry;
 use crate::check::needles::Needles;
 use crate::check::skills::Skills;
-use crate::diagnostic::{Code, Diagnostic, FileId};
+use crate::diagnostic::{Code, Diagnostic, FileId, MAX_PLACES_SHOWN};
 use crate::kept::Kept;
 use crate::span::Span;
 
@@ -118,7 +118,8 @@ pub fn check_patterns(files: &[FileEntry<'_>], skills: &Skills, diags: &mut Kept
         let found = needles.each_in(text, &mut seen, |id| {
             let (n, first) = &mut hits[id as usize];
             *n += 1;
-            if first.len() < SHOWN {
+            // The count is in the message, so the places need no count of their own.
+            if first.len() < MAX_PLACES_SHOWN {
                 first.push((file, span));
             }
         });
@@ -160,9 +161,6 @@ pub fn check_patterns(files: &[FileEntry<'_>], skills: &Skills, diags: &mut Kept
         }
     }
 }
-
-/// Statements a W0702 shows of those a pattern matches.
-const SHOWN: usize = 5;
 
 #[cfg(test)]
 mod tests {
