@@ -30,6 +30,23 @@ impl Rng {
 
 const VARS: [&str; 4] = ["a", "b", "c", "d"];
 
+/// `VARS` with each suffix from 0 to `copies`: every variable blocks of one shape may
+/// hold.
+fn copies_of_vars(copies: u64) -> Vec<String> {
+    (0..copies)
+        .flat_map(|i| VARS.iter().map(move |v| format!("{v}{i}")))
+        .collect()
+}
+
+/// A number from the environment (`FRAMES_SEEDS`, `FRAMES_FROM`), to run more seeds
+/// or one.
+fn env_or(name: &str, default: u64) -> u64 {
+    std::env::var(name)
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(default)
+}
+
 struct Gen {
     rng: Rng,
     /// Distinct statement texts, so that break patterns name what they mean to.
@@ -40,6 +57,15 @@ struct Gen {
 }
 
 impl Gen {
+    /// Ops per tick: a third of programs run out of budget within a tick (2 up to
+    /// `2 + tight`), the rest never do.
+    fn budget(&mut self, tight: u64) -> u32 {
+        match self.rng.below(3) {
+            0 => 2 + self.rng.below(tight) as u32,
+            _ => 200_000,
+        }
+    }
+
     /// One of [`VARS`], with the suffix.
     fn var(&mut self) -> String {
         format!("{}{}", self.rng.pick(&VARS), self.suffix)
@@ -217,24 +243,15 @@ fn program(seed: u64) -> (ilmr_vm::Module, u32) {
         }
         blocks.push(a.block(code));
     }
-    let budget = match g.rng.below(3) {
-        0 => 2 + g.rng.below(20) as u32,
-        _ => 200_000,
-    };
+    let budget = g.budget(20);
     (a.task(&blocks), budget)
 }
 
 #[test]
 fn frames_trace_byte_for_byte_as_the_tree() {
     let mut framed = 0;
-    let seeds: u64 = std::env::var("FRAMES_SEEDS")
-        .ok()
-        .and_then(|s| s.parse().ok())
-        .unwrap_or(150);
-    let from: u64 = std::env::var("FRAMES_FROM")
-        .ok()
-        .and_then(|s| s.parse().ok())
-        .unwrap_or(0);
+    let seeds: u64 = env_or("FRAMES_SEEDS", 150);
+    let from: u64 = env_or("FRAMES_FROM", 0);
     for seed in from..seeds {
         let (module, budget) = program(seed);
         let cfg = |frames| Config {
@@ -312,22 +329,14 @@ fn cloned_program(seed: u64) -> (ilmr_vm::Module, u32, Vec<String>) {
         a.blank();
         blocks.push(a.block(code));
     }
-    let budget = match g.rng.below(3) {
-        0 => 2 + g.rng.below(20) as u32,
-        _ => 200_000,
-    };
-    let names = (0..clones)
-        .flat_map(|i| VARS.iter().map(move |v| format!("{v}{i}")))
-        .collect();
+    let budget = g.budget(20);
+    let names = copies_of_vars(clones);
     (a.task(&blocks), budget, names)
 }
 
 #[test]
 fn blocks_of_one_shape_run_as_the_tree() {
-    let seeds: u64 = std::env::var("FRAMES_SEEDS")
-        .ok()
-        .and_then(|s| s.parse().ok())
-        .unwrap_or(60);
+    let seeds: u64 = env_or("FRAMES_SEEDS", 60);
     let mut framed = 0;
     for seed in 0..seeds {
         let (module, budget, names) = cloned_program(seed);
@@ -432,22 +441,14 @@ fn independent_program(seed: u64) -> (ilmr_vm::Module, u32, Vec<String>) {
         }
         blocks.push(a.block(code));
     }
-    let budget = match g.rng.below(3) {
-        0 => 2 + g.rng.below(40) as u32,
-        _ => 200_000,
-    };
-    let names = (0..count)
-        .flat_map(|i| VARS.iter().map(move |v| format!("{v}{i}")))
-        .collect();
+    let budget = g.budget(40);
+    let names = copies_of_vars(count);
     (a.task(&blocks), budget, names)
 }
 
 #[test]
 fn frames_run_in_one_go_as_the_tree() {
-    let seeds: u64 = std::env::var("FRAMES_SEEDS")
-        .ok()
-        .and_then(|s| s.parse().ok())
-        .unwrap_or(150);
+    let seeds: u64 = env_or("FRAMES_SEEDS", 150);
     let (mut fused, mut programs) = (0, 0);
     for seed in 0..seeds {
         let (module, budget, names) = independent_program(seed);
