@@ -38,6 +38,22 @@ fn copies_of_vars(copies: u64) -> Vec<String> {
         .collect()
 }
 
+/// What tree and frames must agree on after every tick: what runs, what has ended, and
+/// the variables `names`.
+fn state<N: AsRef<str>>(
+    v: &common::TestVm,
+    names: &[N],
+) -> impl PartialEq + std::fmt::Debug + use<N> {
+    let vars: Vec<_> = names.iter().map(|n| v.var(n.as_ref())).collect();
+    (
+        v.activity(),
+        v.live(),
+        v.live_statements(),
+        v.finished(),
+        format!("{vars:?}"),
+    )
+}
+
 /// A number from the environment (`FRAMES_SEEDS`, `FRAMES_FROM`), to run more seeds
 /// or one.
 fn env_or(name: &str, default: u64) -> u64 {
@@ -272,16 +288,7 @@ fn frames_trace_byte_for_byte_as_the_tree() {
         };
         let mut tree_off = vm(module.clone(), robot(), quiet(false));
         let mut flat_off = vm(module, robot(), quiet(true));
-        let what = |v: &common::TestVm| {
-            let vars: Vec<_> = VARS.iter().map(|n| v.var(n)).collect();
-            (
-                v.activity(),
-                v.live(),
-                v.live_statements(),
-                v.finished(),
-                format!("{vars:?}"),
-            )
-        };
+        let what = |v: &common::TestVm| state(v, &VARS);
         for tick in 0..200 {
             if tree.finished() && flat.finished() {
                 break;
@@ -351,16 +358,7 @@ fn blocks_of_one_shape_run_as_the_tree() {
         let mut flat = vm(module.clone(), robot(), cfg(true, full));
         let mut tree_off = vm(module.clone(), robot(), cfg(false, TraceLevel::Off));
         let mut flat_off = vm(module, robot(), cfg(true, TraceLevel::Off));
-        let what = |v: &common::TestVm| {
-            let vars: Vec<_> = names.iter().map(|n| v.var(n)).collect();
-            (
-                v.activity(),
-                v.live(),
-                v.live_statements(),
-                v.finished(),
-                format!("{vars:?}"),
-            )
-        };
+        let what = |v: &common::TestVm| state(v, &names);
         for tick in 0..200 {
             if tree.finished() && flat.finished() {
                 break;
@@ -460,16 +458,7 @@ fn frames_run_in_one_go_as_the_tree() {
         };
         let mut tree = vm(module.clone(), robot(), cfg(false));
         let mut flat = vm(module, robot(), cfg(true));
-        let what = |v: &common::TestVm| {
-            let vars: Vec<_> = names.iter().map(|n| v.var(n)).collect();
-            (
-                v.activity(),
-                v.live(),
-                v.live_statements(),
-                v.finished(),
-                format!("{vars:?}"),
-            )
-        };
+        let what = |v: &common::TestVm| state(v, &names);
         for tick in 0..200 {
             if tree.finished() && flat.finished() {
                 break;
