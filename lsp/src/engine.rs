@@ -21,7 +21,7 @@ use tower_lsp_server::ls_types::{
 
 use crate::analysis::{Analyzer, Program};
 use crate::diagnostics::{self, Locate};
-use crate::lens::{self, BreakAt, FileLens};
+use crate::lens::{self, Breaks, FileLens};
 use crate::navigation::{self, RenameError};
 use crate::robot::{self, Robot};
 use crate::run::{self, Invocation, LastRun};
@@ -53,7 +53,7 @@ pub struct Settings {
 #[derive(Default)]
 struct LensCache {
     schedules: HashMap<FileId, Rc<Vec<Moment>>>,
-    breaks: Option<Rc<Vec<BreakAt>>>,
+    breaks: Option<Rc<Breaks>>,
 }
 
 pub struct Engine {
@@ -555,7 +555,7 @@ impl Engine {
     }
 
     /// The file's schedule and the program's breaks, computed once per check.
-    fn lens_facts(&self, file: FileId) -> (Rc<Vec<Moment>>, Rc<Vec<BreakAt>>) {
+    fn lens_facts(&self, file: FileId) -> (Rc<Vec<Moment>>, Rc<Breaks>) {
         let mut cache = self.lens.borrow_mut();
         let moments = cache
             .schedules

@@ -6,13 +6,17 @@
 //! pattern ends is the checker's own matching (`check::breakable`, `check::matches`).
 //!
 //! Only the statements in the range the client shows are labelled, found by skipping
-//! the blocks outside it, so a request costs the visible statements times the program's
-//! breaks, plus the file's schedule once per check (cached by the engine).
+//! the blocks outside it. The program's break patterns are searched for all at once in
+//! each statement's text (the checker's automaton, `check::Needles`), so a request costs
+//! the visible statements' text plus the breaks it names, and the file's schedule and
+//! the program's breaks once per check (cached by the engine). A label names a few of
+//! the breaks and priority blocks that end a statement and counts the rest: a program
+//! of 2,000 `break(w)` lines made 120 MB of labels when each named all of them.
 
 use ilmr_compiler::Span;
 use ilmr_compiler::ast::{Block, Stmt, StmtKind};
 use ilmr_compiler::check::schedule::{Moment, Start};
-use ilmr_compiler::check::{breakable, matches, needle};
+use ilmr_compiler::check::{Needles, breakable, matches, needle};
 use ilmr_compiler::diagnostic::FileId;
 
 use crate::analysis::Program;
@@ -29,6 +33,10 @@ const BLOCKS_NAMED: u32 = 3;
 /// Bare breaks named one by one in "ended by break at line 9, line 20"; more are
 /// counted.
 const BREAKS_NAMED: usize = 2;
+
+/// Pattern breaks and priority blocks that end a statement named one by one, each kind;
+/// more are counted.
+const ENDERS_NAMED: usize = 3;
 
 /// Statements a break's hover lists; more are counted.
 pub const ENDED_LISTED: usize = 20;
@@ -64,10 +72,52 @@ pub struct BreakAt {
     pub ender: Ender,
 }
 
+/// The program's breaks, sorted by what they end.
+pub struct Breaks {
+    /// In the order of the files and their text.
+    pub all: Vec<BreakAt>,
+    /// The distinct needles of the pattern breaks.
+    needles: Needles,
+    /// For each distinct needle, the pattern breaks that have it (indices in `all`, in
+    /// order).
+    with_needle: Vec<Vec<u32>>,
+    /// The priority blocks and the bare breaks (indices in `all`, in order).
+    priorities: Vec<u32>,
+    bare: Vec<u32>,
+}
+
 /// Every `break`, `break(pattern)` and `priority = highest` in the program's files that
 /// an editor can open, leaving out what stands between `check` and `checkend` (which
 /// never runs).
-pub fn breaks(program: &Program) -> Vec<BreakAt> {
+pub fn breaks(program: &Program) -> Breaks {
+    let all = all_breaks(program);
+    let mut patterns = Vec::new();
+    let mut priorities = Vec::new();
+    let mut bare = Vec::new();
+    for (i, b) in all.iter().enumerate() {
+        match &b.ender {
+            Ender::Pattern(needle) => patterns.push((i as u32, needle.as_str())),
+            Ender::Priority { .. } => priorities.push(i as u32),
+            Ender::All => bare.push(i as u32),
+        }
+    }
+    let needles = Needles::new(patterns.iter().map(|&(_, needle)| needle));
+    let mut with_needle = vec![Vec::new(); needles.distinct()];
+    for (k, &(i, _)) in patterns.iter().enumerate() {
+        if let Some(id) = needles.id(k) {
+            with_needle[id as usize].push(i);
+        }
+    }
+    Breaks {
+        all,
+        needles,
+        with_needle,
+        priorities,
+        bare,
+    }
+}
+
+fn all_breaks(program: &Program) -> Vec<BreakAt> {
     let mut out = Vec::new();
     for i in 0..program.analysis().files.len() {
         let file = FileId(i as u32);
@@ -134,12 +184,27 @@ pub struct FileLens<'a> {
     pub index: &'a LineIndex,
     /// The file's schedule, sorted by position (`check::schedule`).
     pub moments: &'a [Moment],
-    pub breaks: &'a [BreakAt],
+    pub breaks: &'a Breaks,
+}
+
+/// An `if` or `while` around the statements being labelled, with the distinct needles
+/// its line contains (`None`: not searched, past the matches' limit).
+struct Around {
+    span: Span,
+    needles: Option<Vec<u32>>,
+}
+
+/// Where a statement's text or an `if`/`while` around it contains a break's needle.
+#[derive(Clone, Copy)]
+enum Through {
+    Itself,
+    Around(Span),
 }
 
 impl FileLens<'_> {
     /// Labels of the statements that start inside `range`, in order.
     pub fn labels(&self, range: Span) -> Vec<Label> {
+        self.breaks.needles.refill();
         let tree = self.program.tree(self.file);
         let mut out = Vec::new();
         let mut around = Vec::new();
@@ -157,7 +222,7 @@ impl FileLens<'_> {
         blocks: &'t [Block<'t>],
         unit: Option<usize>,
         range: Span,
-        around: &mut Vec<Span>,
+        around: &mut Vec<Around>,
         out: &mut Vec<Label>,
     ) {
         for stmt in statements_reaching(blocks, range) {
@@ -166,7 +231,16 @@ impl FileLens<'_> {
             }
             match &stmt.kind {
                 StmtKind::If(c) | StmtKind::While { body: c, .. } => {
-                    around.push(stmt.span);
+                    let mut needles = Vec::new();
+                    let searched = self.breaks.needles.each_in(
+                        stmt.span.slice(self.text),
+                        &mut Vec::new(),
+                        |id| needles.push(id),
+                    );
+                    around.push(Around {
+                        span: stmt.span,
+                        needles: searched.map(|()| needles),
+                    });
                     self.blocks(&c.body, unit, range, around, out);
                     around.pop();
                 }
@@ -177,7 +251,7 @@ impl FileLens<'_> {
         }
     }
 
-    fn label(&self, stmt: &Stmt<'_>, unit: Option<usize>, around: &[Span], out: &mut Vec<Label>) {
+    fn label(&self, stmt: &Stmt<'_>, unit: Option<usize>, around: &[Around], out: &mut Vec<Label>) {
         let mut parts = Vec::new();
         let mut tips = Vec::new();
         if let Some(m) = self.moment(stmt.span) {
@@ -209,86 +283,157 @@ impl FileLens<'_> {
 
     /// What ends `stmt` if it is running then: the breaks whose pattern it (or an `if`
     /// or `while` around it) contains, the program's bare breaks, and the priority
-    /// blocks of its unit that it stands outside of.
+    /// blocks of its unit that it stands outside of. The first few of each kind are
+    /// named in the program's order, the rest counted.
     fn enders(
         &self,
         stmt: &Stmt<'_>,
         unit: Option<usize>,
-        around: &[Span],
+        around: &[Around],
         parts: &mut Vec<String>,
         tips: &mut Vec<String>,
     ) {
-        let text = stmt.span.slice(self.text);
-        let mut bare = Vec::new();
-        for b in self.breaks {
-            let needle = match &b.ender {
-                Ender::Pattern(needle) => needle,
-                Ender::All => {
-                    bare.push(b);
-                    continue;
-                }
-                Ender::Priority {
-                    unit: u,
-                    block,
-                    around: holders,
-                } => {
-                    let inside = block.start <= stmt.span.start && stmt.span.end <= block.end;
-                    if b.file != self.file || *u != unit || inside || holders.contains(&stmt.span) {
-                        continue;
-                    }
-                    let line = self.line(b.span);
-                    parts.push(format!(
-                        "ended when the priority block at line {line} starts"
-                    ));
-                    tips.push(format!(
-                        "The block at line {line} starts with `priority = highest`: when it starts, it ends every running command that is neither inside it nor an `if`, a `while` or a skill call around it, and runs alone."
-                    ));
-                    continue;
-                }
+        let breaks = self.breaks;
+        let mut named: Vec<(u32, Option<Through>)> = Vec::new();
+        let mut priorities_more = 0usize;
+        for &i in &breaks.priorities {
+            let b = &breaks.all[i as usize];
+            let Ender::Priority {
+                unit: u,
+                block,
+                around: holders,
+            } = &b.ender
+            else {
+                continue;
             };
-            let through = if matches(text, needle) {
-                Some(None)
+            let inside = block.start <= stmt.span.start && stmt.span.end <= block.end;
+            if b.file != self.file || *u != unit || inside || holders.contains(&stmt.span) {
+                continue;
+            }
+            if named.len() < ENDERS_NAMED {
+                named.push((i, None));
             } else {
-                around
-                    .iter()
-                    .rev()
-                    .find(|s| matches(s.slice(self.text), needle))
-                    .map(Some)
-            };
-            let Some(through) = through else { continue };
+                priorities_more += 1;
+            }
+        }
+        let (patterns, patterns_more, searched) = self.pattern_enders(stmt, around);
+        named.extend(patterns.into_iter().map(|(i, through)| (i, Some(through))));
+        named.sort_unstable_by_key(|&(i, _)| i);
+        for (i, through) in named {
+            let b = &breaks.all[i as usize];
             let at = self.place(b.file, b.span);
+            let Some(through) = through else {
+                let line = self.line(b.span);
+                parts.push(format!(
+                    "ended when the priority block at line {line} starts"
+                ));
+                tips.push(format!(
+                    "The block at line {line} starts with `priority = highest`: when it starts, it ends every running command that is neither inside it nor an `if`, a `while` or a skill call around it, and runs alone."
+                ));
+                continue;
+            };
+            let Ender::Pattern(needle) = &b.ender else {
+                continue;
+            };
             parts.push(format!("ended by break at {at}"));
             tips.push(match through {
-                None => format!(
+                Through::Itself => format!(
                     "`{}` at {at} ends it if it is running then: its text contains `{needle}`.",
                     self.program_quote(b.file, b.span),
                 ),
-                Some(s) => format!(
+                Through::Around(s) => format!(
                     "`{}` at {at} ends `{}` (line {}) and so everything inside it.",
                     self.program_quote(b.file, b.span),
-                    self.quote(*s),
-                    self.line(*s)
+                    self.quote(s),
+                    self.line(s)
                 ),
             });
         }
-        if let Some(first) = bare.first() {
-            let named: Vec<String> = bare
-                .iter()
-                .take(BREAKS_NAMED)
-                .map(|b| self.place(b.file, b.span))
+        if patterns_more > 0 {
+            parts.push(format!("and by {}", counted(patterns_more, "more break")));
+            tips.push(format!(
+                "{patterns_more} more `break(pattern)` statements end it, or an `if` or `while` around it, if it is running then; hover on a break to see all it ends."
+            ));
+        }
+        if priorities_more > 0 {
+            parts.push(format!(
+                "and by {}",
+                counted(priorities_more, "more priority block")
+            ));
+            tips.push(format!(
+                "{priorities_more} more blocks that start with `priority = highest` end it when they start, if it is running then."
+            ));
+        }
+        if !searched {
+            parts.push("break patterns not all searched".to_string());
+            tips.push(format!(
+                "The program's break patterns occur in its text more than {} times; this request stopped searching for them, so a `break(pattern)` not named here may end it too.",
+                ilmr_compiler::limits::PATTERN_MATCHES
+            ));
+        }
+        if let Some(&first) = breaks.bare.first() {
+            let named: Vec<String> = (breaks.bare.iter().take(BREAKS_NAMED))
+                .map(|&i| {
+                    let b = &breaks.all[i as usize];
+                    self.place(b.file, b.span)
+                })
                 .collect();
-            let more = bare.len().saturating_sub(BREAKS_NAMED);
+            let more = breaks.bare.len().saturating_sub(BREAKS_NAMED);
             let more = if more > 0 {
                 format!(" and {more} more")
             } else {
                 String::new()
             };
             parts.push(format!("ended by break at {}{more}", named.join(", ")));
+            let first = &breaks.all[first as usize];
             tips.push(format!(
                 "A bare `break` (the first at {}) stops the robot and ends every command of the program: this one too, if it is running then.",
                 self.place(first.file, first.span)
             ));
         }
+    }
+
+    /// The first [`ENDERS_NAMED`] pattern breaks (in the program's order) that end
+    /// `stmt` and how, how many more do, and whether every needle was searched for.
+    fn pattern_enders(
+        &self,
+        stmt: &Stmt<'_>,
+        around: &[Around],
+    ) -> (Vec<(u32, Through)>, usize, bool) {
+        let breaks = self.breaks;
+        // Each needle found, with where: in the statement itself if it is there, else
+        // in the innermost `if` or `while` around it that has it (the one the tooltip
+        // names).
+        let mut found: Vec<(u32, usize)> = Vec::new();
+        let mut searched = breaks
+            .needles
+            .each_in(stmt.span.slice(self.text), &mut Vec::new(), |id| {
+                found.push((id, 0))
+            })
+            .is_some();
+        for (depth, a) in around.iter().rev().enumerate() {
+            match &a.needles {
+                Some(ids) => found.extend(ids.iter().map(|&id| (id, depth + 1))),
+                None => searched = false,
+            }
+        }
+        found.sort_unstable();
+        found.dedup_by_key(|&mut (id, _)| id);
+        let through = |depth: usize| match depth {
+            0 => Through::Itself,
+            d => Through::Around(around[around.len() - d].span),
+        };
+        let mut first: Vec<(u32, Through)> = Vec::new();
+        let mut total = 0;
+        for &(id, depth) in &found {
+            let with = &breaks.with_needle[id as usize];
+            total += with.len();
+            first.extend(with.iter().take(ENDERS_NAMED).map(|&i| (i, through(depth))));
+        }
+        first.sort_unstable_by_key(|&(i, _)| i);
+        first.truncate(ENDERS_NAMED);
+        let more = total - first.len();
+        (first, more, searched)
     }
 
     fn moment(&self, span: Span) -> Option<&Moment> {
@@ -493,6 +638,15 @@ fn cut(text: &str) -> String {
     match text.char_indices().nth(QUOTED_CHARS) {
         Some((i, _)) => format!("{}…", &text[..i]),
         None => text.to_string(),
+    }
+}
+
+/// "1 more break", "2 more breaks".
+fn counted(n: usize, what: &str) -> String {
+    if n == 1 {
+        format!("1 {what}")
+    } else {
+        format!("{n} {what}s")
     }
 }
 

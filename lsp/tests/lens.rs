@@ -116,6 +116,39 @@ fn a_bare_break_ends_everything_and_a_priority_block_what_stands_outside_it() {
     insta::assert_snapshot!(hints(&[(TASK, ENDERS)]));
 }
 
+const MANY_ENDERS: &str = "\
+w = while(1 < 2)
+goahead(1)
+endwhile
+
+break(goahead)
+
+break(while)
+
+break(goahead(1)
+
+break(w)
+
+priority = highest
+speed(0)
+
+priority = highest
+speed(0.1)
+
+priority = highest
+speed(0.2)
+
+priority = highest
+speed(0.3)
+";
+
+#[test]
+fn a_statement_names_three_breaks_and_three_priority_blocks_and_counts_the_rest() {
+    // `goahead(1)` is ended by four pattern breaks, two of them through its loop, and
+    // by four priority blocks.
+    insta::assert_snapshot!(hints(&[(TASK, MANY_ENDERS)]));
+}
+
 #[test]
 fn a_priority_block_ends_only_its_own_units_statements_and_breaks_in_check_end_nothing() {
     let task = "Patrol\nfollowwall(left)\n\ncheck\nbreak\ncheckend\n";

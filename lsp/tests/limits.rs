@@ -9,7 +9,10 @@ use ilmr_compiler::diagnostic::Code;
 use ilmr_compiler::limits::{MAX_BLOCK_DEPTH, MAX_LINE_OPERATORS};
 use ilmr_lsp::outline::MAX_OUTLINE_DEPTH;
 use ilmr_lsp::{Engine, Settings};
-use tower_lsp_server::ls_types::{DocumentSymbol, NumberOrString, Position, Range, Uri};
+use tower_lsp_server::ls_types::{
+    DocumentSymbol, InlayHint, InlayHintLabel, InlayHintTooltip, NumberOrString, Position, Range,
+    Uri,
+};
 
 const TASK: &str = "file:///ws/task.ilmr";
 
@@ -147,6 +150,53 @@ fn a_megabyte_line_gets_every_answer_in_linear_time() {
         "no form takes so many"
     );
     assert!(engine.semantic_tokens(&uri).len() > 500_000);
+    assert!(started.elapsed() < GUARD, "{:?}", started.elapsed());
+}
+
+#[test]
+fn twenty_thousand_breaks_of_one_pattern_label_each_statement_in_a_few_lines() {
+    // Every statement is ended by every `break(w)` and every priority block: a label
+    // naming each made 120 MB of hints at 2,000 of them and grew as their square.
+    const N: usize = 20_000;
+    let mut text = String::new();
+    for i in 0..N {
+        text.push_str(&format!("w{i} = goahead(1)\n\nbreak(w)\n\n"));
+    }
+    for _ in 0..N / 10 {
+        text.push_str("priority = highest\nspeed(0)\n\n");
+    }
+    let started = Instant::now();
+    let (engine, uri) = engine_with(text);
+    let whole = Range::new(Position::new(0, 0), Position::new(u32::MAX, 0));
+    let hints = engine.inlay_hints(&uri, whole);
+    let label = |h: &InlayHint| match &h.label {
+        InlayHintLabel::String(s) => s.clone(),
+        InlayHintLabel::LabelParts(_) => panic!("hints are plain strings"),
+    };
+    let first = hints
+        .iter()
+        .map(label)
+        .find(|l| l.contains("ended by break"))
+        .expect("the first goahead is labelled");
+    assert!(
+        first.ends_with(&format!(
+            "and by {} more breaks · and by {} more priority blocks",
+            N - 3,
+            N / 10 - 3
+        )),
+        "{first}"
+    );
+    let longest = hints.iter().map(|h| label(h).len()).max().unwrap_or(0);
+    assert!(longest < 400, "a label of {longest} bytes");
+    let tooltips: usize = hints
+        .iter()
+        .map(|h| match &h.tooltip {
+            Some(InlayHintTooltip::String(s)) => s.len(),
+            _ => 0,
+        })
+        .max()
+        .unwrap_or(0);
+    assert!(tooltips < 2_000, "a tooltip of {tooltips} bytes");
     assert!(started.elapsed() < GUARD, "{:?}", started.elapsed());
 }
 

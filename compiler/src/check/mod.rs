@@ -38,6 +38,7 @@ const SKILLS_LISTED: usize = 5;
 pub use args::fits;
 pub use breaks::{breakable, matches, needle};
 pub use constants::Constants;
+pub use needles::Needles;
 pub use scope::{Places, Var, VarId, Vars};
 pub use skills::SkillId;
 

@@ -109,6 +109,13 @@ impl Needles {
         }
     }
 
+    /// Gives the searches the whole of [`limits::PATTERN_MATCHES`] again: the language
+    /// server keeps one automaton per check and searches it again on every request,
+    /// each of which is bounded on its own.
+    pub fn refill(&self) {
+        self.steps.set(limits::PATTERN_MATCHES);
+    }
+
     /// The distinct needles, numbered from 0.
     pub fn distinct(&self) -> usize {
         self.distinct
