@@ -7,7 +7,7 @@ use std::path::Path;
 
 use crate::engine;
 use crate::mutate;
-use crate::targets::{corpus, modules, requests, traces};
+use crate::targets::{corpus, modules, requests, traces, worlds};
 
 /// One target: its name (the binary's, and its directory under
 /// `tests/fuzz/regressions/`), its seeds and its dictionary's tokens.
@@ -34,6 +34,11 @@ pub fn all() -> Vec<Seeds> {
             name: "model",
             corpus: corpus::ini_files(),
             dictionary: as_bytes(mutate::ini_dictionary()),
+        },
+        Seeds {
+            name: "world",
+            corpus: worlds::seeds(),
+            dictionary: as_bytes(worlds::dictionary()),
         },
         Seeds {
             name: "module",

@@ -1,6 +1,6 @@
 //! Fuzzing of everything `ilmrc` reads from outside: task and skill files, ROBO.INI
-//! robot models, `.ilmb` modules, `serve` request lines and traces (with recorded
-//! inputs). Each target must never
+//! robot models, world files, `.ilmb` modules, `serve` request lines and traces (with
+//! recorded inputs). Each target must never
 //! panic and must answer bad input with an error value.
 //!
 //! `cargo test --test fuzz` runs a fixed, seeded number of inputs per target (CI).
@@ -39,6 +39,12 @@ fn skill_files_never_panic() {
 fn robot_models_never_panic() {
     let stats = on_compiler_stack(|| targets::models::fuzz(Budget::from_env(100)));
     assert!(stats.corpus >= 3, "{stats:?}");
+}
+
+#[test]
+fn world_files_are_run_or_refused_with_their_line() {
+    let stats = on_compiler_stack(|| targets::worlds::fuzz(Budget::from_env(2_000)));
+    assert!(stats.corpus >= 5, "{stats:?}");
 }
 
 #[test]

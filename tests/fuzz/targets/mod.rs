@@ -8,3 +8,4 @@ pub mod requests;
 pub mod skills;
 pub mod tasks;
 pub mod traces;
+pub mod worlds;

@@ -100,7 +100,7 @@ fn entries(model: &RobotModel) -> serde_json::Value {
 
 /// The simulated body and the VM as `ilmrc run` sets them up from a model
 /// (`Config::for_robot`, as `src/run/setup.rs` calls it).
-fn simulate(module: ilmr_vm::Module, model: &RobotModel, world: &World) {
+pub fn simulate(module: ilmr_vm::Module, model: &RobotModel, world: &World) {
     let kind = if model.nav_rate().is_some() {
         RobotKind::Workpartner
     } else {
