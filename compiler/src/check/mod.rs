@@ -109,6 +109,8 @@ pub struct FileEntry<'s> {
     pub syntax_errors: usize,
     /// `Parsed::binds`: at least as many as the file's variables.
     pub binds: usize,
+    /// `Parsed::seen`: what the passes after the walk may find in the file.
+    pub seen: parser::Seen,
 }
 
 impl<'s> FileEntry<'s> {
@@ -133,6 +135,7 @@ impl<'s> FileEntry<'s> {
             break_patterns: parsed.break_patterns,
             syntax_errors,
             binds: parsed.binds,
+            seen: parsed.seen,
         };
         (entry, parsed.diagnostics, parsed.past)
     }

@@ -49,6 +49,19 @@ const SKILL_SETTINGS_KEPT: usize = 256;
 /// Other blocks named in one warning beyond the one it is said at.
 const SECONDARY_SHOWN: usize = 3;
 
+/// When a statement is issued: a hash of its chain of steps (`Owners::key`).
+type When = u64;
+
+/// A bijection of 64 bits that spreads every input bit over the output (MurmurHash3's
+/// finalizer), so that chains differing in any step hash apart.
+fn mix(mut x: u64) -> u64 {
+    x ^= x >> 33;
+    x = x.wrapping_mul(0xff51_afd7_ed55_8ccd);
+    x ^= x >> 33;
+    x = x.wrapping_mul(0xc4ce_b9fe_1a85_ec53);
+    x ^ (x >> 33)
+}
+
 /// One step of the chain that says when a statement is issued.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 enum Step {
@@ -88,7 +101,7 @@ enum Called {
 #[derive(Debug, Clone, Copy)]
 struct Record {
     target: u64,
-    key: u32,
+    key: When,
     strand: u32,
     value: u64,
     file: FileId,
@@ -107,8 +120,8 @@ struct Owners<'a, 's> {
     calls: FxHashMap<(u32, u32), &'a FxHashMap<Span, Target>>,
     skills: &'a Skills,
     model: &'a RobotModel,
-    keys: FxHashMap<(u32, Step), u32>,
-    next_key: u32,
+    /// Moments of their own handed out so far.
+    owns: u64,
     /// What each target is called in messages.
     targets: FxHashMap<u64, String>,
     records: Vec<Record>,
@@ -221,8 +234,7 @@ impl<'a, 's> Owners<'a, 's> {
             calls,
             skills,
             model,
-            keys: FxHashMap::default(),
-            next_key: 0,
+            owns: 0,
             targets: FxHashMap::default(),
             // Room written only as settings are found: a large task's records would
             // otherwise be copied each time they double. There are seldom more settings
@@ -259,16 +271,26 @@ impl<'a, 's> Owners<'a, 's> {
 }
 
 impl<'s> Owners<'_, 's> {
-    fn key(&mut self, parent: u32, step: Step) -> u32 {
-        if step == Step::Own {
-            // A moment of its own is never met again: no need to look it up.
-            self.next_key += 1;
-            return self.next_key;
-        }
-        let next = self.next_key + 1;
-        let id = *self.keys.entry((parent, step)).or_insert(next);
-        self.next_key = self.next_key.max(id);
-        id
+    /// The moment `step` reaches from `parent`: the same for the same chain of steps.
+    /// A hash of the chain rather than a number from a table of every chain met: that
+    /// table held an entry per wait and guard of the task (25,000 in the 100,000-line
+    /// corpus), written fresh and looked up at random (docs/performance.md, session
+    /// 13). Steps are
+    /// already hashes of names and conditions (`Woken`, `Guard`), so two chains are
+    /// told apart as their names are: by 64 bits of a mixed hash.
+    fn key(&mut self, parent: When, step: Step) -> When {
+        let (tag, a, b) = match step {
+            Step::Unit(file, slot) => (1, u64::from(file), u64::from(slot)),
+            Step::Woken(h) => (2, h, 0),
+            Step::Delay(bits) => (3, bits, 0),
+            Step::Guard(h) => (4, h, 0),
+            // A moment of its own is never met again: numbered, not hashed.
+            Step::Own => {
+                self.owns += 1;
+                (5, self.owns, 0)
+            }
+        };
+        mix(mix(mix(mix(parent) ^ tag) ^ a) ^ b)
     }
 
     /// What a called name runs, as far as this check cares: a command that sets
@@ -306,7 +328,7 @@ impl<'s> Owners<'_, 's> {
         &mut self,
         file: FileId,
         blocks: &[Block<'_>],
-        key: u32,
+        key: When,
         slot: u32,
         opening: Opening,
     ) {
@@ -339,7 +361,7 @@ impl<'s> Owners<'_, 's> {
 
     /// Records what `stmt` sets and returns when the next statement of its block is
     /// issued.
-    fn stmt(&mut self, file: FileId, slot: u32, stmt: &Stmt<'_>, key: u32, strand: u32) -> u32 {
+    fn stmt(&mut self, file: FileId, slot: u32, stmt: &Stmt<'_>, key: When, strand: u32) -> When {
         let own = |o: &mut Self| o.key(key, Step::Own);
         match &stmt.kind {
             StmtKind::Call { call, .. } => self.call(file, slot, stmt.span, call, key, strand),
@@ -379,9 +401,9 @@ impl<'s> Owners<'_, 's> {
         slot: u32,
         at: Span,
         call: &Call<'_>,
-        key: u32,
+        key: When,
         strand: u32,
-    ) -> u32 {
+    ) -> When {
         let id = match self.resolve(call.name.text, at, file, slot) {
             Called::Other => return key,
             Called::Skill(id) => id,
@@ -398,9 +420,9 @@ impl<'s> Owners<'_, 's> {
         at: Span,
         command: Command,
         args: Option<&Args<'_>>,
-        key: u32,
+        key: When,
         strand: u32,
-    ) -> u32 {
+    ) -> When {
         let spec = command.spec();
         if let Some((target, value)) = self.setting(file, command, args) {
             let order = self.records.len() as u32;
@@ -431,7 +453,7 @@ impl<'s> Owners<'_, 's> {
         self.key(key, step)
     }
 
-    fn skill_call(&mut self, file: FileId, at: Span, id: SkillId, key: u32, strand: u32) -> u32 {
+    fn skill_call(&mut self, file: FileId, at: Span, id: SkillId, key: When, strand: u32) -> When {
         let sets = self.skill_start(id, &mut Vec::new());
         if !sets.is_empty() {
             self.origins += 1;
@@ -717,7 +739,7 @@ impl<'s> Owners<'_, 's> {
         // Only settings of a thing that more than one block sets at one moment, to
         // more than one value, can meet: most are alone (or agree, as copies of one
         // block do), and are left out before sorting.
-        let mut groups: FxHashMap<(u64, u32), Group> = FxHashMap::default();
+        let mut groups: FxHashMap<(u64, When), Group> = FxHashMap::default();
         groups.reserve(records.len());
         for r in &records {
             let g = groups.entry((r.target, r.key)).or_insert(Group {

@@ -26,6 +26,10 @@ struct Follow<'s> {
 }
 
 pub fn check_paths(files: &[FileEntry<'_>], given: &[String], diags: &mut Kept) {
+    // Only a `followpath` outside a library is reported: without one, nothing to walk.
+    if !files.iter().any(|f| !f.library && f.seen.follows_path) {
+        return;
+    }
     let mut made: FxHashSet<String> = given.iter().map(|p| p.to_lowercase()).collect();
     let mut follows = Vec::new();
     for (i, entry) in files.iter().enumerate() {

@@ -11,6 +11,7 @@ use crate::kept::Kept;
 use crate::limits::MAX_BLOCK_DEPTH;
 use crate::parser::lines::{Line, ParsedLine};
 use crate::span::Span;
+use ilmr_stdlib::{Command, Ends};
 
 enum Opener<'s> {
     Root,
@@ -120,6 +121,24 @@ pub struct Builder<'s> {
     /// at least as many as the file's variables, so the checker sizes its lists of
     /// variables once.
     pub binds: usize,
+    /// What the passes after the checker's walk look for, noted as lines come so that
+    /// a pass with nothing to find skips its walk of the whole tree (at 10x the
+    /// corpus's tree is far larger than the cache, and each walk reads all of it).
+    pub seen: Seen,
+    /// Commands that never end by themselves (`Ends::Never`, `Ends::NeverBare`).
+    never: Vec<Command>,
+}
+
+/// Statements a pass after the walk needs, noted by the block builder (`Parsed::seen`).
+/// Each flag is a superset of what its pass looks for: false means the pass would find
+/// nothing in the file.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Seen {
+    /// A call of `followpath` (W0903, `check/paths.rs`).
+    pub follows_path: bool,
+    /// A bound call of a command that never ends by itself, or a bound `while`: the
+    /// statements whose waits may never wake (W0904, `check/wakes.rs`).
+    pub never_ending: bool,
 }
 
 impl<'s> Builder<'s> {
@@ -138,6 +157,10 @@ impl<'s> Builder<'s> {
             skipped: 0,
             diagnostics: Kept::new(),
             binds: 0,
+            seen: Seen::default(),
+            never: Command::all()
+                .filter(|c| matches!(c.spec().ends, Ends::Never | Ends::NeverBare))
+                .collect(),
         }
     }
 
@@ -235,6 +258,11 @@ impl<'s> Builder<'s> {
                     StmtKind::Assign { .. } | StmtKind::Call { bind: Some(_), .. }
                 );
                 self.binds += usize::from(binds);
+                if let StmtKind::Call { bind, call } = &kind {
+                    self.seen.follows_path |= call.name.is(Command::FollowPath.name());
+                    self.seen.never_ending |=
+                        bind.is_some() && self.never.iter().any(|c| call.name.is(c.name()));
+                }
                 self.parts.stmts.push(Stmt { kind, span });
             }
             Line::IfHead { keyword, cond } => self.open_block(Opener::If { keyword, cond }, span),
@@ -244,6 +272,7 @@ impl<'s> Builder<'s> {
                 cond,
             } => {
                 self.binds += usize::from(bind.is_some());
+                self.seen.never_ending |= bind.is_some();
                 self.open_block(
                     Opener::While {
                         bind,
@@ -471,6 +500,22 @@ mod tests {
             })
             .unwrap_or_default();
         (top, inner)
+    }
+
+    /// The passes that skip their walk on these flags (W0903, W0904) would miss a
+    /// warning if a flag were false where the statement is.
+    #[test]
+    fn seen_notes_what_the_passes_after_the_walk_look_for() {
+        let seen = |source: &str| {
+            let s = parse(source, FileId(0)).seen;
+            (s.follows_path, s.never_ending)
+        };
+        assert_eq!(seen("speed(0.3)\nwait(2)\n"), (false, false));
+        assert_eq!(seen("if(1)\n    FollowPath(p)\nendif\n"), (true, false));
+        assert_eq!(seen("w = followwall(left)\nwait(w)\n"), (false, true));
+        assert_eq!(seen("s:\nd = GOAHEAD()\n"), (false, true));
+        assert_eq!(seen("followwall(left)\n"), (false, false));
+        assert_eq!(seen("v = while(1)\n    speed(1)\nendwhile\n"), (false, true));
     }
 
     #[test]

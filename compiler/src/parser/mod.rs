@@ -4,6 +4,7 @@
 #[cfg(test)]
 mod agreement;
 mod blocks;
+pub use blocks::Seen;
 mod characters;
 mod fast;
 mod hints;
@@ -30,6 +31,8 @@ pub struct Parsed<'s> {
     pub break_patterns: bool,
     /// Statements that bind a variable: at least as many as the file's variables.
     pub binds: usize,
+    /// What the passes after the checker's walk look for (`blocks::Seen`).
+    pub seen: blocks::Seen,
 }
 
 /// Line by line: the hand-written reader takes the lines it recognises, and the chumsky
@@ -128,6 +131,7 @@ pub fn parse<'s>(source: &'s str, file: FileId) -> Parsed<'s> {
         line.clear();
     }
     let binds = builder.binds;
+    let seen = builder.seen;
     let (tree, structure) = builder.finish(tokens.comments);
     let mut parsed = finish(
         tree,
@@ -135,6 +139,7 @@ pub fn parse<'s>(source: &'s str, file: FileId) -> Parsed<'s> {
         break_patterns,
     );
     parsed.binds = binds;
+    parsed.seen = seen;
     parsed
 }
 
@@ -213,6 +218,7 @@ fn finish<'s>(tree: SourceFile<'s>, kinds: [Kept; 4], break_patterns: bool) -> P
         past,
         break_patterns,
         binds: 0,
+        seen: blocks::Seen::default(),
     }
 }
 
