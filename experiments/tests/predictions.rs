@@ -123,7 +123,6 @@ fn figure_20_box_at_is_the_box_on_every_search() {
 }
 
 #[test]
-#[ignore = "misses today: 2 of 20 seeds do not come home, each on its second trip its own way (seeds 1005 and 1016; docs/experiments.md says how)"]
 fn figure_20_fetches_both_loads_and_comes_home_on_every_seed() {
     // Section 4.1 gives the task, not a run; the corrected figure must do what it
     // describes on every seed.
