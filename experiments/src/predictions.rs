@@ -89,6 +89,11 @@ pub struct WayOuts {
 pub struct Fetches {
     /// Runs that fetched both loads and came home into room H.
     pub home: usize,
+    /// Each seed's `box_at` furthest from the box (`f20::BOX`), over the
+    /// searches that completed, m.
+    pub box_off: Spread,
+    /// Searches for the box that completed, over all seeds.
+    pub found: usize,
     pub time: Spread,
     pub driven: Spread,
     pub contacts: u64,
@@ -235,8 +240,11 @@ pub fn fig20(n: usize) -> Result<Fetches, String> {
         .iter()
         .filter(|o| o.ended && o.turns == Some(2.0) && o.in_room_h())
         .count();
+    let off = |&(x, y): &(f64, f64)| (x - f20::BOX.0).hypot(y - f20::BOX.1);
     Ok(Fetches {
         home,
+        box_off: spread(&runs, |o| o.boxes_at.iter().map(off).fold(0.0, f64::max)),
+        found: runs.iter().map(|o| o.boxes_at.len()).sum(),
         time: spread(&runs, |o| o.time),
         driven: spread(&runs, |o| o.driven),
         contacts: runs.iter().map(|o| o.contacts).sum(),

@@ -190,6 +190,17 @@ its door, still in H; its `Takebox` took `box1`. The experiments binary prints e
 run's simulated and CPU seconds; they are not on this page, which is the same on
 every machine.
 
+Where Figure 20 stands. The corrected figure is the project's own run of a task the
+dissertation only describes (section 4.1 shows no run), so it has no figure to
+reproduce; what it must do is asserted over the calibrated model's seeds in
+`tests/predictions.rs` (the predictions table above gives the counts): both loads
+fetched and home in H on every seed, no contact, and every `box_at` within
+{BOX_CALIBRATED_WITHIN} m of the box, since `findtarget(scanner,box)`, issued in
+the hall, searches on until the store room's box is in view (section 4.4: its
+\"course of action is the same as it is with the sensor-command\"). The printed
+figure still does not complete, for the three reasons above, and Workpartner
+still cannot leave H.
+
 Where the robots differ. MoRo turns within 1.5 m and is 0.6 m wide: it does every
 turn of the figure at c = 1 with the supervisor's margins in the 4 m hall and the
 8 m deep room. Workpartner cannot leave H: it is 1.0 m wide, its checked area is

@@ -37,6 +37,25 @@ const WALL_RETURNS: usize = 3;
 /// the wall keep within half of it.
 const WALL_OFF: f64 = 0.2;
 
+/// A jamb's return further than this off the line of the two wall returns
+/// beyond it is a mixed pixel (a beam whose spot fell on the jamb's edge and
+/// read between it and what is behind the door), m: three times the range
+/// noise of two returns extrapolated. Seen along the wall at 20 degrees such a
+/// return 0.2 m behind the wall's line is 0.5 m along it, and the door so
+/// measured 0.8 m wide and 0.25 m off its middle (Figure 20's store room, seed
+/// 1016, held backing out 0.08 m from a jamb). A return on a jamb's end face is
+/// off the line too: stepping to the wall's face beside it moves the jamb by
+/// a beam's spacing.
+const MIXED_OFF: f64 = 0.08;
+/// At least this many beams pass through an opening for it to be a door: fewer
+/// are a door seen too obliquely or too far off to be located (three beams
+/// through room H's door 9 m ahead, as MoRo turns out of Figure 20's
+/// three-point turn in the hall), or a gap that dropouts and mixed pixels
+/// make as well.
+const MIN_THROUGH: usize = 4;
+/// At most this many returns are stepped over at each jamb.
+const MIXED_STEPS: usize = 2;
+
 /// The model's door widths, smallest and largest, m.
 fn widths(model: &RobotModel) -> Option<(String, f64, f64)> {
     let door = model.object("door")?;
@@ -73,19 +92,21 @@ pub fn doors(model: &RobotModel, scan: &Scan, pose: Pose, out: &mut Vec<Detectio
         // Each beam that comes back nearer than the one before it may be the
         // far jamb; beams through the door may also pass through a door
         // behind it, which makes such a step too.
-        let a = local(i);
-        let door = (i + 2..r.len().min(i + 2 + window))
+        let ia = on_wall(scan, i, -1);
+        let a = local(ia);
+        let door = (i + 1 + MIN_THROUGH..r.len().min(i + 2 + window))
             .filter(|&j| hit(j) && r[j - 1] - r[j] >= EDGE_JUMP)
             .find_map(|j| {
-                let b = local(j);
+                let jb = on_wall(scan, j, 1);
+                let b = local(jb);
                 let width = (a - b).hypot();
                 // A jamb is measured to a beam's spacing, and a beam may graze its face.
-                let slack = JAMB_SLACK + r[i].max(r[j]) * scan.angle_increment.abs();
+                let slack = JAMB_SLACK + r[ia].max(r[jb]) * scan.angle_increment.abs();
                 let fits = (min_w - slack..=max_w + slack).contains(&width);
                 (fits && through(scan, i, j, a, b))
-                    .then(|| wall_line(scan, a, b, i, j))
+                    .then(|| wall_line(scan, a, b, ia, jb))
                     .flatten()
-                    .map(|along| (j, b, along))
+                    .map(|along| (jb, b, along))
             });
         let Some((j, b, along)) = door else {
             i += 1;
@@ -108,6 +129,32 @@ pub fn doors(model: &RobotModel, scan: &Scan, pose: Pose, out: &mut Vec<Detectio
         });
         i = j;
     }
+}
+
+/// The jamb's return `k`, or the wall's beside it going `step` (+1 or -1)
+/// where `k` is a mixed pixel: off the line through the next two returns by
+/// more than `MIXED_OFF`.
+fn on_wall(scan: &Scan, mut k: usize, step: isize) -> usize {
+    let r = &scan.ranges;
+    let at = |i: usize| scan.mount + Vector2::from_angle(scan.bearing(i)) * r[i];
+    let returns = |i: usize| r[i].is_finite() && r[i] < scan.max_range;
+    for _ in 0..MIXED_STEPS {
+        let beyond = [1, 2].map(|n| k.checked_add_signed(n * step).filter(|&i| i < r.len()));
+        let [Some(p), Some(q)] = beyond else {
+            break;
+        };
+        if !(returns(p) && returns(q)) {
+            break;
+        }
+        let (pp, pq) = (at(p), at(q));
+        let along = pq - pp;
+        let len = along.hypot();
+        if len < 1e-9 || (at(k) - pp).perp(&along).abs() / len <= MIXED_OFF {
+            break;
+        }
+        k = p;
+    }
+    k
 }
 
 /// Whether every beam between the jambs `i` and `j` passes the line `a`-`b`
@@ -228,6 +275,59 @@ mod tests {
         assert_eq!(d[0].side, Side::Right);
         // Heading through it, away from the robot: north.
         assert!((d[0].h - std::f64::consts::FRAC_PI_2).abs() < 0.1);
+    }
+
+    /// The beams where `scan` opens onto the door and closes again.
+    fn opening(scan: &Scan) -> (usize, usize) {
+        let r = &scan.ranges;
+        let i = (0..r.len() - 1)
+            .find(|&i| r[i + 1] - r[i] >= EDGE_JUMP)
+            .unwrap_or_else(|| unreachable!("the door opens in the scan"));
+        let j = (i + 2..r.len())
+            .find(|&j| r[j - 1] - r[j] >= EDGE_JUMP)
+            .unwrap_or_else(|| unreachable!("and closes"));
+        (i, j)
+    }
+
+    #[test]
+    fn a_mixed_pixel_at_the_far_jamb_does_not_move_the_door() {
+        // The beam that grazes the far jamb's edge reads between it and the
+        // room behind: 0.1-0.2 m behind the wall's line it passed for the jamb,
+        // and made the store room's door of Figure 20 0.8 m wide and 0.25 m
+        // off its middle.
+        let pose = Pose::new(9.0, 0.0, std::f64::consts::PI);
+        let clean = scan_at(&lab(1.2), pose);
+        let (_, j) = opening(&clean);
+        // The beam's angle to the wall (along x).
+        let sin = Vector2::from_angle(pose.h + clean.bearing(j)).y.abs();
+        for behind in [0.1, 0.15, 0.19] {
+            let mut scan = clean.clone();
+            scan.ranges[j] += behind / sin;
+            let mut d = Vec::new();
+            doors(&moro(), &scan, pose, &mut d);
+            assert_eq!(d.len(), 1, "{behind}: {d:?}");
+            assert!((d[0].x - 5.0).abs() < 0.1, "{behind}: {:?}", d[0]);
+            assert!((d[0].y - 2.75).abs() < 0.1, "{behind}: {:?}", d[0]);
+        }
+    }
+
+    #[test]
+    fn a_door_seen_through_fewer_than_four_beams_is_not_yet_a_door() {
+        // Along the wall, 2.75 m off it, from 14 m short of the door to 4 m.
+        let mut few = 0;
+        for k in 0..40 {
+            let pose = Pose::new(9.0 + 0.25 * f64::from(k), 0.0, std::f64::consts::PI);
+            let (i, j) = opening(&scan_at(&lab(1.2), pose));
+            let through = j - i - 1;
+            let d = found(&lab(1.2), pose);
+            if through < MIN_THROUGH {
+                few += 1;
+                assert!(d.is_empty(), "{through} beams from {pose:?}: {d:?}");
+            } else if k <= 12 {
+                assert_eq!(d.len(), 1, "{through} beams from {pose:?}");
+            }
+        }
+        assert!(few > 0, "some poses see the door through fewer beams");
     }
 
     #[test]
