@@ -101,6 +101,8 @@ pub struct Vm<H: Hal, C: Clock> {
     frame_iters: Vec<[u32; frame::MAX_LOOPS]>,
     /// Ready queues run in one go (`Vm::run_round`).
     rounds_fused: u64,
+    /// Frames' visits of such rounds run as one step along a plan (`Vm::run_plan`).
+    plans_run: u64,
     supervisor: safety::supervisor::Supervisor,
     /// The robot's static map, asked for once at the start.
     known_map: Option<KnownMap>,
@@ -195,6 +197,7 @@ impl<H: Hal, C: Clock> Vm<H, C> {
             frames: frame::Frames::default(),
             frame_iters: Vec::new(),
             rounds_fused: 0,
+            plans_run: 0,
             supervisor: Default::default(),
             known_map,
             map_from_estimate: ilmr_hal::Pose::default(),
@@ -336,6 +339,12 @@ impl<H: Hal, C: Clock> Vm<H, C> {
     /// in `frame.rs`; docs/performance.md, issue 14, session 12).
     pub fn rounds_fused(&self) -> u64 {
         self.rounds_fused
+    }
+
+    /// Frames whose visits of a round run in one go ran as one step along their
+    /// plan (`Vm::run_plan` in `frame.rs`).
+    pub fn plans_run(&self) -> u64 {
+        self.plans_run
     }
 
     /// Live nodes: commands, guards, loops, calls and blocks.
