@@ -1079,7 +1079,12 @@ impl<H: Hal, C: Clock> Vm<H, C> {
         // `visits`: the most any frame so far takes; `free`: the first variable no
         // frame so far names.
         let (mut ops, mut visits, mut free) = (0u64, 0u32, 0u32);
-        for p in &self.ready {
+        // Per entry, one bit: its frame's plan holds (its checks true), so the run
+        // goes along it without evaluating them again.
+        let planned = &mut self.round_planned;
+        planned.clear();
+        planned.resize(self.ready.len().div_ceil(64), 0);
+        for (i, p) in self.ready.iter().enumerate() {
             let Ready::Node(r) = Ready::from(*p) else {
                 return false;
             };
@@ -1099,9 +1104,10 @@ impl<H: Hal, C: Clock> Vm<H, C> {
             }
             free = f.base.saturating_add(span);
             match self.frames.foresee(&self.vars, f) {
-                Some((v, o)) if v >= visits => {
+                Some((v, o, along)) if v >= visits => {
                     visits = v;
                     ops += u64::from(o);
+                    planned[i / 64] |= u64::from(along) << (i % 64);
                 }
                 _ => return false,
             }
@@ -1109,7 +1115,14 @@ impl<H: Hal, C: Clock> Vm<H, C> {
         if ops > u64::from(self.ops_left) {
             return false;
         }
+        // Nothing in the round queues anything, so the entries keep their places.
+        let mut i = 0usize;
         while let Some(p) = self.ready.pop_front() {
+            let along = self
+                .round_planned
+                .get(i / 64)
+                .is_some_and(|w| w >> (i % 64) & 1 != 0);
+            i += 1;
             let Ready::Node(r) = Ready::from(p) else {
                 continue;
             };
@@ -1120,7 +1133,7 @@ impl<H: Hal, C: Clock> Vm<H, C> {
                 continue;
             }
             n.queued = false;
-            if !self.run_plan(r.idx) {
+            if !(along && self.run_plan(r.idx)) {
                 self.run_quick::<true>(r.idx);
             }
         }
@@ -1131,14 +1144,12 @@ impl<H: Hal, C: Clock> Vm<H, C> {
     /// Frame `idx`'s visits of a round run in one go, as one step along its pc's
     /// [`Plan`], where it has one that ends in a sleep: what [`Vm::run_quick`] with
     /// `FUSE` does along that way (the same ops charged, writes made, counts moved,
-    /// alarm set), without dispatching each form or running the checks twice.
-    /// Returns false, having done nothing, where the pc has no such plan or one of
-    /// its checks is false (another way: the quick forms take it).
-    ///
-    /// The checks read now what they read when [`Vm::run_round`] looked ahead: the
-    /// frames before this one in the round wrote their own variables only, and no
-    /// check of a plan reads what the way writes before it ([`Plan::of`]), so they
-    /// are evaluated before the writes.
+    /// alarm set), without dispatching each form. The caller has found the plan's
+    /// checks true ([`Frames::foresee`]), and they still are: the frames before this
+    /// one in the round wrote their own variables only, and no check of a plan reads
+    /// what the way writes before it ([`Plan::of`]). Returns false, having done
+    /// nothing, where the pc has no plan that ends in a sleep (the quick forms take
+    /// it).
     #[inline]
     fn run_plan(&mut self, idx: u32) -> bool {
         let Vm {
@@ -1174,18 +1185,6 @@ impl<H: Hal, C: Clock> Vm<H, C> {
         };
         if plan.sleep == 0 {
             return false;
-        }
-        for c in plan.checks {
-            if c == NONE {
-                break;
-            }
-            if let Some(&Quick::CheckVK {
-                src, field, cmp, k, ..
-            }) = frames.quick.get(c as usize)
-                && !cmp.holds(vars.field(var_at(src, f.base), field), k)
-            {
-                return false;
-            }
         }
         // The round's budget covers its ops: charged at once, as one by one.
         *ops_left = ops_left.saturating_sub(plan.ops);
@@ -1580,10 +1579,11 @@ impl Frames {
     /// with the trace off: how many visits and the ops charged ([`trace_ahead`]),
     /// from the pc's [`Plan`] where it has one and its checks hold.
     #[inline]
-    fn foresee(&self, vars: &super::vars::Vars, f: &FrameState) -> Option<(u32, u32)> {
+    fn foresee(&self, vars: &super::vars::Vars, f: &FrameState) -> Option<(u32, u32, bool)> {
         let plan = self.plans.get(f.pc as usize).copied().unwrap_or_default();
+        let off = |(v, o)| (v, o, false);
         if plan.visits == 0 {
-            return trace_ahead(self, vars, f);
+            return trace_ahead(self, vars, f).map(off);
         }
         for c in plan.checks {
             if c == NONE {
@@ -1595,7 +1595,7 @@ impl Frames {
                 && !cmp.holds(vars.field(var_at(src, f.base), field), k)
             {
                 // Another way: out of the loop.
-                return trace_ahead(self, vars, f);
+                return trace_ahead(self, vars, f).map(off);
             }
         }
         for w in plan.writes {
@@ -1603,7 +1603,7 @@ impl Frames {
                 return None;
             }
         }
-        Some((u32::from(plan.visits), plan.ops))
+        Some((u32::from(plan.visits), plan.ops, true))
     }
 }
 

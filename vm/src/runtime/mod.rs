@@ -103,6 +103,8 @@ pub struct Vm<H: Hal, C: Clock> {
     rounds_fused: u64,
     /// Frames' visits of such rounds run as one step along a plan (`Vm::run_plan`).
     plans_run: u64,
+    /// Per ready entry of a round run in one go, one bit: its frame's plan holds.
+    round_planned: Vec<u64>,
     supervisor: safety::supervisor::Supervisor,
     /// The robot's static map, asked for once at the start.
     known_map: Option<KnownMap>,
@@ -198,6 +200,7 @@ impl<H: Hal, C: Clock> Vm<H, C> {
             frame_iters: Vec::new(),
             rounds_fused: 0,
             plans_run: 0,
+            round_planned: Vec::new(),
             supervisor: Default::default(),
             known_map,
             map_from_estimate: ilmr_hal::Pose::default(),
@@ -370,7 +373,8 @@ impl<H: Hal, C: Clock> Vm<H, C> {
             ("variables", self.vars.footprint()),
             (
                 "ready queue",
-                self.ready.capacity() * size_of::<exec::Packed>(),
+                self.ready.capacity() * size_of::<exec::Packed>()
+                    + self.round_planned.capacity() * size_of::<u64>(),
             ),
             ("timers", self.timers.footprint()),
             (
