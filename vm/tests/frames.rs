@@ -448,6 +448,9 @@ fn independent_program(seed: u64) -> (ilmr_vm::Module, u32, Vec<String>) {
 fn frames_run_in_one_go_as_the_tree() {
     let seeds: u64 = env_or("FRAMES_SEEDS", 150);
     let (mut fused, mut programs) = (0, 0);
+    // Frames whose visits of such a round ran as one step along a plan
+    // (`Vm::plans_run`), and the programs where some did.
+    let (mut planned, mut planned_programs) = (0, 0);
     for seed in 0..seeds {
         let (module, budget, names) = independent_program(seed);
         let cfg = |frames| Config {
@@ -470,10 +473,17 @@ fn frames_run_in_one_go_as_the_tree() {
         assert_eq!(tree.rounds_fused(), 0, "the tree has no frames");
         fused += flat.rounds_fused();
         programs += usize::from(flat.rounds_fused() > 0);
+        assert_eq!(tree.plans_run(), 0, "the tree has no frames");
+        planned += flat.plans_run();
+        planned_programs += usize::from(flat.plans_run() > 0);
     }
     assert!(
         programs > 20 && fused > 400,
         "{fused} rounds in one go in {programs} programs"
+    );
+    assert!(
+        planned_programs > 10 && planned > 50,
+        "{planned} frames run along a plan in {planned_programs} programs"
     );
 }
 

@@ -107,7 +107,7 @@ pub(crate) enum Arith {
 /// How the counts of what a frame stands for (`Nodes::live` and the issuing
 /// blocks) move when it goes from one pc to another: worked out when the code is
 /// compiled, so that a step does not look the two pcs up.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub(crate) struct Moved {
     live: i8,
     issuing: i8,
@@ -1079,7 +1079,12 @@ impl<H: Hal, C: Clock> Vm<H, C> {
         // `visits`: the most any frame so far takes; `free`: the first variable no
         // frame so far names.
         let (mut ops, mut visits, mut free) = (0u64, 0u32, 0u32);
-        for p in &self.ready {
+        // Per entry, one bit: its frame's plan holds (its checks true), so the run
+        // goes along it without evaluating them again.
+        let planned = &mut self.round_planned;
+        planned.clear();
+        planned.resize(self.ready.len().div_ceil(64), 0);
+        for (i, p) in self.ready.iter().enumerate() {
             let Ready::Node(r) = Ready::from(*p) else {
                 return false;
             };
@@ -1099,9 +1104,10 @@ impl<H: Hal, C: Clock> Vm<H, C> {
             }
             free = f.base.saturating_add(span);
             match self.frames.foresee(&self.vars, f) {
-                Some((v, o)) if v >= visits => {
+                Some((v, o, along)) if v >= visits => {
                     visits = v;
                     ops += u64::from(o);
+                    planned[i / 64] |= u64::from(along) << (i % 64);
                 }
                 _ => return false,
             }
@@ -1109,7 +1115,14 @@ impl<H: Hal, C: Clock> Vm<H, C> {
         if ops > u64::from(self.ops_left) {
             return false;
         }
+        // Nothing in the round queues anything, so the entries keep their places.
+        let mut i = 0usize;
         while let Some(p) = self.ready.pop_front() {
+            let along = self
+                .round_planned
+                .get(i / 64)
+                .is_some_and(|w| w >> (i % 64) & 1 != 0);
+            i += 1;
             let Ready::Node(r) = Ready::from(p) else {
                 continue;
             };
@@ -1120,9 +1133,107 @@ impl<H: Hal, C: Clock> Vm<H, C> {
                 continue;
             }
             n.queued = false;
-            self.run_quick::<true>(r.idx);
+            if !(along && self.run_plan(r.idx)) {
+                self.run_quick::<true>(r.idx);
+            }
         }
         self.rounds_fused += 1;
+        true
+    }
+
+    /// Frame `idx`'s visits of a round run in one go, as one step along its pc's
+    /// [`Plan`], where it has one that ends in a sleep: what [`Vm::run_quick`] with
+    /// `FUSE` does along that way (the same ops charged, writes made, counts moved,
+    /// alarm set), without dispatching each form. The caller has found the plan's
+    /// checks true ([`Frames::foresee`]), and they still are: the frames before this
+    /// one in the round wrote their own variables only, and no check of a plan reads
+    /// what the way writes before it ([`Plan::of`]). Returns false, having done
+    /// nothing, where the pc has no plan that ends in a sleep (the quick forms take
+    /// it).
+    #[inline]
+    fn run_plan(&mut self, idx: u32) -> bool {
+        let Vm {
+            nodes,
+            vars,
+            timers,
+            frames,
+            ops_left,
+            end_code,
+            tick,
+            plans_run,
+            ..
+        } = self;
+        let super::nodes::Nodes {
+            all,
+            live,
+            classes,
+            sleepers,
+            ..
+        } = nodes;
+        let Some(node) = all.get_mut(idx as usize) else {
+            return false;
+        };
+        let epoch = node.epoch;
+        let Kind::Frame(f) = &mut node.kind else {
+            return false;
+        };
+        let Some(plan) = frames.plans.get(f.pc as usize) else {
+            return false;
+        };
+        let Some(&Quick::Sleep { ticks, .. }) = frames.quick.get(plan.sleep as usize) else {
+            return false;
+        };
+        if plan.sleep == 0 {
+            return false;
+        }
+        // The round's budget covers its ops: charged at once, as one by one.
+        *ops_left = ops_left.saturating_sub(plan.ops);
+        if plan.ends {
+            *end_code = None;
+        }
+        for s in plan.steps {
+            match frames.quick.get(s as usize) {
+                Some(&Quick::SetVK {
+                    var,
+                    src,
+                    field,
+                    op,
+                    k,
+                    ..
+                }) => {
+                    let a = vars.field(var_at(src, f.base), field);
+                    let v = match op {
+                        Arith::Add => a + k,
+                        Arith::Sub => a - k,
+                        Arith::Mul => a * k,
+                    };
+                    vars.assign(var_at(var, f.base), v);
+                }
+                Some(&Quick::SetK { var, k, .. }) => {
+                    vars.assign(var_at(var, f.base), k);
+                }
+                _ => break,
+            }
+        }
+        f.pc = plan.sleep + 1;
+        f.nap = f.nap.wrapping_add(1);
+        f.asleep = true;
+        classes[Class::Sleep as usize] += 1;
+        *sleepers += 1;
+        timers.set(
+            tick.saturating_add(u64::from(ticks)),
+            Alarm {
+                node: NodeRef { idx, epoch },
+                nap: f.nap,
+            },
+        );
+        let m = plan.moved;
+        if m.live != 0 || m.issuing != 0 {
+            *live = live.saturating_add_signed(isize::from(m.live));
+            let n = &mut classes[Class::Issuing as usize];
+            *n = n.saturating_add_signed(isize::from(m.issuing));
+        }
+        *plans_run += 1;
         true
     }
 
@@ -1354,6 +1465,11 @@ const ROUND_WRITES: usize = 4;
 /// and looks at its writes and nothing else. It has one only where no check on the
 /// way reads a variable written before it on the way (the counting loop's: from its
 /// body's end, `c<100`, then `c=c+1` and the sleep); elsewhere `visits` is 0.
+///
+/// A round run in one go also runs a frame along its plan as one step
+/// ([`Vm::run_plan`]), Lua's superinstruction: the ops charged and the counts moved
+/// once, the checks (true, as the look ahead found them) not run again, then the
+/// writes and the sleep.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub(crate) struct Plan {
     visits: u8,
@@ -1362,7 +1478,19 @@ pub(crate) struct Plan {
     checks: [u32; 2],
     /// The variables written, relative to the frame's base, NONE beyond.
     writes: [u32; 2],
+    /// The pcs of the writes, in the order the way takes them, NONE beyond; a way
+    /// of more writes is not run as one step (`steps[0]` NONE and `sleep` 0).
+    steps: [u32; PLAN_STEPS],
+    /// The pc of the sleep the way ends in; 0: the way is not run as one step.
+    sleep: u32,
+    /// The counts' moves along the whole way, each form's added up.
+    moved: Moved,
+    /// The way passes a body's end (which spends the end code, as `EndBody` does).
+    ends: bool,
 }
+
+/// Writes a [`Plan`] run as one step may take.
+const PLAN_STEPS: usize = 3;
 
 impl Plan {
     fn of(quick: &[Quick], from: usize) -> Plan {
@@ -1372,6 +1500,18 @@ impl Plan {
             ops: 0,
             checks: [NONE; 2],
             writes: [NONE; 2],
+            steps: [NONE; PLAN_STEPS],
+            sleep: 0,
+            moved: Moved {
+                live: 0,
+                issuing: 0,
+            },
+            ends: false,
+        };
+        let (mut steps, mut fits) = (0, true);
+        let step = |plan: &mut Plan, m: Moved| {
+            plan.moved.live += m.live;
+            plan.moved.issuing += m.issuing;
         };
         let add =
             |list: &mut [u32; 2], x: u32| match list.iter_mut().find(|s| **s == NONE || **s == x) {
@@ -1384,20 +1524,40 @@ impl Plan {
         let mut pc = from;
         while u32::from(plan.visits) <= ROUND_VISITS {
             let (ops, wrote) = match quick.get(pc) {
-                Some(&Quick::SetVK { var, .. }) => (Quick::SET_VK, var),
-                Some(&Quick::SetK { var, .. }) => (Quick::SET_K, var),
-                Some(Quick::Sleep { .. }) => {
+                Some(&Quick::SetVK { var, next, .. }) | Some(&Quick::SetK { var, next, .. }) => {
+                    step(&mut plan, next);
+                    match plan.steps.get_mut(steps) {
+                        Some(s) => *s = pc as u32,
+                        None => fits = false,
+                    }
+                    steps += 1;
+                    let ops = match quick[pc] {
+                        Quick::SetVK { .. } => Quick::SET_VK,
+                        _ => Quick::SET_K,
+                    };
+                    (ops, var)
+                }
+                Some(&Quick::Sleep { next, .. }) => {
+                    step(&mut plan, next);
                     plan.ops += Quick::SLEEP;
+                    if fits && pc > 0 {
+                        plan.sleep = pc as u32;
+                    } else {
+                        plan.steps = [NONE; PLAN_STEPS];
+                    }
                     return plan;
                 }
-                Some(&Quick::CheckVK { src, .. }) => {
+                Some(&Quick::CheckVK { src, next, .. }) => {
                     if plan.writes.contains(&src) || !add(&mut plan.checks, pc as u32) {
                         return none;
                     }
+                    step(&mut plan, next);
                     plan.visits += 1;
                     (Quick::CHECK_VK, NONE)
                 }
-                Some(&Quick::EndBody { check, .. }) => {
+                Some(&Quick::EndBody { check, back }) => {
+                    step(&mut plan, back);
+                    plan.ends = true;
                     plan.visits += 1;
                     pc = check as usize;
                     continue;
@@ -1419,10 +1579,11 @@ impl Frames {
     /// with the trace off: how many visits and the ops charged ([`trace_ahead`]),
     /// from the pc's [`Plan`] where it has one and its checks hold.
     #[inline]
-    fn foresee(&self, vars: &super::vars::Vars, f: &FrameState) -> Option<(u32, u32)> {
+    fn foresee(&self, vars: &super::vars::Vars, f: &FrameState) -> Option<(u32, u32, bool)> {
         let plan = self.plans.get(f.pc as usize).copied().unwrap_or_default();
+        let off = |(v, o)| (v, o, false);
         if plan.visits == 0 {
-            return trace_ahead(self, vars, f);
+            return trace_ahead(self, vars, f).map(off);
         }
         for c in plan.checks {
             if c == NONE {
@@ -1434,7 +1595,7 @@ impl Frames {
                 && !cmp.holds(vars.field(var_at(src, f.base), field), k)
             {
                 // Another way: out of the loop.
-                return trace_ahead(self, vars, f);
+                return trace_ahead(self, vars, f).map(off);
             }
         }
         for w in plan.writes {
@@ -1442,7 +1603,7 @@ impl Frames {
                 return None;
             }
         }
-        Some((u32::from(plan.visits), plan.ops))
+        Some((u32::from(plan.visits), plan.ops, true))
     }
 }
 

@@ -101,6 +101,10 @@ pub struct Vm<H: Hal, C: Clock> {
     frame_iters: Vec<[u32; frame::MAX_LOOPS]>,
     /// Ready queues run in one go (`Vm::run_round`).
     rounds_fused: u64,
+    /// Frames' visits of such rounds run as one step along a plan (`Vm::run_plan`).
+    plans_run: u64,
+    /// Per ready entry of a round run in one go, one bit: its frame's plan holds.
+    round_planned: Vec<u64>,
     supervisor: safety::supervisor::Supervisor,
     /// The robot's static map, asked for once at the start.
     known_map: Option<KnownMap>,
@@ -195,6 +199,8 @@ impl<H: Hal, C: Clock> Vm<H, C> {
             frames: frame::Frames::default(),
             frame_iters: Vec::new(),
             rounds_fused: 0,
+            plans_run: 0,
+            round_planned: Vec::new(),
             supervisor: Default::default(),
             known_map,
             map_from_estimate: ilmr_hal::Pose::default(),
@@ -338,6 +344,12 @@ impl<H: Hal, C: Clock> Vm<H, C> {
         self.rounds_fused
     }
 
+    /// Frames whose visits of a round run in one go ran as one step along their
+    /// plan (`Vm::run_plan` in `frame.rs`).
+    pub fn plans_run(&self) -> u64 {
+        self.plans_run
+    }
+
     /// Live nodes: commands, guards, loops, calls and blocks.
     pub fn live(&self) -> usize {
         (self.nodes.live + self.nodes.sleepers).saturating_sub(1)
@@ -361,7 +373,8 @@ impl<H: Hal, C: Clock> Vm<H, C> {
             ("variables", self.vars.footprint()),
             (
                 "ready queue",
-                self.ready.capacity() * size_of::<exec::Packed>(),
+                self.ready.capacity() * size_of::<exec::Packed>()
+                    + self.round_planned.capacity() * size_of::<u64>(),
             ),
             ("timers", self.timers.footprint()),
             (

@@ -67,64 +67,28 @@ impl FieldMask {
     }
 }
 
-/// A variable's six fields as stored: its `how` is kept apart ([`Vars::hows`]), so
-/// that a counter costs 48 bytes, not 56.
+/// What every variable holds, kept dense: the two fields an assignment writes (a
+/// counter's whole state), 16 bytes a variable.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
-pub(crate) struct Fields {
+struct Core {
     status: f64,
-    x: f64,
-    y: f64,
-    h: f64,
     value: f64,
-    dist: f64,
 }
 
-impl Fields {
-    #[cfg(test)]
-    fn of(r: &VarRecord) -> Fields {
-        Fields {
-            status: r.status,
-            x: r.x,
-            y: r.y,
-            h: r.h,
-            value: r.value,
-            dist: r.dist,
-        }
-    }
+/// The fields of a pose or a distance (`x`, `y`, `h`, `dist`), in [`Vars::places`]:
+/// only a variable that a command ever set one of them in has one, so a variable of
+/// arithmetic costs its [`Core`] alone, not six fields.
+type Place = [f64; 4];
 
-    fn record(&self, how: Option<How>) -> VarRecord {
-        VarRecord {
-            status: self.status,
-            x: self.x,
-            y: self.y,
-            h: self.h,
-            value: self.value,
-            dist: self.dist,
-            how,
-        }
-    }
-
-    #[inline]
-    fn get(&self, f: Field) -> f64 {
-        match f {
-            Field::Status => self.status,
-            Field::X => self.x,
-            Field::Y => self.y,
-            Field::H => self.h,
-            Field::Value => self.value,
-            Field::Dist => self.dist,
-        }
-    }
-
-    fn slot(&mut self, f: Field) -> &mut f64 {
-        match f {
-            Field::Status => &mut self.status,
-            Field::X => &mut self.x,
-            Field::Y => &mut self.y,
-            Field::H => &mut self.h,
-            Field::Value => &mut self.value,
-            Field::Dist => &mut self.dist,
-        }
+/// Where `f` lies in a [`Place`]; None for the fields of [`Core`].
+#[inline]
+fn place_of(f: Field) -> Option<usize> {
+    match f {
+        Field::Status | Field::Value => None,
+        Field::X => Some(0),
+        Field::Y => Some(1),
+        Field::H => Some(2),
+        Field::Dist => Some(3),
     }
 }
 
@@ -190,7 +154,11 @@ pub(crate) struct Woken {
 
 #[derive(Debug, Default)]
 pub(crate) struct Vars {
-    records: Vec<Fields>,
+    cores: Vec<Core>,
+    /// Each variable's index in `places` (NONE: its pose and distance are all zero),
+    /// up to the last variable that has one: a program of counters keeps none.
+    place: Vec<u32>,
+    places: Vec<Place>,
     /// How each variable's command ended, up to the last variable a command has
     /// ended into: assignments, which clear it, leave the rest without one.
     hows: Vec<Option<How>>,
@@ -212,7 +180,9 @@ impl Vars {
         let mut watches = Watches::default();
         watches.grow(n);
         Vars {
-            records: vec![Fields::default(); n],
+            cores: vec![Core::default(); n],
+            place: Vec::new(),
+            places: Vec::new(),
             hows: Vec::new(),
             heads: Vec::new(),
             subs: Vec::new(),
@@ -225,7 +195,9 @@ impl Vars {
 
     pub fn footprint(&self) -> usize {
         use std::mem::size_of;
-        self.records.capacity() * size_of::<Fields>()
+        self.cores.capacity() * size_of::<Core>()
+            + self.place.capacity() * size_of::<u32>()
+            + self.places.capacity() * size_of::<Place>()
             + self.hows.capacity() * size_of::<Option<How>>()
             + self.heads.capacity() * size_of::<Head>()
             + self.subs.capacity() * size_of::<Sub>()
@@ -234,8 +206,8 @@ impl Vars {
     }
 
     pub fn grow(&mut self, n: usize) {
-        if n > self.records.len() {
-            self.records.resize(n, Fields::default());
+        if n > self.cores.len() {
+            self.cores.resize(n, Core::default());
             self.watches.grow(n);
         }
     }
@@ -244,7 +216,7 @@ impl Vars {
     /// None for a variable out of range.
     fn head(&mut self, var: u32) -> Option<&mut Head> {
         let v = var as usize;
-        if v >= self.records.len() {
+        if v >= self.cores.len() {
             return None;
         }
         if v >= self.heads.len() {
@@ -254,10 +226,43 @@ impl Vars {
     }
 
     pub fn get(&self, v: u32) -> VarRecord {
-        self.records
-            .get(v as usize)
-            .map(|r| r.record(self.how(v)))
-            .unwrap_or_default()
+        let Some(c) = self.cores.get(v as usize) else {
+            return VarRecord::default();
+        };
+        let [x, y, h, dist] = self.place(v).copied().unwrap_or_default();
+        VarRecord {
+            status: c.status,
+            x,
+            y,
+            h,
+            value: c.value,
+            dist,
+            how: self.how(v),
+        }
+    }
+
+    /// `v`'s pose and distance, if it has any.
+    #[inline]
+    fn place(&self, v: u32) -> Option<&Place> {
+        let i = *self.place.get(v as usize)?;
+        self.places.get(i as usize)
+    }
+
+    /// `v`'s pose and distance, made (all zero) if it has none; None for a variable
+    /// out of range.
+    fn place_mut(&mut self, v: u32) -> Option<&mut Place> {
+        let i = v as usize;
+        if i >= self.cores.len() {
+            return None;
+        }
+        if i >= self.place.len() {
+            self.place.resize(i + 1, NONE);
+        }
+        if self.place[i] == NONE {
+            self.place[i] = self.places.len() as u32;
+            self.places.push(Place::default());
+        }
+        self.places.get_mut(self.place[i] as usize)
     }
 
     fn how(&self, v: u32) -> Option<How> {
@@ -267,8 +272,10 @@ impl Vars {
     /// Writes a whole record.
     #[cfg(test)]
     fn put(&mut self, v: u32, r: &VarRecord) {
-        if let Some(f) = self.records.get_mut(v as usize) {
-            *f = Fields::of(r);
+        if (v as usize) < self.cores.len() {
+            for f in FIELDS {
+                self.set(v, f, r.get(f));
+            }
             self.set_how(v, r.how);
         }
     }
@@ -276,7 +283,13 @@ impl Vars {
     /// One field, without copying the record (expressions).
     #[inline]
     pub fn field(&self, v: u32, f: Field) -> f64 {
-        self.records.get(v as usize).map_or(0.0, |r| r.get(f))
+        match f {
+            Field::Status => self.cores.get(v as usize).map_or(0.0, |c| c.status),
+            Field::Value => self.cores.get(v as usize).map_or(0.0, |c| c.value),
+            _ => place_of(f)
+                .and_then(|i| self.place(v).map(|p| p[i]))
+                .unwrap_or(0.0),
+        }
     }
 
     /// Nothing would hear a write of `v`: no wait or guard subscribes to it or
@@ -377,15 +390,20 @@ impl Vars {
 
     /// Writes one field; returns whether it changed.
     pub fn set(&mut self, v: u32, f: Field, value: f64) -> bool {
-        match self.records.get_mut(v as usize) {
-            Some(r) => {
-                let slot = r.slot(f);
-                if slot.to_bits() == value.to_bits() {
-                    false
-                } else {
-                    *slot = value;
-                    true
-                }
+        if self.field(v, f).to_bits() == value.to_bits() {
+            return false;
+        }
+        let slot = match place_of(f) {
+            None => self.cores.get_mut(v as usize).map(|c| match f {
+                Field::Status => &mut c.status,
+                _ => &mut c.value,
+            }),
+            Some(i) => self.place_mut(v).map(|p| &mut p[i]),
+        };
+        match slot {
+            Some(slot) => {
+                *slot = value;
+                true
             }
             None => false,
         }
@@ -395,7 +413,7 @@ impl Vars {
     /// fields to trace (the value always, the status if it changed).
     #[inline]
     pub fn assign(&mut self, v: u32, value: f64) -> FieldMask {
-        let Some(r) = self.records.get_mut(v as usize) else {
+        let Some(r) = self.cores.get_mut(v as usize) else {
             return FieldMask(FieldMask::bit(Field::Value));
         };
         let mut mask = FieldMask::bit(Field::Value);
@@ -412,7 +430,7 @@ impl Vars {
 
     pub fn set_how(&mut self, v: u32, how: Option<How>) {
         let i = v as usize;
-        if i >= self.records.len() {
+        if i >= self.cores.len() {
             return;
         }
         if i >= self.hows.len() {
@@ -426,13 +444,20 @@ impl Vars {
 
     pub fn clear(&mut self, v: u32) -> FieldMask {
         let mut mask = FieldMask::default();
-        if let Some(r) = self.records.get_mut(v as usize) {
+        if (v as usize) < self.cores.len() {
             for f in FIELDS {
-                if r.get(f) != 0.0 {
+                if self.field(v, f) != 0.0 {
                     mask.0 |= FieldMask::bit(f);
                 }
             }
-            *r = Fields::default();
+            self.cores[v as usize] = Core::default();
+            // The place stays the variable's: a variable that held a pose once is
+            // likely to again.
+            if let Some(i) = self.place.get(v as usize).copied()
+                && let Some(p) = self.places.get_mut(i as usize)
+            {
+                *p = Place::default();
+            }
             self.set_how(v, None);
         }
         mask
@@ -562,6 +587,101 @@ mod tests {
         vars.set_how(2, Some(How::Broken));
         vars.clear(2);
         assert_eq!(vars.get(2), VarRecord::default());
+    }
+
+    /// The dense cores and the places on demand read and write as six fields a
+    /// variable did: random writes, assignments and clears against whole records.
+    #[test]
+    fn fields_kept_apart_read_as_whole_records() {
+        let n = 12;
+        let mut vars = Vars::new(n);
+        let mut model = vec![VarRecord::default(); n];
+        let values = [0.0, -0.0, 1.0, 2.5, f64::NAN, -7.0];
+        let mut seed = 0x2545_f491_4f6c_dd1du64;
+        let mut next = move || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            seed
+        };
+        for _ in 0..5_000 {
+            let v = (next() % (n as u64 + 2)) as u32;
+            let f = FIELDS[(next() % 6) as usize];
+            let x = values[(next() % values.len() as u64) as usize];
+            let m = model.get_mut(v as usize);
+            match next() % 8 {
+                0 => {
+                    let want = m.map_or(FieldMask::default(), |r| {
+                        let mut mask = FieldMask::default();
+                        for f in FIELDS {
+                            if r.get(f) != 0.0 {
+                                mask.0 |= FieldMask::bit(f);
+                            }
+                        }
+                        *r = VarRecord::default();
+                        mask
+                    });
+                    assert_eq!(vars.clear(v), want);
+                }
+                1 => {
+                    if let Some(r) = m {
+                        r.status = 1.0;
+                        r.value = x;
+                        r.how = None;
+                    }
+                    vars.assign(v, x);
+                }
+                2 => {
+                    if let Some(r) = m {
+                        r.how = Some(How::Completed);
+                    }
+                    vars.set_how(v, Some(How::Completed));
+                }
+                _ => {
+                    let changed = m.is_some_and(|r| {
+                        let slot = match f {
+                            Field::Status => &mut r.status,
+                            Field::X => &mut r.x,
+                            Field::Y => &mut r.y,
+                            Field::H => &mut r.h,
+                            Field::Value => &mut r.value,
+                            Field::Dist => &mut r.dist,
+                        };
+                        let changed = slot.to_bits() != x.to_bits();
+                        *slot = x;
+                        changed
+                    });
+                    assert_eq!(vars.set(v, f, x), changed, "{v} {f:?} {x}");
+                }
+            }
+            for (i, r) in model.iter().enumerate() {
+                assert_eq!(format!("{r:?}"), format!("{:?}", vars.get(i as u32)));
+                for f in FIELDS {
+                    assert_eq!(vars.field(i as u32, f).to_bits(), r.get(f).to_bits());
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn a_variable_of_arithmetic_costs_its_value_and_status_alone() {
+        let mut vars = Vars::new(1000);
+        let bare = vars.footprint();
+        assert!(bare <= 1000 * 16 + 256, "{bare}");
+        for v in 0..1000 {
+            vars.assign(v, f64::from(v));
+        }
+        assert_eq!(vars.footprint(), bare);
+        vars.set(7, Field::X, 0.0);
+        assert_eq!(
+            vars.footprint(),
+            bare,
+            "a write that changes nothing keeps no place"
+        );
+        vars.set(7, Field::X, 1.5);
+        assert!(vars.footprint() > bare);
+        assert_eq!(vars.get(7).x, 1.5);
+        assert_eq!(vars.get(8).x, 0.0);
     }
 
     #[test]
