@@ -84,7 +84,11 @@ How it went (each point of a grid run over 10 or 20 replicas with the command be
   fourth, c=0.6's maximum, without the row's mean: at 0.08 s its maximum is 22 %
   short and its mean 57 % over. Table 10's 0.08 m is one trial far from its row's
   others (the row's standard deviation, 0.0242 m, exceeds its mean, 0.0225 m); the
-  model has no such outlier.
+  model has no such outlier. Nor can another value of the errors part the two rows
+  as the table does: they are driven at the same speeds and the overrun does not
+  depend on the curvature (their maxima here are 0.048 and 0.045 m), while within
+  30 % c=0.6's maximum must exceed 0.056 m and c=0.4's stay below 0.052 m. Only an
+  error that doubled between c=0.4 and c=0.6 at the same speed would do it.
 - Workpartner's deviation is set by its 2 Hz navigation fixes: read as one standard
   deviation, section 5.1.2's 0.1 m would by itself put the robot 0.21 m (mean) off
   the arc, more than Table 10's 0.183 m with every error, so it is read as a 95 %
