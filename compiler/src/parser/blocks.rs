@@ -515,7 +515,10 @@ mod tests {
         assert_eq!(seen("w = followwall(left)\nwait(w)\n"), (false, true));
         assert_eq!(seen("s:\nd = GOAHEAD()\n"), (false, true));
         assert_eq!(seen("followwall(left)\n"), (false, false));
-        assert_eq!(seen("v = while(1)\n    speed(1)\nendwhile\n"), (false, true));
+        assert_eq!(
+            seen("v = while(1)\n    speed(1)\nendwhile\n"),
+            (false, true)
+        );
     }
 
     #[test]

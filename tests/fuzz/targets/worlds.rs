@@ -1,13 +1,15 @@
 //! World files, as `ilmrc run --world FILE` reads them: the loader and its validation,
 //! and, for a world it accepts, the scene built from it and a simulated MoRo running
 //! Figure 52 in it under the VM, as `run` sets them up. A world the loader accepts
-//! must be one the simulator can run; one it refuses gets its line and what is wrong.
+//! must be one the simulator can run, unless its start puts MoRo's footprint into
+//! something (the simulator refuses that with the contact, and `run` says so); one the
+//! loader refuses gets its line and what is wrong.
 
 use std::sync::OnceLock;
 
 use ilmr_compiler::check::Source;
 use ilmr_model::RobotModel;
-use ilmr_sim::World;
+use ilmr_sim::{SimError, SimRobot, World};
 
 use super::{corpus, models};
 use crate::engine::{self, Budget, Rng, Stats};
@@ -85,6 +87,11 @@ pub fn feed(input: &[u8]) {
     match World::from_toml(text, "fuzz.toml") {
         Ok(world) => {
             let _ = world.scene();
+            match SimRobot::moro(world.clone(), 1) {
+                Ok(_) => {}
+                Err(SimError::StartInCollision(_)) => return,
+                Err(e) => panic!("an accepted world the simulator refuses: {e}"),
+            }
             let (module, model) = figure_52();
             models::simulate(module.clone(), model, &world);
         }
