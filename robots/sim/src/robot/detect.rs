@@ -14,10 +14,7 @@ pub fn scan_points(scan: &Scan, pose: Pose) -> Vec<(usize, Point2<f64>)> {
         .iter()
         .enumerate()
         .filter(|(_, r)| **r < scan.max_range)
-        .map(|(i, r)| {
-            let local = scan.mount + Vector2::from_angle(scan.bearing(i)) * (*r);
-            (i, pose.to_world(&local))
-        })
+        .map(|(i, _)| (i, pose.to_world(&scan.local_point(i))))
         .collect()
 }
 

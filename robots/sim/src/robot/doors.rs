@@ -80,8 +80,8 @@ pub fn doors(model: &RobotModel, scan: &Scan, pose: Pose, out: &mut Vec<Detectio
         return;
     };
     let r = &scan.ranges;
-    let hit = |i: usize| r[i].is_finite() && r[i] < scan.max_range;
-    let local = |i: usize| scan.mount + Vector2::from_angle(scan.bearing(i)) * r[i];
+    let hit = |i: usize| scan.returned(i);
+    let local = |i: usize| scan.local_point(i);
     let window = (SEARCH_WINDOW / scan.angle_increment.abs().max(1e-6)).ceil() as usize;
     let mut i = 0;
     while i + 1 < r.len() {
@@ -136,14 +136,13 @@ pub fn doors(model: &RobotModel, scan: &Scan, pose: Pose, out: &mut Vec<Detectio
 /// more than `MIXED_OFF`.
 fn on_wall(scan: &Scan, mut k: usize, step: isize) -> usize {
     let r = &scan.ranges;
-    let at = |i: usize| scan.mount + Vector2::from_angle(scan.bearing(i)) * r[i];
-    let returns = |i: usize| r[i].is_finite() && r[i] < scan.max_range;
+    let at = |i: usize| scan.local_point(i);
     for _ in 0..MIXED_STEPS {
         let beyond = [1, 2].map(|n| k.checked_add_signed(n * step).filter(|&i| i < r.len()));
         let [Some(p), Some(q)] = beyond else {
             break;
         };
-        if !(returns(p) && returns(q)) {
+        if !(scan.returned(p) && scan.returned(q)) {
             break;
         }
         let (pp, pq) = (at(p), at(q));
@@ -178,11 +177,7 @@ fn through(scan: &Scan, i: usize, j: usize, a: Point2<f64>, b: Point2<f64>) -> b
 /// beam without one.
 fn beside(scan: &Scan, jamb: Point2<f64>, order: impl Iterator<Item = usize>) -> Vec<Point2<f64>> {
     order
-        .map_while(|k| {
-            let r = scan.ranges[k];
-            (r.is_finite() && r < scan.max_range)
-                .then(|| scan.mount + Vector2::from_angle(scan.bearing(k)) * r)
-        })
+        .map_while(|k| scan.returned(k).then(|| scan.local_point(k)))
         .take_while(|p| (p - jamb).hypot() <= WALL_REACH)
         .collect()
 }

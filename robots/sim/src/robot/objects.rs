@@ -100,8 +100,8 @@ pub fn objects(model: &RobotModel, scan: &Scan, pose: Pose, out: &mut Vec<Detect
         return;
     };
     let r = &scan.ranges;
-    let hit = |i: usize| r[i].is_finite() && r[i] < scan.max_range;
-    let local = |i: usize| scan.mount + Vector2::from_angle(scan.bearing(i)) * r[i];
+    let hit = |i: usize| scan.returned(i);
+    let local = |i: usize| scan.local_point(i);
     // The first return past `from` going `step` (+1 or -1) beams on, over at most
     // `DROPOUTS` beams that return nothing; `Err(())` where the scan ends first.
     let next = |from: usize, step: isize| -> Result<Option<usize>, ()> {
@@ -127,6 +127,7 @@ pub fn objects(model: &RobotModel, scan: &Scan, pose: Pose, out: &mut Vec<Detect
         let edge_on = face.dir.perp(&beam).abs() < EDGE_ON.sin();
         r[beside] - r[end] >= SEPARATION && !(edge_on && face.off(local(beside)) < GOES_ON)
     };
+    let mut run = Vec::new();
     let mut a = 0;
     while a < r.len() {
         if !hit(a) {
@@ -134,7 +135,8 @@ pub fn objects(model: &RobotModel, scan: &Scan, pose: Pose, out: &mut Vec<Detect
             continue;
         }
         // The run's returns, bridging dropouts on the surface it is on.
-        let mut run = vec![a];
+        run.clear();
+        run.push(a);
         let mut b = a;
         while let Ok(Some(j)) = next(b, 1) {
             if (r[j] - r[b]).abs() >= SAME_OBJECT {

@@ -31,6 +31,18 @@ impl Scan {
     pub fn bearing(&self, index: usize) -> f64 {
         self.angle_min + index as f64 * self.angle_increment
     }
+
+    /// Whether reading `index` came back: a finite range short of `max_range`.
+    pub fn returned(&self, index: usize) -> bool {
+        let r = self.ranges[index];
+        r.is_finite() && r < self.max_range
+    }
+
+    /// Where reading `index` lies in the robot frame: the mount, then its range
+    /// along its bearing.
+    pub fn local_point(&self, index: usize) -> Point2<f64> {
+        self.mount + Vector2::from_angle(self.bearing(index)) * self.ranges[index]
+    }
 }
 
 /// Noise-free ranges from the scanner on a robot at `robot`.
