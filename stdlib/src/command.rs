@@ -57,6 +57,12 @@ impl Command {
         self.spec().name
     }
 
+    /// Commands of which some statement never ends by itself (`Ends::Never`, and
+    /// `Ends::NeverBare` written without arguments): what a `wait` may wait on forever.
+    pub fn never_ending() -> impl Iterator<Item = Command> {
+        Command::all().filter(|c| c.spec().ends.never(0))
+    }
+
     /// Looks a command up by name in any letter case (section 4.5: commands can be given
     /// in upper-case, lower-case or any mixture).
     pub fn from_name(name: &str) -> Option<Command> {

@@ -9,7 +9,7 @@
 //! it as an argument, a skill) may set its status and silences the warning: it is
 //! said only where it is certain that nothing in the program can wake the wait.
 
-use ilmr_stdlib::{Command, Ends};
+use ilmr_stdlib::Command;
 
 use crate::ast::{Arg, Block, Expr, ExprKind, Stmt, StmtKind};
 use crate::check::FileEntry;
@@ -43,20 +43,13 @@ struct Scan<'s> {
     patterns: Vec<&'s str>,
 }
 
-/// Commands that never end by themselves, from the catalogue.
-fn never_ending() -> Vec<Command> {
-    Command::all()
-        .filter(|c| matches!(c.spec().ends, Ends::Never | Ends::NeverBare))
-        .collect()
-}
-
 pub fn check_waits(files: &[FileEntry<'_>], diags: &mut Kept) {
     // A wait is said never to wake only on a statement that never ends: without one,
     // nothing to walk.
     if !files.iter().any(|f| f.seen.never_ending) {
         return;
     }
-    let never = never_ending();
+    let never: Vec<Command> = Command::never_ending().collect();
     let mut scan = Scan::default();
     for (i, entry) in files.iter().enumerate() {
         let file = FileId(i as u32);

@@ -11,7 +11,7 @@ use crate::kept::Kept;
 use crate::limits::MAX_BLOCK_DEPTH;
 use crate::parser::lines::{Line, ParsedLine};
 use crate::span::Span;
-use ilmr_stdlib::{Command, Ends};
+use ilmr_stdlib::Command;
 
 enum Opener<'s> {
     Root,
@@ -158,9 +158,7 @@ impl<'s> Builder<'s> {
             diagnostics: Kept::new(),
             binds: 0,
             seen: Seen::default(),
-            never: Command::all()
-                .filter(|c| matches!(c.spec().ends, Ends::Never | Ends::NeverBare))
-                .collect(),
+            never: Command::never_ending().collect(),
         }
     }
 
