@@ -104,6 +104,17 @@ pub(crate) enum Arith {
     Mul,
 }
 
+impl Arith {
+    #[inline]
+    fn apply(self, a: f64, k: f64) -> f64 {
+        match self {
+            Arith::Add => a + k,
+            Arith::Sub => a - k,
+            Arith::Mul => a * k,
+        }
+    }
+}
+
 /// How the counts of what a frame stands for (`Nodes::live` and the issuing
 /// blocks) move when it goes from one pc to another: worked out when the code is
 /// compiled, so that a step does not look the two pcs up.
@@ -294,6 +305,35 @@ fn rel(id: u32, base: u32) -> u32 {
         id - base
     } else {
         id | ABSOLUTE
+    }
+}
+
+/// Frame `f` (node `node`) sleeps until tick `due`: its nap counted, the sleepers'
+/// counts moved and its alarm set. The quick forms' `Sleep` and a plan run as one
+/// step end so, and must alike, for the two to leave the same state.
+#[inline]
+fn fall_asleep(
+    f: &mut FrameState,
+    node: NodeRef,
+    due: u64,
+    classes: &mut [usize; Class::COUNT],
+    sleepers: &mut usize,
+    timers: &mut super::timers::Timers,
+) {
+    f.nap = f.nap.wrapping_add(1);
+    f.asleep = true;
+    classes[Class::Sleep as usize] += 1;
+    *sleepers += 1;
+    timers.set(due, Alarm { node, nap: f.nap });
+}
+
+/// The live and issuing counts moved as a frame's forms moved them.
+#[inline]
+fn move_counts(m: Moved, live: &mut usize, classes: &mut [usize; Class::COUNT]) {
+    if m.live != 0 || m.issuing != 0 {
+        *live = live.saturating_add_signed(isize::from(m.live));
+        let n = &mut classes[Class::Issuing as usize];
+        *n = n.saturating_add_signed(isize::from(m.issuing));
     }
 }
 
@@ -953,12 +993,7 @@ impl<H: Hal, C: Clock> Vm<H, C> {
                     }
                     // The statement's op and its expression's three.
                     *ops_left = (*ops_left - 1).saturating_sub(Quick::SET_VK - 1);
-                    let a = vars.field(var_at(src, f.base), field);
-                    let v = match op {
-                        Arith::Add => a + k,
-                        Arith::Sub => a - k,
-                        Arith::Mul => a * k,
-                    };
+                    let v = op.apply(vars.field(var_at(src, f.base), field), k);
                     // What `assign` does after its evaluation, with the trace off.
                     let var = var_at(var, f.base);
                     vars.assign(var, v);
@@ -990,15 +1025,8 @@ impl<H: Hal, C: Clock> Vm<H, C> {
                     *ops_left = (*ops_left - 1).saturating_sub(Quick::SLEEP - 1);
                     f.pc += 1;
                     step(next);
-                    f.nap = f.nap.wrapping_add(1);
-                    f.asleep = true;
-                    classes[Class::Sleep as usize] += 1;
-                    *sleepers += 1;
-                    let node = NodeRef { idx, epoch };
-                    timers.set(
-                        tick.saturating_add(u64::from(ticks)),
-                        Alarm { node, nap: f.nap },
-                    );
+                    let due = tick.saturating_add(u64::from(ticks));
+                    fall_asleep(f, NodeRef { idx, epoch }, due, classes, sleepers, timers);
                     break Some(false);
                 }
                 Some(&Quick::CheckVK {
@@ -1041,11 +1069,11 @@ impl<H: Hal, C: Clock> Vm<H, C> {
                 _ => break None,
             }
         };
-        if moved_live != 0 || moved_issuing != 0 {
-            *live = live.saturating_add_signed(isize::from(moved_live));
-            let n = &mut classes[Class::Issuing as usize];
-            *n = n.saturating_add_signed(isize::from(moved_issuing));
-        }
+        let moved = Moved {
+            live: moved_live,
+            issuing: moved_issuing,
+        };
+        move_counts(moved, live, classes);
         if queue && !node.queued {
             node.queued = true;
             ready.push_back(Ready::Node(NodeRef { idx, epoch }).into());
@@ -1201,12 +1229,7 @@ impl<H: Hal, C: Clock> Vm<H, C> {
                     k,
                     ..
                 }) => {
-                    let a = vars.field(var_at(src, f.base), field);
-                    let v = match op {
-                        Arith::Add => a + k,
-                        Arith::Sub => a - k,
-                        Arith::Mul => a * k,
-                    };
+                    let v = op.apply(vars.field(var_at(src, f.base), field), k);
                     vars.assign(var_at(var, f.base), v);
                 }
                 Some(&Quick::SetK { var, k, .. }) => {
@@ -1216,23 +1239,9 @@ impl<H: Hal, C: Clock> Vm<H, C> {
             }
         }
         f.pc = plan.sleep + 1;
-        f.nap = f.nap.wrapping_add(1);
-        f.asleep = true;
-        classes[Class::Sleep as usize] += 1;
-        *sleepers += 1;
-        timers.set(
-            tick.saturating_add(u64::from(ticks)),
-            Alarm {
-                node: NodeRef { idx, epoch },
-                nap: f.nap,
-            },
-        );
-        let m = plan.moved;
-        if m.live != 0 || m.issuing != 0 {
-            *live = live.saturating_add_signed(isize::from(m.live));
-            let n = &mut classes[Class::Issuing as usize];
-            *n = n.saturating_add_signed(isize::from(m.issuing));
-        }
+        let due = tick.saturating_add(u64::from(ticks));
+        fall_asleep(f, NodeRef { idx, epoch }, due, classes, sleepers, timers);
+        move_counts(plan.moved, live, classes);
         *plans_run += 1;
         true
     }
@@ -1502,10 +1511,7 @@ impl Plan {
             writes: [NONE; 2],
             steps: [NONE; PLAN_STEPS],
             sleep: 0,
-            moved: Moved {
-                live: 0,
-                issuing: 0,
-            },
+            moved: Moved::default(),
             ends: false,
         };
         let (mut steps, mut fits) = (0, true);
@@ -1646,12 +1652,7 @@ fn trace_ahead(frames: &Frames, vars: &super::vars::Vars, f: &FrameState) -> Opt
                 ..
             } => {
                 ops += Quick::SET_VK;
-                let a = read(&written, var_at(src, f.base), field);
-                let v = match op {
-                    Arith::Add => a + k,
-                    Arith::Sub => a - k,
-                    Arith::Mul => a * k,
-                };
+                let v = op.apply(read(&written, var_at(src, f.base), field), k);
                 if !write(&mut written, var_at(var, f.base), v) {
                     return None;
                 }

@@ -597,13 +597,8 @@ mod tests {
         let mut vars = Vars::new(n);
         let mut model = vec![VarRecord::default(); n];
         let values = [0.0, -0.0, 1.0, 2.5, f64::NAN, -7.0];
-        let mut seed = 0x2545_f491_4f6c_dd1du64;
-        let mut next = move || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            seed
-        };
+        let mut rng = ilmr_geometry::SplitMix64::new(0x2545_f491_4f6c_dd1d);
+        let mut next = move || rng.next_u64();
         for _ in 0..5_000 {
             let v = (next() % (n as u64 + 2)) as u32;
             let f = FIELDS[(next() % 6) as usize];
