@@ -325,6 +325,10 @@ fn the_limits_table_quotes_the_constants() {
             format!("{} per program", count(limits::PATTERN_MATCHES as usize)),
         ),
         (
+            "BREAK_TARGETS",
+            format!("{} pairs", count(ilmr_vm::runtime::BREAK_TARGETS as usize)),
+        ),
+        (
             "MAX_PLACES_SHOWN",
             format!("{}, the last", ilmr_compiler::diagnostic::MAX_PLACES_SHOWN),
         ),

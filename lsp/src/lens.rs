@@ -101,7 +101,10 @@ pub fn breaks(program: &Program) -> Breaks {
             Ender::All => bare.push(i as u32),
         }
     }
-    let needles = Needles::new(patterns.iter().map(|&(_, needle)| needle));
+    let needles = Needles::new(
+        patterns.iter().map(|&(_, needle)| needle),
+        ilmr_compiler::limits::PATTERN_MATCHES,
+    );
     let mut with_needle = vec![Vec::new(); needles.distinct()];
     for (k, &(i, _)) in patterns.iter().enumerate() {
         if let Some(id) = needles.id(k) {

@@ -8,6 +8,7 @@
 
 mod catalogue;
 mod command;
+pub mod pattern;
 pub mod reference;
 pub mod skills;
 pub mod spec;

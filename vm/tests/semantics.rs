@@ -1222,3 +1222,134 @@ fn obstacle_avoidance_traces_its_state_changes() {
         "the event names the running movement"
     );
 }
+
+/// A counting loop in one block; in the other, after 0.1 s, `breaks`.
+fn loop_and_breaks(breaks: &[(&str, &str)]) -> ilmr_vm::bytecode::Module {
+    let mut a = Asm::new();
+    a.var("n", VarKind::Number);
+    let counting = vec![a.while_(
+        "while(n<50)",
+        &[X::V("n"), X::N(50.0), X::Op(ExprOp::Lt)],
+        None,
+        |a| {
+            vec![
+                a.assign("n=n+1", "n", &[X::V("n"), X::N(1.0), X::Op(ExprOp::Add)]),
+                a.wait("wait(0.01)", 0.01),
+            ]
+        },
+    )];
+    let b1 = a.block(counting);
+    a.blank();
+    let mut code = vec![a.wait("wait(0.1)", 0.1)];
+    for (text, pattern) in breaks {
+        code.push(a.brk(text, pattern));
+    }
+    code.push(a.assign("later=1", "later", &[X::N(1.0)]));
+    let b2 = a.block(code);
+    a.task(&[b1, b2])
+}
+
+#[test]
+fn breaks_whose_patterns_only_breaks_hold_look_at_no_node() {
+    // Each pattern is found in its own `break(...)` and nowhere else: a break is never
+    // live, so none of them can end anything, and none looks at the live nodes (each
+    // read every live node's text, 9.5 s for 20,000 of them beside 20,000 loops).
+    let texts: Vec<(String, String)> = (0..200)
+        .map(|i| (format!("break(zz{i})"), format!("zz{i}")))
+        .collect();
+    let mut breaks: Vec<(&str, &str)> = (texts.iter())
+        .map(|(t, p)| (t.as_str(), p.as_str()))
+        .collect();
+    breaks.push(("break( )", " "));
+    let mut vm = vm(loop_and_breaks(&breaks), robot(), config());
+    assert!(vm.run_for(2.0));
+    assert_eq!(vm.break_looks(), 0);
+    assert_eq!(
+        vm.var("n").map(|v| v.value),
+        Some(50.0),
+        "nothing was broken"
+    );
+    assert_eq!(ended(&vm, "while(n<50)").as_deref(), Some("completed"));
+
+    // A pattern found in a statement that runs looks, and ends what is live of it,
+    // whatever its case, after breaks that found nothing.
+    breaks.push(("break(WHILE(N)", "WHILE(N"));
+    let mut vm = vm_of(loop_and_breaks(&breaks));
+    assert!(vm.run_for(2.0));
+    assert!(vm.break_looks() > 0);
+    assert_eq!(ended(&vm, "while(n<50)").as_deref(), Some("broken"));
+    let n = vm.var("n").map_or(0.0, |v| v.value);
+    assert!(n > 5.0 && n < 15.0, "{n}");
+}
+
+fn vm_of(module: ilmr_vm::bytecode::Module) -> common::TestVm {
+    vm(module, robot(), config())
+}
+
+#[test]
+fn a_joined_line_breaks_with_a_pattern_the_task_never_had() {
+    // The task's breaks found their statements before the line came; the line's
+    // pattern and statements are new to them.
+    let mut vm = vm_of(loop_and_breaks(&[("break(zz)", "zz")]));
+    vm.run_for(0.2);
+    let mut line = Asm::extending(vm.module(), "<interactive>");
+    let code = vec![line.brk("break(n<5)", "n<5")];
+    let lb = line.block(code);
+    vm.add_block(&line.fragment(&[lb])).expect("joins");
+    assert!(vm.run_for(1.0));
+    assert_eq!(ended(&vm, "while(n<50)").as_deref(), Some("broken"));
+    assert!(vm.var("n").map_or(0.0, |v| v.value) < 30.0);
+}
+
+#[test]
+fn breaks_that_look_at_many_live_nodes_pay_from_the_tick_budget() {
+    // 100 counting blocks, asleep for a second at a time, are live when twenty breaks
+    // of a statement that runs but is not live come: each looks at every live node
+    // and pays for them (about 40 ops here), so under a budget of 100 ops the breaks
+    // spread over ticks, with overruns, instead of holding one tick (`later=1` ran at
+    // 0.25 s; at 0.15 s when breaks did not pay, the blocks' start being slow too).
+    let mut a = Asm::new();
+    let mut blocks = Vec::new();
+    for i in 0..100 {
+        let v = format!("c{i}");
+        a.var(&v, VarKind::Number);
+        let code = vec![a.while_(
+            &format!("while({v}<3)"),
+            &[X::V(&v), X::N(3.0), X::Op(ExprOp::Lt)],
+            None,
+            |a| {
+                vec![
+                    a.assign(
+                        &format!("{v}={v}+1"),
+                        &v,
+                        &[X::V(&v), X::N(1.0), X::Op(ExprOp::Add)],
+                    ),
+                    a.wait("wait(1)", 1.0),
+                ]
+            },
+        )];
+        blocks.push(a.block(code));
+        a.blank();
+    }
+    let mut code = vec![a.wait("wait(0.1)", 0.1)];
+    for _ in 0..20 {
+        code.push(a.brk("break(later)", "later"));
+    }
+    code.push(a.assign("later=1", "later", &[X::N(1.0)]));
+    blocks.push(a.block(code));
+    let cfg = Config {
+        budget_ops: 100,
+        ..config()
+    };
+    let mut vm = vm(a.task(&blocks), robot(), cfg);
+    assert!(vm.run_for(10.0));
+    assert_eq!(vm.live(), 0);
+    let later = when(&vm, "var", "later=1").expect("written");
+    assert!(later >= 0.2, "the breaks took ticks of their own: {later}");
+    assert!(vm.events().iter().any(|e| e.kind.name() == "overrun"));
+    assert_eq!(
+        vm.var("c0").map(|v| v.value),
+        Some(3.0),
+        "nothing was broken"
+    );
+}

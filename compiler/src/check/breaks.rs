@@ -3,11 +3,12 @@
 
 use crate::ast::{Pattern, Stmt, StmtKind};
 use crate::check::FileEntry;
-use crate::check::needles::Needles;
 use crate::check::skills::Skills;
 use crate::diagnostic::{Code, Diagnostic, FileId, MAX_PLACES_SHOWN};
 use crate::kept::Kept;
+use crate::limits;
 use crate::span::Span;
+use ilmr_stdlib::pattern::Needles;
 
 /// The text a pattern is searched for. The dissertation's own examples, `break(turn(d=))`
 /// and `break(while(c))`, only match the statements they mean (`turn(d=90,c=0.5)`,
@@ -18,22 +19,7 @@ pub fn needle<'s>(pattern: &Pattern<'s>) -> &'s str {
     text.find(')').map_or(text, |i| &text[..i]).trim()
 }
 
-/// Whether a statement's text contains the needle, ignoring case: both lower-cased, as
-/// the VM matches them when the break runs.
-pub fn matches(statement: &str, needle: &str) -> bool {
-    if needle.is_empty() {
-        return false;
-    }
-    if statement.is_ascii() {
-        // A needle with other letters stays other letters lower-cased; an ASCII text
-        // holds none.
-        return needle.is_ascii()
-            && (statement.as_bytes())
-                .windows(needle.len())
-                .any(|w| w.eq_ignore_ascii_case(needle.as_bytes()));
-    }
-    statement.to_lowercase().contains(&needle.to_lowercase())
-}
+pub use ilmr_stdlib::pattern::matches;
 
 /// The statements a `break(pattern)` may end, with their text: every statement but
 /// breaks, of task files and of the library files a task calls into, leaving out what
@@ -110,7 +96,10 @@ pub fn check_patterns(files: &[FileEntry<'_>], skills: &Skills, diags: &mut Kept
             }
         });
     }
-    let needles = Needles::new(patterns.iter().map(|(_, p)| needle(p)));
+    let needles = Needles::new(
+        patterns.iter().map(|(_, p)| needle(p)),
+        limits::PATTERN_MATCHES,
+    );
     // For each distinct needle, how many statements contain it and the first few.
     let mut hits: Vec<(usize, Vec<(FileId, Span)>)> = vec![(0, Vec::new()); needles.distinct()];
     let mut seen = Vec::new();

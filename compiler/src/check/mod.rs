@@ -11,7 +11,6 @@ mod fold;
 mod keywords;
 mod loops;
 mod names;
-mod needles;
 mod owners;
 pub mod params;
 mod paths;
@@ -38,7 +37,7 @@ const SKILLS_LISTED: usize = 5;
 pub use args::fits;
 pub use breaks::{breakable, matches, needle};
 pub use constants::Constants;
-pub use needles::Needles;
+pub use ilmr_stdlib::pattern::Needles;
 pub use scope::{Places, Var, VarId, Vars};
 pub use skills::SkillId;
 

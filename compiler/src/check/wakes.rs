@@ -16,10 +16,11 @@ use crate::check::FileEntry;
 use crate::check::breaks::needle;
 use crate::check::constants;
 use crate::check::fold::{self, FoldMap};
-use crate::check::needles::Needles;
 use crate::diagnostic::{Code, Diagnostic, FileId};
 use crate::kept::Kept;
+use crate::limits;
 use crate::span::Span;
+use ilmr_stdlib::pattern::Needles;
 use std::cell::Cell;
 
 /// A statement that never ends by itself, and the statements it stands inside (a
@@ -110,7 +111,7 @@ pub fn check_waits(files: &[FileEntry<'_>], diags: &mut Kept) {
     // Whether a break can end one of a variable's setters is the same for every wait
     // on it: decided once, at its first wait.
     let mut reachable: FoldMap<bool> = FoldMap::default();
-    let needles = Needles::new(scan.patterns.iter().copied());
+    let needles = Needles::new(scan.patterns.iter().copied(), limits::PATTERN_MATCHES);
     for (file, span, var) in &scan.waits {
         let Some((indices, other)) = suspects.get(fold::lookup(var, &mut buf)) else {
             continue;

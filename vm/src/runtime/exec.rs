@@ -7,6 +7,7 @@ use ilmr_stdlib::Field;
 use super::clock::Clock;
 use super::frame::{FInstr, FOp, FrameHit};
 use super::nodes::{BlockState, Kind, NodeRef, SLEEPING};
+use super::targets::{self, Found, Targets};
 use super::trace::EventKind;
 use super::vars::{FieldMask, How, NONE, Waiter, Woken};
 use super::watch::{Cmp, Shape};
@@ -1099,19 +1100,59 @@ impl<H: Hal, C: Clock> Vm<H, C> {
     }
 
     fn break_pattern(&mut self, pattern: u32) {
-        let pat = self
-            .module
-            .name(crate::bytecode::NameId(pattern))
-            .trim()
-            .to_lowercase();
-        // An empty pattern matches no statement (as the checker reads it), not all.
-        if pat.is_empty() {
-            return;
+        if !(self.targets.as_ref()).is_some_and(|t| t.current(&self.module)) {
+            self.targets = Some(Targets::new(&self.module));
         }
-        let matches = |stmt: Option<StmtId>| {
-            stmt.and_then(|s| self.lower.get(s.index()))
-                .is_some_and(|t| t.contains(&pat))
+        let Some(targets) = &self.targets else {
+            return;
         };
+        let looks = self.nodes.all.len() as u64;
+        let hits = match targets.of(pattern) {
+            // An empty pattern matches no statement (as the checker reads it), not all;
+            // nor does one found only in statements that are never live.
+            Found::Statements([]) => return,
+            Found::Statements(stmts) => {
+                self.marks.set(stmts, self.module.stmts.len());
+                let hits = self.live_hits(|s| self.marks.has(s.0));
+                self.marks.clear(stmts);
+                self.pay_for_break((self.live() + stmts.len()) / targets::NODES_PER_OP);
+                hits
+            }
+            Found::Unknown => {
+                let pat = self
+                    .module
+                    .name(crate::bytecode::NameId(pattern))
+                    .trim()
+                    .to_lowercase();
+                if pat.is_empty() {
+                    return;
+                }
+                let hits = self.live_hits(|s| {
+                    (self.module.stmts.get(s.index()))
+                        .is_some_and(|t| t.text.to_lowercase().contains(&pat))
+                });
+                self.pay_for_break(self.live());
+                hits
+            }
+        };
+        self.break_looks += looks;
+        self.end_hits(hits);
+    }
+
+    /// A break that looked at the live nodes pays from the tick's budget for them, so
+    /// that thousands of breaks among thousands of blocks overrun ticks rather than
+    /// hold one for seconds. What it pays is counted as the tree counts live nodes,
+    /// not by the arena (frames stand for several), so that frames and the tree run
+    /// the same steps in each tick.
+    fn pay_for_break(&mut self, ops: usize) {
+        let ops = u32::try_from(ops).unwrap_or(u32::MAX);
+        self.ops_left = self.ops_left.saturating_sub(ops);
+    }
+
+    /// What a break whose statements `matches` tells ends among the live nodes, in the
+    /// arena's order (which is the order they end in, and the trace's).
+    fn live_hits(&self, matches: impl Fn(StmtId) -> bool) -> Vec<Hit> {
+        let matches = |stmt: Option<StmtId>| stmt.is_some_and(&matches);
         // A hit is a node, the `wait(seconds)` a block sleeps in (its nap), or what
         // a frame stands for (an open loop, its sleep).
         let mut hits = Vec::new();
@@ -1139,6 +1180,10 @@ impl<H: Hal, C: Clock> Vm<H, C> {
                 }
             }
         }
+        hits
+    }
+
+    fn end_hits(&mut self, hits: Vec<Hit>) {
         for h in hits {
             match h {
                 Hit::Node(r) if self.nodes.alive(r) => self.end_subtree(r.idx, How::Broken),

@@ -11,6 +11,8 @@ mod frame;
 mod motion;
 mod nodes;
 pub mod safety;
+mod targets;
+pub use targets::{BREAK_TARGETS, NODES_PER_OP};
 mod timers;
 pub mod trace;
 pub mod vars;
@@ -88,8 +90,11 @@ pub struct Vm<H: Hal, C: Clock> {
     events: Vec<Event>,
     coalesce: trace::Coalesce,
     ops_left: u32,
-    /// Lower-case statement texts for `break(pattern)`.
-    lower: Vec<String>,
+    /// The statements each `break(pattern)` can end, found at the first break run.
+    targets: Option<targets::Targets>,
+    marks: targets::Marks,
+    /// Nodes `break(pattern)` has looked at (`Vm::break_looks`).
+    break_looks: u64,
     scratch: Vec<u32>,
     stack: [f64; EXPR_STACK],
     /// Every expression of the module, decoded for [`Vm::eval`].
@@ -166,7 +171,6 @@ impl<H: Hal, C: Clock> Vm<H, C> {
         let known = safety::known::KnownSurface::new(known_map.as_ref());
         let mut nodes = Nodes::default();
         let root = nodes.alloc(NONE, NONE, NONE, Kind::Root).idx;
-        let lower = module.stmts.iter().map(|s| s.text.to_lowercase()).collect();
         let mut vm = Vm {
             vars: Vars::new(module.globals.len()),
             module,
@@ -192,7 +196,9 @@ impl<H: Hal, C: Clock> Vm<H, C> {
             events: Vec::new(),
             coalesce: trace::Coalesce::default(),
             ops_left: 0,
-            lower,
+            targets: None,
+            marks: targets::Marks::default(),
+            break_looks: 0,
             scratch: Vec::new(),
             stack: [0.0; EXPR_STACK],
             decoded: decode::Decoder::default(),
@@ -350,6 +356,12 @@ impl<H: Hal, C: Clock> Vm<H, C> {
         self.plans_run
     }
 
+    /// Nodes (live or free places of the arena) that `break(pattern)` has looked at: a
+    /// break whose pattern no live statement can hold looks at none.
+    pub fn break_looks(&self) -> u64 {
+        self.break_looks
+    }
+
     /// Live nodes: commands, guards, loops, calls and blocks.
     pub fn live(&self) -> usize {
         (self.nodes.live + self.nodes.sleepers).saturating_sub(1)
@@ -499,18 +511,13 @@ impl<H: Hal, C: Clock> Vm<H, C> {
         Ok(())
     }
 
-    /// The module grew: size the variables and the lower-case texts to it, and queue
+    /// The module grew: size the variables to it, and queue
     /// the new top-level blocks.
     fn joined(&mut self, start: impl Iterator<Item = u32>) {
         self.vars.grow(self.module.globals.len());
         self.decoded.grow(&self.module);
         self.frames
             .grow(&self.module, &self.decoded.all, self.cfg.period);
-        self.lower.extend(
-            self.module.stmts[self.lower.len()..]
-                .iter()
-                .map(|s| s.text.to_lowercase()),
-        );
         self.pending.extend(start);
     }
 

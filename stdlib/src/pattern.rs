@@ -1,16 +1,35 @@
-//! A program's `break(pattern)` needles, searched for all at once: one pass over a
-//! statement's text finds every needle in it, where trying each pattern on each
-//! statement cost patterns x statements (20,000 of each took 18 s to check, and 45 s
-//! through W0904). An Aho-Corasick automaton over the lower-cased needles, written out
-//! here because the `aho-corasick` crate's construction is quadratic in the number of
-//! states when thousands of needles share a prefix (its shuffle of match states).
+//! How `break(pattern)` finds the statements it ends (section 4.5.5): a statement
+//! whose text contains the pattern's needle, ignoring case. One rule for the checker,
+//! the language server and the VM.
+//!
+//! A program's needles are searched for all at once: one pass over a statement's text
+//! finds every needle in it, where trying each pattern on each statement cost patterns
+//! x statements (20,000 of each took 18 s to check, 45 s through W0904, and 9.5 s to
+//! run). An Aho-Corasick automaton over the lower-cased needles, written out here
+//! because the `aho-corasick` crate's construction is quadratic in the number of states
+//! when thousands of needles share a prefix (its shuffle of match states).
 
 use std::borrow::Cow;
 use std::cell::Cell;
 
 use rustc_hash::FxHashMap;
 
-use crate::limits;
+/// Whether a statement's text contains the needle, ignoring case: both lower-cased, as
+/// the VM matches them when the break runs.
+pub fn matches(statement: &str, needle: &str) -> bool {
+    if needle.is_empty() {
+        return false;
+    }
+    if statement.is_ascii() {
+        // A needle with other letters stays other letters lower-cased; an ASCII text
+        // holds none.
+        return needle.is_ascii()
+            && (statement.as_bytes())
+                .windows(needle.len())
+                .any(|w| w.eq_ignore_ascii_case(needle.as_bytes()));
+    }
+    statement.to_lowercase().contains(&needle.to_lowercase())
+}
 
 const ROOT: u32 = 0;
 const NONE: u32 = u32::MAX;
@@ -28,12 +47,16 @@ pub struct Needles {
     /// For each needle given, its place among the distinct ones (`None`: empty).
     ids: Vec<Option<u32>>,
     distinct: usize,
-    /// Matches the searches may still enumerate ([`limits::PATTERN_MATCHES`]).
+    /// Matches the searches may still enumerate, out of `budget`.
     steps: Cell<u64>,
+    budget: u64,
 }
 
 impl Needles {
-    pub fn new<'a>(needles: impl IntoIterator<Item = &'a str>) -> Needles {
+    /// An automaton over `needles` whose searches together enumerate at most `budget`
+    /// matches (each needle counted once for each place it ends at): past it they say
+    /// so, rather than take time and memory without bound.
+    pub fn new<'a>(needles: impl IntoIterator<Item = &'a str>, budget: u64) -> Needles {
         let mut n = Needles {
             next: FxHashMap::default(),
             fail: vec![ROOT],
@@ -41,7 +64,8 @@ impl Needles {
             shorter: vec![NONE],
             ids: Vec::new(),
             distinct: 0,
-            steps: Cell::new(limits::PATTERN_MATCHES),
+            steps: Cell::new(budget),
+            budget,
         };
         for needle in needles {
             let id = (!needle.is_empty()).then(|| n.insert(&needle.to_lowercase()));
@@ -109,11 +133,11 @@ impl Needles {
         }
     }
 
-    /// Gives the searches the whole of [`limits::PATTERN_MATCHES`] again: the language
-    /// server keeps one automaton per check and searches it again on every request,
-    /// each of which is bounded on its own.
+    /// Gives the searches the whole budget again: the language server keeps one
+    /// automaton per check and searches it again on every request, each of which is
+    /// bounded on its own.
     pub fn refill(&self) {
-        self.steps.set(limits::PATTERN_MATCHES);
+        self.steps.set(self.budget);
     }
 
     /// The distinct needles, numbered from 0.
@@ -126,8 +150,8 @@ impl Needles {
         self.ids[i]
     }
 
-    /// Whether `text` contains any needle; `None` past [`limits::PATTERN_MATCHES`], as
-    /// for [`Needles::each_in`].
+    /// Whether `text` contains any needle; `None` past the budget, as for
+    /// [`Needles::each_in`].
     pub fn any_in(&self, text: &str) -> Option<bool> {
         let mut any = false;
         self.each_in(text, &mut Vec::new(), |_| any = true)?;
@@ -135,9 +159,9 @@ impl Needles {
     }
 
     /// Calls `f` once for each distinct needle `text` contains, ignoring case as
-    /// [`super::breaks::matches`] does (in no set order); `None`, and no call, when the
-    /// matches to enumerate pass what is left of [`limits::PATTERN_MATCHES`] (each
-    /// needle counts once for each place it ends at).
+    /// [`matches`] does, in increasing order; `None`, and no call, when the matches to
+    /// enumerate pass what is left of the budget (each needle counts once for each
+    /// place it ends at).
     pub fn each_in(&self, text: &str, seen: &mut Vec<u32>, mut f: impl FnMut(u32)) -> Option<()> {
         if self.distinct == 0 {
             return Some(());
@@ -179,7 +203,8 @@ impl Needles {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::check::breaks::matches;
+
+    const BUDGET: u64 = 1_000_000;
 
     fn found(needles: &Needles, text: &str) -> Vec<u32> {
         let mut out = Vec::new();
@@ -220,7 +245,7 @@ mod tests {
             "",
             "nothing here",
         ];
-        let set = Needles::new(needles);
+        let set = Needles::new(needles, BUDGET);
         for text in texts {
             let mut expected: Vec<u32> = (needles.iter().enumerate())
                 .filter(|(_, n)| matches(text, n))
@@ -240,7 +265,7 @@ mod tests {
     #[test]
     fn thousands_of_needles_with_one_prefix() {
         let needles: Vec<String> = (0..20_000).map(|i| format!("zz{i}")).collect();
-        let set = Needles::new(needles.iter().map(String::as_str));
+        let set = Needles::new(needles.iter().map(String::as_str), BUDGET);
         assert_eq!(set.distinct(), 20_000);
         // "zz123" holds "zz1", "zz12" and "zz123".
         let ids: Vec<u32> = ["zz1", "zz12", "zz123"]
@@ -255,8 +280,7 @@ mod tests {
 
     #[test]
     fn a_spent_budget_is_said() {
-        let set = Needles::new(["a", "aa"]);
-        set.steps.set(3);
+        let set = Needles::new(["a", "aa"], 3);
         // "aa" ends "a" twice and "aa" once: three matches.
         assert_eq!(set.any_in("aa"), Some(true));
         assert_eq!(set.any_in("a"), None);
