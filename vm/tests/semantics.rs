@@ -146,17 +146,7 @@ fn a_loop_steps_in_place_and_a_suspended_one_ends_cleanly() {
     let counting = |a: &mut Asm| {
         let code = vec![
             a.assign("n=0", "n", &[X::N(0.0)]),
-            a.while_(
-                "while(n<50)",
-                &[X::V("n"), X::N(50.0), X::Op(ExprOp::Lt)],
-                None,
-                |a| {
-                    vec![
-                        a.assign("n=n+1", "n", &[X::V("n"), X::N(1.0), X::Op(ExprOp::Add)]),
-                        a.wait("wait(0.01)", 0.01),
-                    ]
-                },
-            ),
+            count_to(a, "n", 50.0, 0.01),
         ];
         a.block(code)
     };
@@ -1223,21 +1213,30 @@ fn obstacle_avoidance_traces_its_state_changes() {
     );
 }
 
+/// `while(v<to)` / `v=v+1` / `wait(nap)` / `endwhile`.
+fn count_to(a: &mut Asm, v: &str, to: f64, nap: f64) -> ilmr_vm::bytecode::Instr {
+    a.while_(
+        &format!("while({v}<{to})"),
+        &[X::V(v), X::N(to), X::Op(ExprOp::Lt)],
+        None,
+        |a| {
+            vec![
+                a.assign(
+                    &format!("{v}={v}+1"),
+                    v,
+                    &[X::V(v), X::N(1.0), X::Op(ExprOp::Add)],
+                ),
+                a.wait(&format!("wait({nap})"), nap),
+            ]
+        },
+    )
+}
+
 /// A counting loop in one block; in the other, after 0.1 s, `breaks`.
 fn loop_and_breaks(breaks: &[(&str, &str)]) -> ilmr_vm::bytecode::Module {
     let mut a = Asm::new();
     a.var("n", VarKind::Number);
-    let counting = vec![a.while_(
-        "while(n<50)",
-        &[X::V("n"), X::N(50.0), X::Op(ExprOp::Lt)],
-        None,
-        |a| {
-            vec![
-                a.assign("n=n+1", "n", &[X::V("n"), X::N(1.0), X::Op(ExprOp::Add)]),
-                a.wait("wait(0.01)", 0.01),
-            ]
-        },
-    )];
+    let counting = vec![count_to(&mut a, "n", 50.0, 0.01)];
     let b1 = a.block(counting);
     a.blank();
     let mut code = vec![a.wait("wait(0.1)", 0.1)];
@@ -1313,21 +1312,7 @@ fn breaks_that_look_at_many_live_nodes_pay_from_the_tick_budget() {
     for i in 0..100 {
         let v = format!("c{i}");
         a.var(&v, VarKind::Number);
-        let code = vec![a.while_(
-            &format!("while({v}<3)"),
-            &[X::V(&v), X::N(3.0), X::Op(ExprOp::Lt)],
-            None,
-            |a| {
-                vec![
-                    a.assign(
-                        &format!("{v}={v}+1"),
-                        &v,
-                        &[X::V(&v), X::N(1.0), X::Op(ExprOp::Add)],
-                    ),
-                    a.wait("wait(1)", 1.0),
-                ]
-            },
-        )];
+        let code = vec![count_to(&mut a, &v, 3.0, 1.0)];
         blocks.push(a.block(code));
         a.blank();
     }
