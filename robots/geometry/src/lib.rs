@@ -11,9 +11,11 @@ pub mod angle;
 pub mod plane;
 pub mod pose;
 pub mod rng;
+pub mod side;
 
 pub use angle::{angle_diff, wrap_angle};
 pub use nalgebra::{Point2, Vector2};
 pub use plane::{PlaneVector, xy};
 pub use pose::Pose;
 pub use rng::{Rng, SplitMix64};
+pub use side::Side;

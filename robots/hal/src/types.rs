@@ -16,12 +16,7 @@ pub struct BodyOffsets {
 /// counter-clockwise from x.
 pub use ilmr_geometry::Pose;
 
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "lowercase")]
-pub enum Side {
-    Left,
-    Right,
-}
+pub use ilmr_geometry::Side;
 
 /// One laser scan: `ranges[i]` is the distance at `angle_min + i * angle_step` radians
 /// in the robot frame.

@@ -47,13 +47,6 @@ const JOIN_REACH: f64 = 5.0;
 /// Candidate joins are this far apart along the path, m.
 const JOIN_STEP: f64 = 0.25;
 
-pub(crate) fn side(s: ilmr_hal::Side) -> Side {
-    match s {
-        ilmr_hal::Side::Left => Side::Left,
-        ilmr_hal::Side::Right => Side::Right,
-    }
-}
-
 fn err(e: impl std::fmt::Display) -> String {
     e.to_string()
 }
@@ -315,7 +308,7 @@ impl<H: Hal, C: Clock> Vm<H, C> {
                     f64::from(d)
                 };
                 let side = match mode {
-                    WallMode::Side(s) => WallSide::Side(side(s)),
+                    WallMode::Side(s) => WallSide::Side(s),
                     WallMode::Middle => WallSide::Middle,
                 };
                 let leg = self.wall_leg(start, side, d)?;
