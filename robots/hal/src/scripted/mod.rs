@@ -40,6 +40,8 @@ pub struct ScriptedRobot {
     ticks: u64,
     script: Script,
     next_reading: usize,
+    /// The scans due so far: the latest is the one before.
+    next_scan: usize,
     devices: Vec<DeviceReading>,
     ops: Vec<RunningOp>,
     actuator_log: Vec<(String, f64)>,
@@ -62,6 +64,7 @@ impl ScriptedRobot {
             ticks: 0,
             script: Script::default(),
             next_reading: 0,
+            next_scan: 0,
             devices: Vec::new(),
             ops: Vec::new(),
             actuator_log: Vec::new(),
@@ -81,19 +84,12 @@ impl ScriptedRobot {
 
     /// From time `t` the device reads `value` (`None`: it gives no data).
     pub fn reading(mut self, t: f64, device: &str, value: Option<f64>) -> ScriptedRobot {
-        // After every reading due at or before `t`: readings at the same time keep the
-        // order they were scripted in, and a script written in time order appends
-        // (sorting after each push made 100,000 readings a quadratic wait).
-        let readings = &mut self.script.readings;
-        let at = readings.partition_point(|r| r.t.total_cmp(&t).is_le());
-        readings.insert(
-            at,
-            TimedReading {
-                t,
-                device: device.to_string(),
-                value,
-            },
-        );
+        self.script.readings.push(TimedReading {
+            t,
+            device: device.to_string(),
+            value,
+        });
+        self.script.sorted = false;
         self
     }
 
@@ -113,9 +109,8 @@ impl ScriptedRobot {
 
     /// From time `scan.t` this is the latest scan.
     pub fn scan(mut self, scan: Scan) -> ScriptedRobot {
-        let scans = &mut self.script.scans;
-        let at = scans.partition_point(|s| s.t.total_cmp(&scan.t).is_le());
-        scans.insert(at, TimedScan { t: scan.t, scan });
+        self.script.scans.push(TimedScan { t: scan.t, scan });
+        self.script.sorted = false;
         self
     }
 
@@ -280,6 +275,7 @@ impl ScriptedRobot {
     }
 
     fn apply_readings(&mut self) {
+        self.script.sort(self.next_reading, self.next_scan);
         while let Some(r) = self.script.readings.get(self.next_reading) {
             if r.t > self.t + 1e-9 {
                 break;
@@ -297,6 +293,20 @@ impl ScriptedRobot {
             }
             self.next_reading += 1;
         }
+    }
+
+    /// Counts the scans taken by now.
+    fn catch_up_scans(&mut self) {
+        self.script.sort(self.next_reading, self.next_scan);
+        while (self.script.scans.get(self.next_scan)).is_some_and(|s| s.t <= self.t + 1e-9) {
+            self.next_scan += 1;
+        }
+    }
+
+    /// The latest scan taken by now (after [`Self::catch_up_scans`]).
+    fn latest_scan(&self) -> Option<&Scan> {
+        let latest = self.next_scan.checked_sub(1)?;
+        self.script.scans.get(latest).map(|s| &s.scan)
     }
 }
 
@@ -341,13 +351,8 @@ impl Hal for ScriptedRobot {
             .iter()
             .find(|d| d.name.eq_ignore_ascii_case("battery"))
             .and_then(|d| d.value);
-        let latest_scan = self
-            .script
-            .scans
-            .iter()
-            .rev()
-            .find(|s| s.t <= self.t + 1e-9)
-            .map(|s| &s.scan);
+        self.catch_up_scans();
+        let latest_scan = self.latest_scan();
         match (latest_scan, out.scan.as_mut()) {
             (Some(s), Some(o)) => o.clone_from(s),
             (Some(s), None) => out.scan = Some(s.clone()),
@@ -540,20 +545,35 @@ mod tests {
             .battery(0.0, 25.0)
             .battery(1.0, 22.0)
             .battery(0.5, 24.0);
-        let times: Vec<(f64, Option<f64>)> = (robot.script.readings.iter())
-            .map(|r| (r.t, r.value))
-            .collect();
-        assert_eq!(
-            times,
-            [
-                (0.0, Some(25.0)),
-                (0.5, Some(24.0)),
-                (1.0, Some(23.0)),
-                (1.0, Some(22.0))
-            ]
-        );
+        assert_eq!(run_to(&mut robot, 0.2).battery, Some(25.0));
         assert_eq!(run_to(&mut robot, 0.6).battery, Some(24.0));
         assert_eq!(run_to(&mut robot, 1.0).battery, Some(22.0), "the later tie");
+    }
+
+    #[test]
+    fn the_latest_scan_is_the_last_taken_by_now_whatever_the_order_scripted() {
+        let scan = |t: f64, r: f64| Scan {
+            device: "scanner".into(),
+            t,
+            angle_min: 0.0,
+            angle_step: 0.1,
+            ranges: vec![r],
+        };
+        let mut robot = ScriptedRobot::new(Limits::default())
+            .scan(scan(1.0, 3.0))
+            .scan(scan(0.0, 1.0))
+            .scan(scan(1.0, 4.0))
+            .scan(scan(0.5, 2.0));
+        let mut snap = Snapshot::default();
+        robot.snapshot(&mut snap).expect("snapshot");
+        assert_eq!(
+            snap.scan.map(|s| s.ranges),
+            Some(vec![1.0]),
+            "before any update"
+        );
+        let range = |s: Snapshot| s.scan.map(|s| s.ranges[0]);
+        assert_eq!(range(run_to(&mut robot, 0.7)), Some(2.0));
+        assert_eq!(range(run_to(&mut robot, 1.0)), Some(4.0), "the later tie");
     }
 
     #[test]

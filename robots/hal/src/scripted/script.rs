@@ -108,12 +108,16 @@ impl Periodic {
     }
 }
 
-/// The script, kept sorted by time where order matters.
+/// The script, sorted by time where order matters.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub(crate) struct Script {
     pub readings: Vec<TimedReading>,
     pub sightings: Vec<Sighting>,
     pub scans: Vec<TimedScan>,
+    /// `readings` and `scans` are in time order: they are sorted once, when the robot
+    /// first runs, rather than after each is scripted (100,000 readings made that a
+    /// quadratic wait).
+    pub sorted: bool,
     /// First matching rule wins; without one an operation is done after one tick.
     pub op_rules: Vec<OpRule>,
     /// `(actuator, reason)`: actuators that refuse every value.
@@ -134,6 +138,21 @@ pub(crate) struct Script {
 }
 
 impl Script {
+    /// Puts what is still to come of the readings and scans in time order, keeping
+    /// those of the same time in the order they were scripted.
+    pub fn sort(&mut self, next_reading: usize, next_scan: usize) {
+        if self.sorted {
+            return;
+        }
+        if let Some(rest) = self.readings.get_mut(next_reading..) {
+            rest.sort_by(|a, b| a.t.total_cmp(&b.t));
+        }
+        if let Some(rest) = self.scans.get_mut(next_scan..) {
+            rest.sort_by(|a, b| a.t.total_cmp(&b.t));
+        }
+        self.sorted = true;
+    }
+
     pub fn failure(&self, call: Call, t: f64) -> Option<HalError> {
         self.failures
             .iter()
