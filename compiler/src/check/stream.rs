@@ -87,10 +87,7 @@ pub(super) fn analyze<'s>(
     let mut paths = paths::Paths::new(&given.paths);
     // Statements that bind are fewer than lines: room for them, written only as they
     // come (untouched room costs no fresh memory).
-    let lines: Vec<usize> = sources[..lead]
-        .iter()
-        .map(|s| s.text.as_bytes().iter().filter(|&&b| b == b'\n').count() + 1)
-        .collect();
+    let lines: Vec<usize> = sources[..lead].iter().map(|s| lines_in(&s.text)).collect();
     let mut owners = owners::Owners::streaming(&files, &skills, model, lines.iter().sum());
     let mut found = Vec::with_capacity(lead);
     let mut buf = String::new();
@@ -193,4 +190,15 @@ pub(super) fn analyze<'s>(
         units,
         diagnostics: diagnostics.into_reported(),
     })
+}
+
+/// The lines of `text`, counted in runs of 255 bytes whose count fits a byte, which
+/// the compiler turns into wide compares: a plain count took 4.7 instructions a byte
+/// (7 M on the 1x corpus).
+fn lines_in(text: &str) -> usize {
+    let runs = text.as_bytes().chunks(255);
+    let breaks: usize = runs
+        .map(|run| usize::from(run.iter().fold(0u8, |n, &b| n + u8::from(b == b'\n'))))
+        .sum();
+    breaks + 1
 }
