@@ -113,14 +113,11 @@ impl<'s> Frozen<'s> {
         diags: &mut Kept,
     ) {
         for (i, entry) in files.iter().enumerate().skip(from) {
-            let blocks = std::slice::from_ref(&entry.tree);
             let file = FileId(i as u32);
-            for tree in blocks {
-                self.any_loop |= add_writes(&mut self.writes, &mut self.buf, file, &tree.blocks);
-                for skill in &tree.skills {
-                    self.any_loop |=
-                        add_writes(&mut self.writes, &mut self.buf, file, &skill.blocks);
-                }
+            let tree = &entry.tree;
+            self.any_loop |= add_writes(&mut self.writes, &mut self.buf, file, &tree.blocks);
+            for skill in &tree.skills {
+                self.any_loop |= add_writes(&mut self.writes, &mut self.buf, file, &skill.blocks);
             }
         }
         if !self.any_loop {
