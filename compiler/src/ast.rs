@@ -219,21 +219,23 @@ impl CmpOp {
 impl<'s> SourceFile<'s> {
     /// Every block of the file at every depth, in source order, with the blocks of skills.
     pub fn for_each_stmt(&self, f: &mut impl FnMut(&Stmt<'s>)) {
-        fn walk<'a, 's>(blocks: &'a [Block<'s>], f: &mut impl FnMut(&'a Stmt<'s>)) {
-            for block in blocks {
-                for stmt in &block.stmts {
-                    f(stmt);
-                    match &stmt.kind {
-                        StmtKind::If(c) | StmtKind::While { body: c, .. } => walk(&c.body, f),
-                        StmtKind::Check { body, .. } => walk(body, f),
-                        _ => {}
-                    }
-                }
-            }
-        }
-        walk(&self.blocks, f);
+        for_each_stmt_in(&self.blocks, f);
         for skill in &self.skills {
-            walk(&skill.blocks, f);
+            for_each_stmt_in(&skill.blocks, f);
+        }
+    }
+}
+
+/// Every statement of `blocks` and of the blocks inside them, in text order.
+pub fn for_each_stmt_in<'a, 's>(blocks: &'a [Block<'s>], f: &mut impl FnMut(&'a Stmt<'s>)) {
+    for block in blocks {
+        for stmt in &block.stmts {
+            f(stmt);
+            match &stmt.kind {
+                StmtKind::If(c) | StmtKind::While { body: c, .. } => for_each_stmt_in(&c.body, f),
+                StmtKind::Check { body, .. } => for_each_stmt_in(body, f),
+                _ => {}
+            }
         }
     }
 }

@@ -97,6 +97,12 @@ impl Kept {
             .is_none_or(|(f, start, _)| (file, span.start) <= (f, start))
     }
 
+    /// Whether as many diagnostics as the limit have come: from there on, which are
+    /// kept depends on the order they come in (`check/stream.rs` needs it not to).
+    pub fn near_limit(&self) -> bool {
+        self.cut.is_some() || self.list.len() >= self.limit || !self.past.is_empty()
+    }
+
     /// Counts a diagnostic of `code` that [`Kept::admits`] said would be dropped,
     /// without composing it.
     pub fn count_dropped(&mut self, code: Code) {

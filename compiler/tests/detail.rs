@@ -101,6 +101,64 @@ fn the_corpus_with_damaged_lines() {
     assert!(assert_same(&sources, "moro") > 50);
 }
 
+/// `ilmrc check` reads a task block by block where the diagnostics allow it
+/// (`check/stream.rs`): then no tree of it is kept. The corpus with statements that
+/// are wrong but parse (unknown names, frozen and starving loops, settings that
+/// meet): streamed, with the whole tree's diagnostics, unless a starving loop makes
+/// the check fall back to the whole tree.
+#[test]
+fn the_corpus_is_checked_block_by_block() {
+    let corpus = corpus::generate(3_000);
+    let damage = [
+        "speeed(0.3)",
+        "gotoxy(v99999)",
+        "turn(lft)",
+        "skill3",
+        "q = nothing + 1",
+        "käännös = 3",
+        "KÄÄNNÖS = käännös + 1",
+        "priority = highest",
+        "speed(0.7)",
+        "n7 = 1\nwhile(n7 < 2)\nspeed(0.2)\nwait(1)\nendwhile",
+        "\nspeed(0.4)\n",
+    ];
+    let damaged = |starving: bool| -> String {
+        let mut lines: Vec<String> = corpus
+            .task
+            .lines()
+            .enumerate()
+            .map(|(i, line)| match i % 41 {
+                // Inserted, not in place of a line: an `endif` replaced would be a
+                // diagnostic of the parser, which the streamed check leaves alone.
+                // Each loop's own counter, set once before it: W0901.
+                0 => format!("{}\n{line}", damage[(i / 41) % damage.len()])
+                    .replace("n7", &format!("n7_{i}")),
+                _ => line.to_string(),
+            })
+            .collect();
+        if starving {
+            lines.push("\nwhile(1)\nx9 = 1\nendwhile".to_string());
+        }
+        lines.join("\n")
+    };
+    let model = RobotModel::builtin("moro").unwrap();
+    for starving in [false, true] {
+        let sources = [
+            Source::new("task.ilmr", damaged(starving)),
+            Source::library("skills.ilms", corpus.skills.clone()),
+        ];
+        let n = assert_same(&sources, "moro");
+        assert!(n > 30, "{n} diagnostics");
+        let lean = analyze_with(&sources, &model, Detail::Diagnostics);
+        assert_eq!(lean.files[0].tree.blocks.is_empty(), !starving);
+        let codes: Vec<&str> = lean.diagnostics.iter().map(|d| d.code.as_str()).collect();
+        for code in ["E0301", "W0901", "W0905"] {
+            assert!(codes.contains(&code), "no {code} among {codes:?}");
+        }
+        assert_eq!(codes.contains(&"W0902"), starving);
+    }
+}
+
 const PIECES: &[&str] = &[
     "turn",
     "sensor",

@@ -18,6 +18,7 @@ pub mod schedule;
 mod scope;
 mod skills;
 mod starve;
+mod stream;
 pub mod suggest;
 mod wakes;
 
@@ -149,7 +150,8 @@ pub enum Detail {
     Full,
     /// What the diagnostics need (`ilmrc check`): `Unit::refs` stays empty,
     /// `Unit::targets` holds only skill calls, and a variable keeps only its first
-    /// definition and its first use.
+    /// definition and its first use. Task files are read block by block where the
+    /// diagnostics allow (`stream.rs`): such a file's `FileEntry::tree` is left empty.
     Diagnostics,
 }
 
@@ -264,6 +266,11 @@ pub fn analyze_given<'s>(
     detail: Detail,
     given: &Given,
 ) -> Analysis<'s> {
+    if detail == Detail::Diagnostics
+        && let Some(streamed) = stream::analyze(sources, model, given)
+    {
+        return streamed;
+    }
     let mut diagnostics = Kept::new();
     let mut files: Vec<FileEntry<'s>> = Vec::with_capacity(sources.len() + 1);
     let builtins = ilmr_stdlib::skills::BUILTIN_SKILL_FILES
@@ -306,9 +313,55 @@ pub fn analyze_given<'s>(
         .blocks(&entry.tree.blocks);
         units.push(unit);
     }
+    let special_blocks = check_skills(
+        &files,
+        &mut skills,
+        &mut specials,
+        &mut units,
+        &mut diagnostics,
+        model,
+        &constants,
+        &names,
+        detail,
+    );
+
+    breaks::check_patterns(&files, &skills, &mut diagnostics);
+    let variables = units.iter().map(|u| u.vars.len()).sum();
+    loops::check_frozen_loops(&files, &skills, variables, &mut diagnostics);
+    wakes::check_waits(&files, &mut diagnostics);
+    paths::check_paths(&files, &given.paths, &mut diagnostics);
+    owners::check_owners(&files, &skills, &units, model, &mut diagnostics);
+    unused_variables(&files, &units, &mut diagnostics);
+
+    Analysis {
+        files,
+        skills,
+        specials: specials.list,
+        special_blocks,
+        units,
+        diagnostics: diagnostics.into_reported(),
+    }
+}
+
+/// The skills a program's task units reach, after the task files' walk: those of the
+/// files given to check first, then the library skills that anything checked so far
+/// calls (library skills are checked only where called), then the specializations of
+/// parameterized skills. Returns the specializations' bodies.
+#[allow(clippy::too_many_arguments)]
+fn check_skills<'s>(
+    files: &[FileEntry<'s>],
+    skills: &mut skills::Skills,
+    specials: &mut params::Specials,
+    units: &mut Vec<Unit>,
+    diagnostics: &mut Kept,
+    model: &RobotModel,
+    constants: &constants::Constants,
+    names: &names::Names,
+    detail: Detail,
+) -> Vec<Box<[Block<'s>]>> {
     // Keyed as a skill's table looks them up; a later binding of a name replaces an
     // earlier one.
-    let globals = std::rc::Rc::new(skills_view(None, &skills, &units));
+    let globals = std::rc::Rc::new(skills_view(None, skills, units));
     // Skills of the files given to check first; then the library skills that anything
     // checked so far calls (library skills are checked only where called).
     for library in [false, true] {
@@ -336,14 +389,14 @@ pub fn analyze_given<'s>(
         for id in ids {
             let unit = check_skill(
                 id,
-                &files,
-                &skills,
-                &mut specials,
-                &mut diagnostics,
+                files,
+                skills,
+                specials,
+                diagnostics,
                 Checking {
                     model,
-                    constants: &constants,
-                    names: &names,
+                    constants,
+                    names,
                     globals: &globals,
                     detail,
                 },
@@ -351,37 +404,20 @@ pub fn analyze_given<'s>(
             units.push(unit);
         }
     }
-    let special_blocks = check_specials(
-        &files,
-        &skills,
-        &mut specials,
-        &mut units,
-        &mut diagnostics,
+    check_specials(
+        files,
+        skills,
+        specials,
+        units,
+        diagnostics,
         Checking {
             model,
-            constants: &constants,
-            names: &names,
+            constants,
+            names,
             globals: &globals,
             detail,
         },
-    );
-
-    breaks::check_patterns(&files, &skills, &mut diagnostics);
-    let variables = units.iter().map(|u| u.vars.len()).sum();
-    loops::check_frozen_loops(&files, &skills, variables, &mut diagnostics);
-    wakes::check_waits(&files, &mut diagnostics);
-    paths::check_paths(&files, &given.paths, &mut diagnostics);
-    owners::check_owners(&files, &skills, &units, model, &mut diagnostics);
-    unused_variables(&files, &units, &mut diagnostics);
-
-    Analysis {
-        files,
-        skills,
-        specials: specials.list,
-        special_blocks,
-        units,
-        diagnostics: diagnostics.into_reported(),
-    }
+    )
 }
 
 /// What checking a unit needs besides the unit.

@@ -113,7 +113,31 @@ struct Record {
     order: u32,
 }
 
-struct Owners<'a, 's> {
+/// What W0905 has gathered, apart from what it reads: carried from the streamed blocks
+/// of a task (`check/stream.rs`) into the check of the other files.
+pub struct Tally {
+    owns: u64,
+    targets: FxHashMap<u64, String>,
+    records: Vec<Record>,
+    strands: u32,
+    origins: u32,
+    holds: FxHashMap<u32, bool>,
+    starts: FxHashMap<u32, Rc<Vec<SkillSet>>>,
+    exits: FxHashMap<u32, Option<Rc<Vec<Step>>>>,
+    guessed: Vec<Guess>,
+}
+
+/// A call inside a skill resolved by its name while the skill's own check had not
+/// run yet (a streamed task's blocks come before it): `Owners::resume` compares it with
+/// what that check resolved.
+struct Guess {
+    file: u32,
+    slot: u32,
+    at: Span,
+    skill: Option<SkillId>,
+}
+
+pub struct Owners<'a, 's> {
     files: &'a [FileEntry<'s>],
     /// The skill calls the checker resolved in each task file (slot 0) and skill (its
     /// index in its file, plus 1), by statement: cheaper than looking names up again.
@@ -139,6 +163,11 @@ struct Owners<'a, 's> {
     /// The file whose statements' moments are written down (`schedule.rs`), if any.
     recording: Option<FileId>,
     moments: Vec<Moment>,
+    /// The task file being streamed and its unit's targets, lent block by block.
+    streamed_file: Option<u32>,
+    streamed: FxHashMap<Span, Target>,
+    /// While streaming: calls inside skills resolved by name (`Guess`).
+    guessed: Option<Vec<Guess>>,
 }
 
 /// The settings of one thing at one moment, as far as whether they can meet.
@@ -189,13 +218,110 @@ pub fn check_owners(
     model: &RobotModel,
     diags: &mut Kept,
 ) {
-    let mut o = Owners::new(files, skills, units, model);
+    let records = files.iter().map(|f| f.binds).sum();
+    let mut o = Owners::new(files, skills, units, model, records);
     for (i, entry) in files.iter().enumerate() {
         if !entry.library {
             o.file(FileId(i as u32));
         }
     }
     o.report(diags);
+}
+
+/// W0905 of the files from `from` on, after the streamed blocks `tally` holds, and
+/// the verdicts. False when a call inside a skill that the streamed blocks resolved by
+/// name is one the skill's check resolved otherwise: the caller checks as usual.
+pub fn finish_owners(
+    tally: Tally,
+    files: &[FileEntry<'_>],
+    from: usize,
+    skills: &Skills,
+    units: &[Unit],
+    model: &RobotModel,
+    diags: &mut Kept,
+) -> bool {
+    // The streamed blocks' records are most of them: their room is carried over.
+    let mut o = Owners::new(files, skills, units, model, 0);
+    for g in &tally.guessed {
+        if let Some(targets) = o.calls.get(&(g.file, g.slot)) {
+            let resolved = match targets.get(&g.at) {
+                Some(Target::Skill(id)) => Some(*id),
+                _ => None,
+            };
+            if resolved != g.skill {
+                return false;
+            }
+        }
+    }
+    o.owns = tally.owns;
+    o.targets = tally.targets;
+    o.records = tally.records;
+    o.strands = tally.strands;
+    o.origins = tally.origins;
+    o.holds = tally.holds;
+    o.starts = tally.starts;
+    o.exits = tally.exits;
+    for (i, entry) in files.iter().enumerate().skip(from) {
+        if !entry.library {
+            o.file(FileId(i as u32));
+        }
+    }
+    o.report(diags);
+    true
+}
+
+impl<'a, 's> Owners<'a, 's> {
+    /// For a task streamed block by block: the skills' checks have not run yet, so
+    /// calls inside skills are resolved by name and noted (`Guess`). `records` is room
+    /// for the settings expected.
+    pub fn streaming(
+        files: &'a [FileEntry<'s>],
+        skills: &'a Skills,
+        model: &'a RobotModel,
+        records: usize,
+    ) -> Owners<'a, 's> {
+        let mut o = Owners::new(files, skills, &[], model, records);
+        o.guessed = Some(Vec::new());
+        o
+    }
+
+    /// One top-level block (the `index`th) of the streamed task `file`, whose unit's
+    /// targets are `targets` (lent for the block).
+    pub fn stream_block(
+        &mut self,
+        file: FileId,
+        index: usize,
+        block: &Block<'_>,
+        targets: &mut FxHashMap<Span, Target>,
+    ) {
+        self.streamed_file = Some(file.0);
+        std::mem::swap(&mut self.streamed, targets);
+        let key = self.key(0, Step::Unit(file.0, 0));
+        self.block(
+            file,
+            block,
+            key,
+            0,
+            Opening::Unit { skill: false },
+            index,
+            0,
+        );
+        std::mem::swap(&mut self.streamed, targets);
+    }
+
+    pub fn into_tally(self) -> Tally {
+        Tally {
+            owns: self.owns,
+            targets: self.targets,
+            records: self.records,
+            strands: self.strands,
+            origins: self.origins,
+            holds: self.holds,
+            starts: self.starts,
+            exits: self.exits,
+            guessed: self.guessed.unwrap_or_default(),
+        }
+    }
 }
 
 /// The moments of `file`'s statements, unsorted (`schedule::schedule`).
@@ -206,7 +332,7 @@ pub fn moments(
     model: &RobotModel,
     file: FileId,
 ) -> Vec<Moment> {
-    let mut o = Owners::new(files, skills, units, model);
+    let mut o = Owners::new(files, skills, units, model, 0);
     o.recording = Some(file);
     if files.get(file.0 as usize).is_some() {
         o.file(file);
@@ -220,6 +346,7 @@ impl<'a, 's> Owners<'a, 's> {
         skills: &'a Skills,
         units: &'a [Unit],
         model: &'a RobotModel,
+        records: usize,
     ) -> Owners<'a, 's> {
         let calls = units
             .iter()
@@ -239,7 +366,7 @@ impl<'a, 's> Owners<'a, 's> {
             // Room written only as settings are found: a large task's records would
             // otherwise be copied each time they double. There are seldom more settings
             // than statements that bind.
-            records: Vec::with_capacity(files.iter().map(|f| f.binds).sum()),
+            records: Vec::with_capacity(records),
             strands: 0,
             origins: 0,
             holds: FxHashMap::default(),
@@ -252,6 +379,9 @@ impl<'a, 's> Owners<'a, 's> {
             buf: String::new(),
             recording: None,
             moments: Vec::new(),
+            streamed_file: None,
+            streamed: FxHashMap::default(),
+            guessed: None,
         }
     }
 
@@ -305,16 +435,32 @@ impl<'s> Owners<'_, 's> {
         {
             return Called::Command(c);
         }
-        match self.calls.get(&(file.0, slot)) {
+        let targets = if slot == 0 && self.streamed_file == Some(file.0) {
+            Some(&self.streamed)
+        } else {
+            self.calls.get(&(file.0, slot)).copied()
+        };
+        match targets {
             Some(targets) => match targets.get(&at) {
                 Some(Target::Skill(id)) => Called::Skill(*id),
                 _ => Called::Other,
             },
             // A library skill no call checked: look the name up.
-            None => match self.skills.find_with(name, &mut self.buf) {
-                Some(id) if Command::from_name(name).is_none() => Called::Skill(id),
-                _ => Called::Other,
-            },
+            None => {
+                let skill = self
+                    .skills
+                    .find_with(name, &mut self.buf)
+                    .filter(|_| Command::from_name(name).is_none());
+                if let Some(guessed) = self.guessed.as_mut() {
+                    guessed.push(Guess {
+                        file: file.0,
+                        slot,
+                        at,
+                        skill,
+                    });
+                }
+                skill.map_or(Called::Other, Called::Skill)
+            }
         }
     }
 
@@ -332,30 +478,45 @@ impl<'s> Owners<'_, 's> {
         slot: u32,
         opening: Opening,
     ) {
-        let recording = self.recording == Some(file);
         for (b, block) in blocks.iter().enumerate() {
-            let strand = self.strand();
-            let mut key = key;
-            let mut queue = Queue::default();
-            let mut start = opening.start(b, blocks.len());
-            let mut first = true;
-            for stmt in &block.stmts {
-                if recording {
-                    let queued_after = queue.issue(stmt);
-                    self.moments.push(Moment {
-                        span: stmt.span,
-                        start,
-                        first,
-                        queued_after,
-                    });
-                }
-                let next = self.stmt(file, slot, stmt, key, strand);
-                first = next != key;
-                if first {
-                    start = Start::HeldBy { by: stmt.span };
-                }
-                key = next;
+            self.block(file, block, key, slot, opening, b, blocks.len());
+        }
+    }
+
+    /// The `b`th of `blocks` sibling blocks: a strand of its own, starting at `key`.
+    #[allow(clippy::too_many_arguments)]
+    fn block(
+        &mut self,
+        file: FileId,
+        block: &Block<'_>,
+        key: When,
+        slot: u32,
+        opening: Opening,
+        b: usize,
+        blocks: usize,
+    ) {
+        let recording = self.recording == Some(file);
+        let strand = self.strand();
+        let mut key = key;
+        let mut queue = Queue::default();
+        let mut start = opening.start(b, blocks);
+        let mut first = true;
+        for stmt in &block.stmts {
+            if recording {
+                let queued_after = queue.issue(stmt);
+                self.moments.push(Moment {
+                    span: stmt.span,
+                    start,
+                    first,
+                    queued_after,
+                });
             }
+            let next = self.stmt(file, slot, stmt, key, strand);
+            first = next != key;
+            if first {
+                start = Start::HeldBy { by: stmt.span };
+            }
+            key = next;
         }
     }
 

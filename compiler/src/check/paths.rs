@@ -26,20 +26,61 @@ struct Follow<'s> {
 }
 
 pub fn check_paths(files: &[FileEntry<'_>], given: &[String], diags: &mut Kept) {
-    // Only a `followpath` outside a library is reported: without one, nothing to walk.
-    if !files.iter().any(|f| !f.library && f.seen.follows_path) {
-        return;
-    }
-    let mut made: FxHashSet<String> = given.iter().map(|p| p.to_lowercase()).collect();
-    let mut follows = Vec::new();
-    for (i, entry) in files.iter().enumerate() {
-        let file = FileId(i as u32);
-        let report = !entry.library;
-        walk(file, &entry.tree.blocks, report, &mut made, &mut follows);
-        for skill in &entry.tree.skills {
-            walk(file, &skill.blocks, report, &mut made, &mut follows);
+    Paths::new(given).finish(files, 0, diags);
+}
+
+/// W0903 gathered as a streamed task's blocks come (`check/stream.rs`): the paths made
+/// and the `followpath`s met, judged in [`Paths::finish`] once every file is read.
+pub struct Paths<'s> {
+    made: FxHashSet<String>,
+    follows: Vec<Follow<'s>>,
+}
+
+impl<'s> Paths<'s> {
+    pub fn new(given: &[String]) -> Paths<'s> {
+        Paths {
+            made: given.iter().map(|p| p.to_lowercase()).collect(),
+            follows: Vec::new(),
         }
     }
+
+    /// One top-level block of a streamed task file.
+    pub fn block(&mut self, file: FileId, block: &Block<'s>) {
+        let blocks = std::slice::from_ref(block);
+        walk(file, blocks, true, &mut self.made, &mut self.follows);
+    }
+
+    /// The files from `from` on, then the verdicts.
+    pub fn finish(mut self, files: &[FileEntry<'s>], from: usize, diags: &mut Kept) {
+        // Only a `followpath` outside a library is reported: without one, nothing to walk.
+        if !files.iter().any(|f| !f.library && f.seen.follows_path) {
+            return;
+        }
+        for (i, entry) in files.iter().enumerate().skip(from) {
+            let file = FileId(i as u32);
+            let report = !entry.library;
+            walk(
+                file,
+                &entry.tree.blocks,
+                report,
+                &mut self.made,
+                &mut self.follows,
+            );
+            for skill in &entry.tree.skills {
+                walk(
+                    file,
+                    &skill.blocks,
+                    report,
+                    &mut self.made,
+                    &mut self.follows,
+                );
+            }
+        }
+        report(&self.made, self.follows, diags);
+    }
+}
+
+fn report(made: &FxHashSet<String>, follows: Vec<Follow<'_>>, diags: &mut Kept) {
     for f in follows {
         if made.contains(&f.name.to_lowercase()) {
             continue;
@@ -68,7 +109,7 @@ pub fn check_paths(files: &[FileEntry<'_>], given: &[String], diags: &mut Kept) 
 
 fn walk<'s>(
     file: FileId,
-    blocks: &'s [Block<'s>],
+    blocks: &[Block<'s>],
     report: bool,
     made: &mut FxHashSet<String>,
     follows: &mut Vec<Follow<'s>>,

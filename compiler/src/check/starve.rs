@@ -39,19 +39,11 @@ pub fn check(
     body: &[Block<'_>],
     diags: &mut Kept,
 ) {
+    if !may_starve(program.skills, cond, body) {
+        return;
+    }
     let mut read: SmallVec<[&str; 4]> = SmallVec::new();
     names_in(cond, &mut read);
-    // First whether it starves at all, without a cost: most loops wait, move or count
-    // in their body, and are left at their first such statement.
-    for s in body.iter().flat_map(|b| b.stmts.iter()) {
-        if !ends_at_issue(program, s) {
-            return;
-        }
-        if written(s).any(|w| read.iter().any(|r| r.eq_ignore_ascii_case(w))) {
-            // The body may turn the condition false within the tick: a counting loop.
-            return;
-        }
-    }
     read.retain(|n| (program.is_variable)(n));
     let mut ops = 1 + expr_ops(program, cond);
     if body.len() > 1 {
@@ -101,14 +93,32 @@ pub fn check(
     );
 }
 
+/// Whether the loop may starve at all, without a cost: most loops wait, move or count
+/// in their body, and are left at their first such statement. Needs only the skills,
+/// not the program's variables.
+pub fn may_starve(skills: &Skills, cond: &Expr<'_>, body: &[Block<'_>]) -> bool {
+    let mut read: SmallVec<[&str; 4]> = SmallVec::new();
+    names_in(cond, &mut read);
+    for s in body.iter().flat_map(|b| b.stmts.iter()) {
+        if !ends_at_issue(skills, s) {
+            return false;
+        }
+        if written(s).any(|w| read.iter().any(|r| r.eq_ignore_ascii_case(w))) {
+            // The body may turn the condition false within the tick: a counting loop.
+            return false;
+        }
+    }
+    true
+}
+
 /// Whether a statement of the body surely ends the instant it is issued.
-fn ends_at_issue(program: &Program<'_>, stmt: &Stmt<'_>) -> bool {
+fn ends_at_issue(skills: &Skills, stmt: &Stmt<'_>) -> bool {
     match &stmt.kind {
         StmtKind::Assign { value, .. } => match &value.kind {
             // `v = name`: a copy, a constant, a bare command or a skill call.
             ExprKind::Name(n) => match Command::from_name(n.text) {
                 Some(command) => command.spec().ends.at_issue(std::iter::empty()),
-                None => program.skills.find(n.text).is_none(),
+                None => skills.find(n.text).is_none(),
             },
             _ => true,
         },

@@ -222,6 +222,26 @@ impl<'s> Builder<'s> {
         true
     }
 
+    /// Whether a top-level block has finished since the last [`Builder::ready`].
+    pub fn has_ready(&self) -> bool {
+        self.stack.len() == 1 && !self.parts.blocks.is_empty()
+    }
+
+    /// The top-level blocks finished since the last call, taken out of the tree (a
+    /// streamed parse, `parser::parse_streamed`). Only while no block is open: then
+    /// every finished block is the root's.
+    pub fn ready(&mut self) -> std::vec::Drain<'_, Block<'s>> {
+        debug_assert_eq!(self.stack.len(), 1);
+        self.parts.blocks.drain(..)
+    }
+
+    /// Whether the file so far is one a streamed parse gives up on: not a plain task
+    /// (a skill header), structure reported, or a statement that never ends (W0904
+    /// reads the whole program for what may end it).
+    pub fn refuses_streaming(&self) -> bool {
+        self.task_blocks.is_some() || !self.diagnostics.is_empty() || self.seen.never_ending
+    }
+
     /// Ends the top frame's current block.
     fn flush(&mut self) {
         let from = self.top().stmts;

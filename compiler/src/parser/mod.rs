@@ -12,7 +12,7 @@ mod lines;
 
 use chumsky::error::{RichPattern, RichReason};
 
-use crate::ast::{Expr, ExprKind, Name, SourceFile, StmtKind};
+use crate::ast::{Block, Expr, ExprKind, FileKind, Name, SourceFile, StmtKind};
 use crate::diagnostic::{Code, Diagnostic, FileId};
 use crate::kept::{Kept, Past};
 use crate::lexer::{self, Token};
@@ -40,17 +40,38 @@ pub struct Parsed<'s> {
 /// grammar's price only where it is unusual. Tokens are read a line at a time into one
 /// reused buffer; the file's tokens are never held at once.
 pub fn parse<'s>(source: &'s str, file: FileId) -> Parsed<'s> {
+    read(source, file, None::<fn(Block<'s>) -> bool>)
+        .expect("a parse that streams nothing is never given up")
+}
+
+/// A task file read block by block (`ilmrc check`'s streaming check, `check/stream.rs`):
+/// each top-level block goes to `sink` as soon as its last line is read, and is not
+/// kept in the tree, so a large task is never held whole. `None` as soon as the file
+/// is anything but a task without diagnostics, breaks with patterns or statements that
+/// never end (what the checker's passes after the walk need the whole tree for), or
+/// when `sink` returns false: the caller then parses and checks it as usual.
+pub fn parse_streamed<'s>(
+    source: &'s str,
+    file: FileId,
+    sink: impl FnMut(Block<'s>) -> bool,
+) -> Option<Parsed<'s>> {
+    read(source, file, Some(sink))
+}
+
+fn read<'s, F: FnMut(Block<'s>) -> bool>(
+    source: &'s str,
+    file: FileId,
+    sink: Option<F>,
+) -> Option<Parsed<'s>> {
     let mut tokens = lexer::Tokens::new(source);
     let mut line: Vec<(Token, Span)> = Vec::new();
     let mut patterns = Kept::new();
     let mut syntax = Kept::new();
-    let mut unclosed = Kept::new();
-    let mut builder = blocks::Builder::new(source, file);
-    let mut emit = |parsed: ParsedLine<'s>| {
-        if let Some(d) = unclosed_args(&parsed.line, file) {
-            unclosed.push(d);
-        }
-        builder.line(parsed);
+    let mut sink = sink;
+    let mut out = Emit {
+        builder: blocks::Builder::new(source, file),
+        unclosed: Kept::new(),
+        file,
     };
     // The grammar spans an empty line from its line break back to the end of the token
     // before (the end of the file when there is none); the reader does the same.
@@ -87,7 +108,7 @@ pub fn parse<'s>(source: &'s str, file: FileId) -> Parsed<'s> {
         match (line.first(), line.last(), too_complex) {
             (Some(_), Some(_), Some(at)) => {
                 syntax.push(too_complex_diagnostic(at, file));
-                emit(unparsed_line(&line, source));
+                out.line(unparsed_line(&line, source));
             }
             (Some(&(_, first)), Some(&(_, last)), None) => {
                 let whole = Span {
@@ -96,12 +117,12 @@ pub fn parse<'s>(source: &'s str, file: FileId) -> Parsed<'s> {
                 };
                 if let Some((meant, d)) = hints::block_end(&line, source, file) {
                     syntax.push(d);
-                    emit(ParsedLine {
+                    out.line(ParsedLine {
                         line: meant,
                         span: whole,
                     });
                 } else if let Some(parsed) = fast::line(&line, source) {
-                    emit(ParsedLine {
+                    out.line(ParsedLine {
                         line: parsed,
                         span: whole,
                     });
@@ -110,16 +131,18 @@ pub fn parse<'s>(source: &'s str, file: FileId) -> Parsed<'s> {
                     // dearest path, would only feed a count: the line is read for
                     // what it opens and binds, as an unparsed one is.
                     syntax.count_dropped(Code::Syntax);
-                    emit(unparsed_line(&line, source));
+                    out.line(unparsed_line(&line, source));
                 } else {
                     line.push((token, span));
                     let (lines, errors) = lines::parse_lines(&line, source);
                     let (diagnostics, read_as) = explained_errors(&line, errors, file, source);
                     syntax.extend(diagnostics);
-                    read_as.unwrap_or(lines).into_iter().for_each(&mut emit);
+                    for parsed in read_as.unwrap_or(lines) {
+                        out.line(parsed);
+                    }
                 }
             }
-            _ => emit(ParsedLine {
+            _ => out.line(ParsedLine {
                 line: Line::Blank,
                 span: Span {
                     start: span.start,
@@ -129,10 +152,48 @@ pub fn parse<'s>(source: &'s str, file: FileId) -> Parsed<'s> {
         }
         previous_end = span.end;
         line.clear();
+        // Whether to give up is asked only as blocks finish: what was read since
+        // then is read again anyway when the caller parses the file as usual.
+        if let Some(sink) = sink.as_mut()
+            && out.builder.has_ready()
+        {
+            if break_patterns
+                || out.builder.refuses_streaming()
+                || !(patterns.is_empty() && syntax.is_empty() && out.unclosed.is_empty())
+            {
+                return None;
+            }
+            for block in out.builder.ready() {
+                if !sink(block) {
+                    return None;
+                }
+            }
+        }
     }
+    let Emit {
+        builder, unclosed, ..
+    } = out;
     let binds = builder.binds;
     let seen = builder.seen;
-    let (tree, structure) = builder.finish(tokens.comments);
+    let refused = builder.refuses_streaming();
+    let (mut tree, structure) = builder.finish(tokens.comments);
+    if let Some(mut sink) = sink {
+        if refused
+            || break_patterns
+            || !(patterns.is_empty()
+                && syntax.is_empty()
+                && unclosed.is_empty()
+                && structure.is_empty())
+            || tree.kind != FileKind::Task
+        {
+            return None;
+        }
+        for block in std::mem::take(&mut tree.blocks) {
+            if !sink(block) {
+                return None;
+            }
+        }
+    }
     let mut parsed = finish(
         tree,
         [patterns, syntax, structure, unclosed],
@@ -140,7 +201,23 @@ pub fn parse<'s>(source: &'s str, file: FileId) -> Parsed<'s> {
     );
     parsed.binds = binds;
     parsed.seen = seen;
-    parsed
+    Some(parsed)
+}
+
+/// Where parsed lines go: the block builder, and the check that argument lists close.
+struct Emit<'s> {
+    builder: blocks::Builder<'s>,
+    unclosed: Kept,
+    file: FileId,
+}
+
+impl<'s> Emit<'s> {
+    fn line(&mut self, parsed: ParsedLine<'s>) {
+        if let Some(d) = unclosed_args(&parsed.line, self.file) {
+            self.unclosed.push(d);
+        }
+        self.builder.line(parsed);
+    }
 }
 
 /// A line past [`limits::MAX_LINE_OPERATORS`], which is not parsed: what it opens (so

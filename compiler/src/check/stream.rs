@@ -1,0 +1,204 @@
+//! `ilmrc check` (`Detail::Diagnostics`) on task files read block by block: each
+//! top-level block of a task is walked, then seen by W0901, W0903 and W0905, and
+//! dropped before the next is parsed, as `luac` compiles one function at a time. The
+//! tree of a large task is most of what a check writes to memory (docs/performance.md,
+//! sessions 11-14), and the passes after the walk used to read all of it again.
+//!
+//! What those passes judge only once the whole program is known is gathered as the
+//! blocks go: W0901 keeps each loop's condition names with the assignments its block
+//! issued before it (`loops::Frozen`), W0903 the paths made and followed
+//! (`paths::Paths`), W0905 its records and what it learnt of each skill
+//! (`owners::Tally`). The diagnostics are those of the whole-tree check, in the same
+//! order: whatever this path cannot reproduce exactly makes it give the file back
+//! (`None`), and [`super::analyze_given`] checks as before. It gives up on a task with
+//! a skill header, a diagnostic of the parser, a `break(pattern)` or a statement that
+//! never ends in any file (W0701/W0702 and W0904 search the whole program), a loop that
+//! may starve (W0902 weighs it by the whole program's variables), a call inside a
+//! skill that W0905 resolved by name otherwise than the skill's check did, or as many
+//! diagnostics as the limit (past it, which are kept depends on the order they come).
+
+use super::*;
+
+/// The analysis of `sources`, or `None` where the whole-tree check must do it.
+pub(super) fn analyze<'s>(
+    sources: &'s [Source],
+    model: &RobotModel,
+    given: &Given,
+) -> Option<Analysis<'s>> {
+    let detail = Detail::Diagnostics;
+    // The task files given first: every pass meets their blocks first, as it would in
+    // the whole tree. A file named as a skill file is left to the usual check.
+    let lead = sources
+        .iter()
+        .take_while(|s| !s.library && !s.path.ends_with(".ilms"))
+        .count();
+    if lead == 0 {
+        return None;
+    }
+    let mut diagnostics = Kept::new();
+    let mut files: Vec<FileEntry<'s>> = Vec::with_capacity(sources.len() + 1);
+    for s in &sources[..lead] {
+        files.push(FileEntry {
+            path: &s.path,
+            text: &s.text,
+            tree: SourceFile {
+                kind: FileKind::Task,
+                blocks: Box::default(),
+                skills: Vec::new(),
+                comments: Vec::new(),
+                span: Span::new(0, s.text.len()),
+            },
+            builtin: false,
+            library: false,
+            break_patterns: false,
+            syntax_errors: 0,
+            binds: 0,
+            seen: parser::Seen::default(),
+        });
+    }
+    let builtins = ilmr_stdlib::skills::BUILTIN_SKILL_FILES
+        .iter()
+        .map(|b| (b.path, b.source, true, true));
+    let rest = sources[lead..]
+        .iter()
+        .map(|s| (s.path.as_str(), s.text.as_str(), false, s.library));
+    for (i, (path, text, builtin, library)) in rest.chain(builtins).enumerate() {
+        let file = FileId((lead + i) as u32);
+        let (entry, found, past) = FileEntry::parse(path, text, file, builtin, library);
+        if !builtin {
+            diagnostics.extend(found);
+            diagnostics.add_past(past);
+        }
+        files.push(entry);
+    }
+    if files
+        .iter()
+        .any(|f| f.break_patterns || f.seen.never_ending)
+    {
+        return None;
+    }
+
+    let mut skills = skills::Skills::collect(&files, model, &mut diagnostics);
+    let mut specials = params::Specials::default();
+    let constants = constants::Constants::new(model);
+    let names = names::Names::new(&constants, &skills);
+    let mut units = Vec::new();
+    let mut frozen = loops::Frozen::with_capacity(0);
+    let mut paths = paths::Paths::new(&given.paths);
+    // Statements that bind are fewer than lines: room for them, written only as they
+    // come (untouched room costs no fresh memory).
+    let lines: Vec<usize> = sources[..lead].iter().map(|s| lines_in(&s.text)).collect();
+    let mut owners = owners::Owners::streaming(&files, &skills, model, lines.iter().sum());
+    let mut found = Vec::with_capacity(lead);
+    let mut buf = String::new();
+    let mut spare = Vec::new();
+    for (i, &lines) in lines.iter().enumerate() {
+        let file = FileId(i as u32);
+        let text = files[i].text;
+        let vars = Vars::with_capacity(lines).with_detail(detail);
+        let mut unit = Unit::new(file, None, None, vars);
+        let mut index = 0;
+        let parsed = parser::parse_streamed(text, file, |block| {
+            let mut walker = Walker::new(
+                model,
+                &constants,
+                &names,
+                &skills,
+                &mut unit,
+                &mut diagnostics,
+                detail,
+                &mut specials,
+            );
+            walker.buf = std::mem::take(&mut buf);
+            walker.spare = std::mem::take(&mut spare);
+            walker.blocks(std::slice::from_ref(&block));
+            buf = std::mem::take(&mut walker.buf);
+            spare = std::mem::take(&mut walker.spare);
+            if !frozen.block(file, &block, &skills) {
+                return false;
+            }
+            paths.block(file, &block);
+            owners.stream_block(file, index, &block, &mut unit.targets);
+            index += 1;
+            !diagnostics.near_limit()
+        })?;
+        found.push((parsed.binds, parsed.seen));
+        units.push(unit);
+    }
+    let tally = owners.into_tally();
+    for (entry, (binds, seen)) in files.iter_mut().zip(found) {
+        entry.binds = binds;
+        entry.seen = seen;
+    }
+    // Task files after the streamed ones, as the whole-tree check walks them.
+    for (i, entry) in files.iter().enumerate().skip(lead) {
+        if entry.tree.kind != FileKind::Task || entry.library {
+            continue;
+        }
+        let vars = Vars::with_capacity(entry.binds).with_detail(detail);
+        let mut unit = Unit::new(FileId(i as u32), None, None, vars);
+        Walker::new(
+            model,
+            &constants,
+            &names,
+            &skills,
+            &mut unit,
+            &mut diagnostics,
+            detail,
+            &mut specials,
+        )
+        .blocks(&entry.tree.blocks);
+        units.push(unit);
+    }
+    let special_blocks = check_skills(
+        &files,
+        &mut skills,
+        &mut specials,
+        &mut units,
+        &mut diagnostics,
+        model,
+        &constants,
+        &names,
+        detail,
+    );
+
+    breaks::check_patterns(&files, &skills, &mut diagnostics);
+    frozen.finish(&files, lead, &skills, &mut diagnostics);
+    wakes::check_waits(&files, &mut diagnostics);
+    paths.finish(&files, lead, &mut diagnostics);
+    let owned = owners::finish_owners(
+        tally,
+        &files,
+        lead,
+        &skills,
+        &units,
+        model,
+        &mut diagnostics,
+    );
+    if !owned {
+        return None;
+    }
+    unused_variables(&files, &units, &mut diagnostics);
+    if diagnostics.near_limit() {
+        return None;
+    }
+    Some(Analysis {
+        files,
+        skills,
+        specials: specials.list,
+        special_blocks,
+        units,
+        diagnostics: diagnostics.into_reported(),
+    })
+}
+
+/// The lines of `text`, counted in runs of 255 bytes whose count fits a byte, which
+/// the compiler turns into wide compares: a plain count took 4.7 instructions a byte
+/// (7 M on the 1x corpus).
+fn lines_in(text: &str) -> usize {
+    let runs = text.as_bytes().chunks(255);
+    let breaks: usize = runs
+        .map(|run| usize::from(run.iter().fold(0u8, |n, &b| n + u8::from(b == b'\n'))))
+        .sum();
+    breaks + 1
+}
