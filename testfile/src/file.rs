@@ -167,7 +167,11 @@ pub fn read(path: &Path, text: String) -> Result<TestFile, Vec<Problem>> {
 pub fn check(path: &Path, text: String) -> Read {
     let mut notes = Vec::new();
     let mut outlines = Vec::new();
-    let file = read_into(path, text, &mut notes, &mut outlines);
+    let mut file = read_into(path, text, &mut notes, &mut outlines);
+    // In the file's order, whichever way the reading ended.
+    if let Err(problems) = &mut file {
+        problems.sort_by_key(|p| (p.span.start, p.span.end));
+    }
     Read {
         file,
         notes,
@@ -192,7 +196,6 @@ fn read_into(
         ));
     }
     if !problems.is_empty() {
-        problems.sort_by_key(|p| (p.span.start, p.span.end));
         return Err(problems);
     }
     let dir = path.parent().unwrap_or(Path::new(".")).to_path_buf();
@@ -292,7 +295,6 @@ fn read_into(
             tests,
         })
     } else {
-        problems.sort_by_key(|p| (p.span.start, p.span.end));
         Err(problems)
     }
 }
@@ -925,4 +927,20 @@ fn places(world: &ilmr_sim::World) -> Vec<Place> {
     }));
     out.retain(|p| matches!(p, Place::Object { name, .. } if !name.is_empty()));
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::codes::Code;
+
+    /// A file without `[[test]]` returned its problems as found: a key's problem on
+    /// line 2 came before the missing table's, at the file's start.
+    #[test]
+    fn problems_are_in_the_files_order_however_reading_ends() {
+        let text = "max_time = 3\nname = \"x\"\n".to_string();
+        let problems = read(Path::new("t.test.toml"), text).err().unwrap();
+        let codes: Vec<Code> = problems.iter().map(|p| p.code).collect();
+        assert_eq!(codes, [Code::MissingKey, Code::UnknownKey]);
+    }
 }
