@@ -341,6 +341,18 @@ fn the_limits_table_quotes_the_constants() {
         ("MAX_HISTORY_BYTES", mib(ilmr_files::MAX_HISTORY_BYTES)),
         ("MAX_FLEET_BYTES", mib(ilmr_files::MAX_FLEET_BYTES)),
         (
+            "MAX_TESTS",
+            format!("{} tests", count(ilmr_testfile::file::MAX_TESTS)),
+        ),
+        (
+            "MAX_PROBLEMS",
+            format!("{}, the first", ilmr_testfile::file::MAX_PROBLEMS),
+        ),
+        (
+            "MAX_MESSAGE",
+            format!("cut to {} characters", ilmr_testfile::problem::MAX_MESSAGE),
+        ),
+        (
             "MAX_MESSAGE_BYTES",
             mib(ilmr_ros2::MAX_MESSAGE_BYTES as u64),
         ),
