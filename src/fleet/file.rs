@@ -21,6 +21,10 @@ pub const MAX_FLEET_ROBOTS: usize = 64;
 /// The longest robot name, characters.
 pub const MAX_NAME: usize = 64;
 
+/// The longest value of any other key, bytes: a path's longest (Linux's `PATH_MAX`).
+/// Messages about a value quote it, and a file of a megabyte's value printed it whole.
+pub const MAX_VALUE: usize = 4096;
+
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct FileText {
@@ -138,6 +142,28 @@ pub fn parse(text: &str, base: &Path) -> Result<Vec<Member>, Error> {
         check_name(&name).map_err(|m| at(name_at.clone(), m))?;
         if members.iter().any(|m| m.name == name) {
             return Err(at(name_at, format!("two robots are named `{name}`")));
+        }
+        let paths = [("task", &e.task), ("skills", &e.skills)];
+        let path_lengths = paths.map(|(k, p)| (k, p.as_ref().map_or(0, |p| p.as_os_str().len())));
+        let texts = [
+            ("robot", Some(&e.robot)),
+            ("model", e.model.as_ref()),
+            ("world", e.world.as_ref()),
+            ("start", e.start.as_ref()),
+            ("namespace", e.namespace.as_ref()),
+        ];
+        let lengths = texts.map(|(k, v)| (k, v.map_or(0, String::len)));
+        if let Some((key, len)) = lengths
+            .into_iter()
+            .chain(path_lengths)
+            .find(|(_, len)| *len > MAX_VALUE)
+        {
+            return Err(at(
+                table,
+                format!(
+                    "robot `{name}`: `{key}` is {len} bytes; a value has at most {MAX_VALUE} (MAX_VALUE)"
+                ),
+            ));
         }
         let ros2 = e.robot.eq_ignore_ascii_case(ROS2_ROBOT);
         if !ros2 {
@@ -320,6 +346,33 @@ seed = 3
         let e = parse(&text, Path::new(".")).unwrap_err();
         assert_eq!(e.line, 4);
         assert!(e.to_string().len() < 200, "{} bytes", e.to_string().len());
+    }
+
+    /// A robot, world or start of a megabyte was accepted, and `ilmrc fleet` quoted it
+    /// whole when it named no robot, world or pose.
+    #[test]
+    fn a_value_longer_than_a_path_is_refused_with_its_line() {
+        for key in ["robot", "model", "world", "start", "task", "skills"] {
+            let long = "x".repeat(MAX_VALUE + 1);
+            let mut text = "[[robot]]\nname = \"a\"\nrobot = \"moro\"\n\n[[robot]]\nname = \"b\"\n"
+                .to_string();
+            if key != "robot" {
+                text.push_str("robot = \"moro\"\n");
+            }
+            text.push_str(&format!("{key} = \"{long}\"\n"));
+            let e = parse(&text, Path::new(".")).unwrap_err();
+            assert!(
+                e.message.contains(&format!("`{key}` is 4097 bytes")),
+                "{key}: {e}"
+            );
+            assert!(e.message.len() < 200, "{key}: {e}");
+            assert_eq!(e.line, 5, "{key}: the robot's table");
+        }
+        let fine = format!(
+            "[[robot]]\nname = \"a\"\nrobot = \"{}\"\n",
+            "x".repeat(MAX_VALUE)
+        );
+        assert!(parse(&fine, Path::new(".")).is_ok());
     }
 
     #[test]

@@ -13,7 +13,7 @@ use crate::mutate;
 #[path = "../../../src/fleet/file.rs"]
 mod file;
 
-use file::{MAX_FLEET_ROBOTS, MAX_NAME};
+use file::{MAX_FLEET_ROBOTS, MAX_NAME, MAX_VALUE};
 
 /// Where the fuzzed file is: relative paths in it are joined to this.
 const BASE: &str = "/fleets";
@@ -163,6 +163,19 @@ fn accepted(members: &[file::Member]) {
             "two robots named {:?} accepted",
             m.name
         );
+        let texts = [
+            Some(&m.robot),
+            m.model.as_ref(),
+            m.world.as_ref(),
+            m.start.as_ref(),
+        ];
+        for v in texts.into_iter().flatten() {
+            assert!(
+                v.len() <= MAX_VALUE,
+                "a value of {} bytes accepted",
+                v.len()
+            );
+        }
         for p in [&m.task, &m.skills].into_iter().flatten() {
             // The base is absolute, so every path joined to it is too.
             assert!(p.is_absolute(), "{p:?} is not from the file's folder");
