@@ -707,6 +707,13 @@ impl<'a> Reader<'a, '_> {
         if let Some(items) = value.get_ref().as_array() {
             let seeds: Option<Vec<u64>> = items.iter().map(|v| seed(v.get_ref())).collect();
             return match seeds {
+                Some(s) if s.len() as u64 > MAX_SEEDS => {
+                    self.problems.push(bad(format!(
+                        "{} seeds; a test runs at most {MAX_SEEDS} (MAX_SEEDS)",
+                        s.len()
+                    )));
+                    Vec::new()
+                }
                 Some(s) if !s.is_empty() => s,
                 _ => {
                     self.problems.push(bad(
@@ -986,6 +993,24 @@ mod tests {
             problems[0].span.start, last,
             "the first test past the limit"
         );
+    }
+
+    /// A range of seeds was bounded, a list not: a list of a million seeds was taken.
+    #[test]
+    fn a_list_of_seeds_is_bounded_as_a_range_is() {
+        let list = |n: u64| {
+            let seeds: Vec<String> = (0..n).map(|s| s.to_string()).collect();
+            format!("[[test]]\nname = \"t\"\nseeds = [{}]\n", seeds.join(", "))
+        };
+        let problems = read(Path::new("t.test.toml"), list(MAX_SEEDS + 1))
+            .err()
+            .unwrap();
+        let said: Vec<&str> = problems.iter().map(|p| p.message.as_str()).collect();
+        assert!(said.iter().any(|m| m.contains("MAX_SEEDS")), "{said:?}");
+        let problems = read(Path::new("t.test.toml"), list(MAX_SEEDS))
+            .err()
+            .unwrap();
+        assert!(problems.iter().all(|p| !p.message.contains("MAX_SEEDS")));
     }
 
     /// A million broken lines were three million problems, each shown with its line.
