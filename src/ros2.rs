@@ -11,9 +11,6 @@ use ilmr_ros2::dds::{MAX_DOMAIN_ID, Profile};
 use ilmr_ros2::names::{TopicName, check_namespace};
 use ilmr_ros2::{Reach, Ros2Config, Topics};
 
-/// What `--robot` takes to drive a ROS 2 robot.
-pub const ROBOT_NAME: &str = ilmr_testfile::place::ROS2_ROBOT;
-
 /// How long to wait for the robot's first odometry and scan, s, when not told.
 const DEFAULT_WAIT: f64 = 10.0;
 

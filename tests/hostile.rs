@@ -345,6 +345,18 @@ fn the_limits_table_quotes_the_constants() {
         ("MAX_HISTORY_BYTES", mib(ilmr_files::MAX_HISTORY_BYTES)),
         ("MAX_FLEET_BYTES", mib(ilmr_files::MAX_FLEET_BYTES)),
         (
+            "MAX_TESTS",
+            format!("{} tests", count(ilmr_testfile::file::MAX_TESTS)),
+        ),
+        (
+            "MAX_PROBLEMS",
+            format!("{}, the first", ilmr_testfile::file::MAX_PROBLEMS),
+        ),
+        (
+            "MAX_MESSAGE",
+            format!("cut to {} characters", ilmr_testfile::problem::MAX_MESSAGE),
+        ),
+        (
             "MAX_MESSAGE_BYTES",
             mib(ilmr_ros2::MAX_MESSAGE_BYTES as u64),
         ),
@@ -539,6 +551,170 @@ fn hostile_models_and_worlds_through_run() {
                 args.join(" "),
                 ended.stdout,
                 ended.stderr
+            );
+        }
+    }
+}
+
+/// Files of one kind, each named by its shape.
+type Cases = Vec<(&'static str, Vec<u8>)>;
+
+/// Test files, scenarios and fleet files of hostile shapes and kinds (a line of
+/// megabytes, a hundred thousand entries, nesting a million deep, bytes that are not
+/// UTF-8, a directory, a FIFO), each given to the command that reads it: each is
+/// refused at once, with a short message, never echoed back whole.
+#[test]
+fn hostile_test_scenario_and_fleet_files() {
+    let dir = scratch().join("files");
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let task = dir.join("go.ilmr");
+    std::fs::write(&task, "goahead(0.5)\n").unwrap();
+    let task = task.to_str().unwrap().to_string();
+    let long = |limit: u64| "x".repeat(limit as usize * 5 / 8);
+    // A test file is read within a scenario's limit (docs/testing.md).
+    let test_limit = ilmr_files::MAX_SCENARIO_BYTES;
+    let tests: Cases = vec![
+        ("long line", format!("task = \"go.ilmr\"\n{} = 1\n", long(test_limit)).into_bytes()),
+        ("long name", format!("task = \"go.ilmr\"\n[[test]]\nname = \"{}\"\nassert = [\"never: refused\"]\n[[test]]\nname = \"{0}\"\nassert = [\"never: refused\"]\n", long(test_limit / 2)).into_bytes()),
+        (
+            "many tests",
+            format!(
+                "task = \"go.ilmr\"\nseeds = \"0-9999\"\nassert = [\"never: refused\"]\n{}",
+                (0..100_000).map(|i| format!("[[test]]\nname = \"t{i}\"\n")).collect::<String>()
+            )
+            .into_bytes(),
+        ),
+        ("deep arrays", format!("task = {}1{}\n", "[".repeat(1_000_000), "]".repeat(1_000_000)).into_bytes()),
+        ("deep tables", format!("task = {}\n", "{a=".repeat(1_000_000)).into_bytes()),
+        ("not UTF-8", b"task = \"go.ilmr\"\n[[test]]\nname = \"\xff\xfe\"\n".to_vec()),
+    ];
+    let scenario_limit = ilmr_files::MAX_SCENARIO_BYTES;
+    let scenarios: Cases = vec![
+        (
+            "long line",
+            format!("{{\"start\": \"{}\"}}", long(scenario_limit)).into_bytes(),
+        ),
+        (
+            "long key",
+            format!("{{\"{}\": 1}}", long(scenario_limit)).into_bytes(),
+        ),
+        (
+            "many readings",
+            format!(
+                "{{\"readings\": [{}]}}",
+                (0..100_000)
+                    .map(|i| format!("{{\"t\": {i}, \"device\": \"battery\", \"value\": 24}}"))
+                    .collect::<Vec<_>>()
+                    .join(",")
+            )
+            .into_bytes(),
+        ),
+        (
+            "deep arrays",
+            format!("{{\"paths\": {}", "[".repeat(1_000_000)).into_bytes(),
+        ),
+        (
+            "not UTF-8",
+            b"{\"lines\": [{\"t\": 1, \"text\": \"\xff\"}]}".to_vec(),
+        ),
+    ];
+    let fleet_limit = ilmr_files::MAX_FLEET_BYTES;
+    let fleets: Cases = vec![
+        (
+            "long line",
+            format!(
+                "[[robot]]\nname = \"a\"\nrobot = \"{}\"\nbad = 1\n",
+                long(fleet_limit)
+            )
+            .into_bytes(),
+        ),
+        (
+            "long robot",
+            format!(
+                "[[robot]]\nname = \"a\"\nrobot = \"{}\"\nnamespace = \"/a\"\n",
+                long(fleet_limit)
+            )
+            .into_bytes(),
+        ),
+        (
+            "many robots",
+            (0..20_000)
+                .map(|i| format!("[[robot]]\nname=\"r{i}\"\nrobot=\"moro\"\n"))
+                .collect::<String>()
+                .into_bytes(),
+        ),
+        (
+            "deep arrays",
+            format!("x = {}", "[".repeat(fleet_limit as usize - 10)).into_bytes(),
+        ),
+        (
+            "not UTF-8",
+            b"[[robot]]\nname = \"\xff\"\nrobot = \"moro\"\n".to_vec(),
+        ),
+    ];
+    let fifo = dir.join("fifo");
+    let made = Command::new("mkfifo").arg(&fifo).status().unwrap();
+    assert!(made.success(), "mkfifo");
+    let kinds: [(&str, &str, Cases); 3] = [
+        ("test", ".test.toml", tests),
+        ("scenario", ".json", scenarios),
+        ("fleet", ".toml", fleets),
+    ];
+    for (kind, suffix, cases) in kinds {
+        let args = |file: &str| -> Vec<String> {
+            let v: Vec<&str> = match kind {
+                "test" => vec!["test", file],
+                "scenario" => vec![
+                    "run",
+                    &task,
+                    "--robot",
+                    "scripted",
+                    "--scenario",
+                    file,
+                    "--max-time",
+                    "1",
+                ],
+                _ => vec!["fleet", file, "--max-time", "1"],
+            };
+            v.into_iter().map(String::from).collect()
+        };
+        let mut files: Vec<(String, PathBuf)> = cases
+            .into_iter()
+            .map(|(name, bytes)| {
+                let path = dir.join(format!("{}{suffix}", name.replace(' ', "_")));
+                std::fs::write(&path, bytes).unwrap();
+                (name.to_string(), path)
+            })
+            .collect();
+        files.push(("a FIFO".into(), fifo.clone()));
+        let folder = dir.join(format!("folder{suffix}"));
+        std::fs::create_dir_all(&folder).unwrap();
+        if kind != "test" {
+            // `ilmrc test FOLDER` looks for test files in it.
+            files.push(("a directory".into(), folder));
+        }
+        for (name, path) in files {
+            let argv = args(path.to_str().unwrap());
+            let argv: Vec<&str> = argv.iter().map(String::as_str).collect();
+            let what = format!("{kind} file: {name}");
+            let started = std::time::Instant::now();
+            let ended = bounded(&argv, None);
+            let code = ends_cleanly(&what, &ended);
+            // A hundred thousand readings is a scenario like any other: it runs.
+            if name != "many readings" {
+                assert_eq!(code, 2, "{what}: exit {code}\n{}", ended.stderr);
+            }
+            assert!(
+                // At most a hundred problems (MAX_PROBLEMS) of a few lines each.
+                ended.stderr.len() + ended.stdout.len() < 64 << 10,
+                "{what}: {} bytes said\n{}",
+                ended.stderr.len() + ended.stdout.len(),
+                ended.stderr.chars().take(2000).collect::<String>()
+            );
+            eprintln!(
+                "{what}: exit {code} in {:.2} s",
+                started.elapsed().as_secs_f64()
             );
         }
     }

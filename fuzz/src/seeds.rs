@@ -7,7 +7,7 @@ use std::path::Path;
 
 use crate::engine;
 use crate::mutate;
-use crate::targets::{corpus, modules, requests, traces, worlds};
+use crate::targets::{corpus, fleets, modules, requests, scenarios, testfiles, traces, worlds};
 
 /// One target: its name (the binary's, and its directory under
 /// `tests/fuzz/regressions/`), its seeds and its dictionary's tokens.
@@ -57,6 +57,21 @@ pub fn all() -> Vec<Seeds> {
             name: "trace",
             corpus: traces::seeds(),
             dictionary: json_words(traces::seeds()),
+        },
+        Seeds {
+            name: "testfile",
+            corpus: testfiles::seeds(),
+            dictionary: as_bytes(testfiles::dictionary()),
+        },
+        Seeds {
+            name: "scenario",
+            corpus: scenarios::seeds(),
+            dictionary: as_bytes(scenarios::dictionary()),
+        },
+        Seeds {
+            name: "fleet",
+            corpus: fleets::seeds(),
+            dictionary: as_bytes(fleets::dictionary()),
         },
     ]
 }

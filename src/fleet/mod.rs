@@ -13,9 +13,9 @@ use std::sync::Arc;
 use std::sync::mpsc;
 use std::time::{Duration, Instant};
 
-use crate::live::Robots;
 use crate::live::engine::Status;
-use file::Member;
+use crate::live::{RobotArgs, Robots};
+use crate::ros2::Ros2Args;
 
 /// How long a launched simulator may take to create its endpoints.
 const LAUNCH_WAIT: Duration = Duration::from_secs(30);
@@ -47,10 +47,47 @@ pub struct Fleet {
     _launched: Launched,
 }
 
+/// One robot of a fleet: its name, `serve`'s options for it, and the simulator to
+/// start for it.
+struct Member {
+    name: String,
+    args: RobotArgs,
+    launch: Option<file::Launch>,
+}
+
+impl Member {
+    fn of(m: file::Member) -> Member {
+        let ros2 = match m.ros2 {
+            Some(r) => Ros2Args {
+                ros_namespace: Some(r.namespace),
+                ros_domain: r.domain,
+                ros_wait: None,
+                ros_loopback: r.loopback,
+            },
+            None => Ros2Args::default(),
+        };
+        Member {
+            args: RobotArgs {
+                robot: m.robot,
+                model: m.model,
+                world: m.world,
+                start: m.start,
+                seed: m.seed,
+                skills: m.skills,
+                task: m.task,
+                ros2,
+                view: Default::default(),
+            },
+            name: m.name,
+            launch: m.launch,
+        }
+    }
+}
+
 /// Starts the simulators the file asks for, then every robot's VM; `None` when a task
 /// has errors (they were printed).
 pub fn open(path: &Path) -> Result<Option<Fleet>, String> {
-    let members = file::load(path)?;
+    let members: Vec<Member> = file::load(path)?.into_iter().map(Member::of).collect();
     let launched = launch(&members)?;
     let mut lives = Vec::with_capacity(members.len());
     for m in &members {

@@ -79,6 +79,13 @@ pub const KEYS: [(&str, &str); 15] = [
 
 /// Seeds one test may run: a range beyond this is a typo more likely than a plan.
 pub const MAX_SEEDS: u64 = 10_000;
+/// Tests of one file: each holds its seeds, arguments and assertions, and the file's
+/// defaults reach every one (a hundred thousand `[[test]]` of 10,000 seeds each took
+/// gigabytes).
+pub const MAX_TESTS: usize = 1_000;
+/// Problems reported of one file, the first in the file's order: a file of a million
+/// broken lines has millions, each shown with its line.
+pub const MAX_PROBLEMS: usize = 100;
 /// The longest `max_time`, seconds: a day of logical time (some minutes of a debug
 /// build); a task that never ends is then cut off rather than run for weeks.
 pub const MAX_TIME: f64 = 86_400.0;
@@ -167,7 +174,19 @@ pub fn read(path: &Path, text: String) -> Result<TestFile, Vec<Problem>> {
 pub fn check(path: &Path, text: String) -> Read {
     let mut notes = Vec::new();
     let mut outlines = Vec::new();
-    let file = read_into(path, text, &mut notes, &mut outlines);
+    let mut file = read_into(path, text, &mut notes, &mut outlines);
+    // In the file's order, whichever way the reading ended.
+    if let Err(problems) = &mut file {
+        problems.sort_by_key(|p| (p.span.start, p.span.end));
+        if problems.len() > MAX_PROBLEMS {
+            let more = problems.len() - MAX_PROBLEMS;
+            problems.truncate(MAX_PROBLEMS);
+            let last = problems.pop().expect("MAX_PROBLEMS is above 0");
+            problems.push(last.help(format!(
+                "{more} more problem(s) after this one are not shown (MAX_PROBLEMS)"
+            )));
+        }
+    }
     Read {
         file,
         notes,
@@ -192,7 +211,6 @@ fn read_into(
         ));
     }
     if !problems.is_empty() {
-        problems.sort_by_key(|p| (p.span.start, p.span.end));
         return Err(problems);
     }
     let dir = path.parent().unwrap_or(Path::new(".")).to_path_buf();
@@ -227,6 +245,17 @@ fn read_into(
         ));
         return Err(problems);
     };
+    if let Some(extra) = array.get(MAX_TESTS) {
+        problems.push(Problem::new(
+            Code::BadValue,
+            extra.span(),
+            format!(
+                "{} tests; a file holds at most {MAX_TESTS} (MAX_TESTS)",
+                array.len()
+            ),
+        ));
+        return Err(problems);
+    }
     let mut names: Vec<(String, Range<usize>)> = Vec::new();
     let mut tasks = Tasks::new();
     for item in array.iter() {
@@ -292,7 +321,6 @@ fn read_into(
             tests,
         })
     } else {
-        problems.sort_by_key(|p| (p.span.start, p.span.end));
         Err(problems)
     }
 }
@@ -679,6 +707,13 @@ impl<'a> Reader<'a, '_> {
         if let Some(items) = value.get_ref().as_array() {
             let seeds: Option<Vec<u64>> = items.iter().map(|v| seed(v.get_ref())).collect();
             return match seeds {
+                Some(s) if s.len() as u64 > MAX_SEEDS => {
+                    self.problems.push(bad(format!(
+                        "{} seeds; a test runs at most {MAX_SEEDS} (MAX_SEEDS)",
+                        s.len()
+                    )));
+                    Vec::new()
+                }
                 Some(s) if !s.is_empty() => s,
                 _ => {
                     self.problems.push(bad(
@@ -925,4 +960,71 @@ fn places(world: &ilmr_sim::World) -> Vec<Place> {
     }));
     out.retain(|p| matches!(p, Place::Object { name, .. } if !name.is_empty()));
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::codes::Code;
+
+    /// A file without `[[test]]` returned its problems as found: a key's problem on
+    /// line 2 came before the missing table's, at the file's start.
+    #[test]
+    fn problems_are_in_the_files_order_however_reading_ends() {
+        let text = "max_time = 3\nname = \"x\"\n".to_string();
+        let problems = read(Path::new("t.test.toml"), text).err().unwrap();
+        let codes: Vec<Code> = problems.iter().map(|p| p.code).collect();
+        assert_eq!(codes, [Code::MissingKey, Code::UnknownKey]);
+    }
+
+    /// Each `[[test]]` of 10,000 seeds held 80 KB: a hundred thousand of them
+    /// exhausted memory before any was run.
+    #[test]
+    fn a_file_of_too_many_tests_is_refused_at_the_first_past_the_limit() {
+        let tests: String = (0..=MAX_TESTS)
+            .map(|i| format!("[[test]]\nname = \"t{i}\"\n"))
+            .collect();
+        let text = format!("seeds = \"0-9999\"\n{tests}");
+        let problems = read(Path::new("t.test.toml"), text.clone()).err().unwrap();
+        assert_eq!(problems.len(), 1, "{problems:?}");
+        assert!(problems[0].message.contains("MAX_TESTS"), "{problems:?}");
+        let last = text.rfind("[[test]]").unwrap();
+        assert_eq!(
+            problems[0].span.start, last,
+            "the first test past the limit"
+        );
+    }
+
+    /// A range of seeds was bounded, a list not: a list of a million seeds was taken.
+    #[test]
+    fn a_list_of_seeds_is_bounded_as_a_range_is() {
+        let list = |n: u64| {
+            let seeds: Vec<String> = (0..n).map(|s| s.to_string()).collect();
+            format!("[[test]]\nname = \"t\"\nseeds = [{}]\n", seeds.join(", "))
+        };
+        let problems = read(Path::new("t.test.toml"), list(MAX_SEEDS + 1))
+            .err()
+            .unwrap();
+        let said: Vec<&str> = problems.iter().map(|p| p.message.as_str()).collect();
+        assert!(said.iter().any(|m| m.contains("MAX_SEEDS")), "{said:?}");
+        let problems = read(Path::new("t.test.toml"), list(MAX_SEEDS))
+            .err()
+            .unwrap();
+        assert!(problems.iter().all(|p| !p.message.contains("MAX_SEEDS")));
+    }
+
+    /// A million broken lines were three million problems, each shown with its line.
+    #[test]
+    fn the_first_problems_are_reported_and_the_rest_counted() {
+        let problems = read(Path::new("t.test.toml"), "=\n".repeat(1_000))
+            .err()
+            .unwrap();
+        assert_eq!(problems.len(), MAX_PROBLEMS);
+        let help = problems[MAX_PROBLEMS - 1].help.as_deref().unwrap_or("");
+        assert!(
+            help.contains("more problem(s)") && help.contains("MAX_PROBLEMS"),
+            "{help}"
+        );
+        assert!(problems.is_sorted_by_key(|p| p.span.start));
+    }
 }

@@ -23,6 +23,8 @@ use std::collections::BTreeMap;
 use ilmr_hal::{Detection, Limits, ManipTask, OpMatch, OpOutcome, Pose, ScriptedRobot, Side};
 use serde::Deserialize;
 
+use crate::problem::clip;
+
 #[derive(Debug, Clone, Default, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Scenario {
@@ -97,8 +99,25 @@ impl Scenario {
     pub fn load(path: &std::path::Path) -> Result<Scenario, String> {
         let text = ilmr_files::read_text(path, ilmr_files::Kind::Scenario)
             .map_err(|e| format!("cannot read scenario `{}`: {e}", path.display()))?;
-        let mut s: Scenario = serde_json::from_str(&text)
-            .map_err(|e| format!("scenario `{}`: {e}", path.display()))?;
+        Scenario::parse(&text).map_err(|e| format!("scenario `{}`: {e}", path.display()))
+    }
+
+    /// A scenario's text; its lines in the order of their times. A refusal names
+    /// its line and column.
+    pub fn parse(text: &str) -> Result<Scenario, String> {
+        let mut s: Scenario = serde_json::from_str(text).map_err(|e| {
+            // serde_json quotes a string or key it does not take whole: the message
+            // alone, cut short, and its place in front.
+            let full = e.to_string();
+            let at = format!(" at line {} column {}", e.line(), e.column());
+            let message = full.strip_suffix(&at).unwrap_or(&full).to_string();
+            format!(
+                "line {}, column {}: {}",
+                e.line().max(1),
+                e.column(),
+                clip(message)
+            )
+        })?;
         s.lines.sort_by(|a, b| a.t.total_cmp(&b.t));
         Ok(s)
     }
@@ -151,13 +170,13 @@ impl Scenario {
         for op in &self.ops {
             let ticks = (op.seconds / 0.01).round();
             if !(0.0..=f64::from(u32::MAX)).contains(&ticks) {
-                return Err(format!("op `{}`: seconds out of range", op.matcher));
+                return Err(clip(format!("op `{}`: seconds out of range", op.matcher)));
             }
             let outcome = match &op.fail {
                 Some(why) => OpOutcome::Failed(why.clone()),
                 None => OpOutcome::Done,
             };
-            r = r.op(op_match(&op.matcher)?, ticks as u32, outcome);
+            r = r.op(op_match(&op.matcher).map_err(clip)?, ticks as u32, outcome);
         }
         Ok(r)
     }
@@ -176,5 +195,50 @@ fn op_match(text: &str) -> Result<OpMatch, String> {
         _ => Err(format!(
             "op `{text}`: expected `init`, `manipulate TASK`, `movemode MODE` or `any`"
         )),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// serde_json's message quoted a string it did not take whole: a megabyte of
+    /// `start` was a megabyte of message.
+    #[test]
+    fn a_refusal_names_its_line_and_quotes_little() {
+        let long = "x".repeat(1 << 20);
+        let e = Scenario::parse(&format!("{{\n\"start\": \"{long}\"}}")).unwrap_err();
+        assert!(e.starts_with("line 2, column "), "{}", &e[..100]);
+        assert!(e.contains("invalid type: string"), "{}", &e[..100]);
+        assert!(
+            e.chars().count() < crate::problem::MAX_MESSAGE + 40,
+            "{} chars",
+            e.len()
+        );
+        let e = Scenario::parse("{\"ops\": [{\"match\": \"fly\", \"seconds\": 1}]}\n")
+            .unwrap()
+            .robot(Limits::default())
+            .err()
+            .unwrap();
+        assert!(e.contains("op `fly`: expected"), "{e}");
+        let op = format!("{{\"ops\": [{{\"match\": \"{long}\", \"seconds\": 1}}]}}");
+        let e = Scenario::parse(&op)
+            .unwrap()
+            .robot(Limits::default())
+            .err()
+            .unwrap();
+        assert!(
+            e.chars().count() <= crate::problem::MAX_MESSAGE,
+            "{} chars",
+            e.len()
+        );
+    }
+
+    #[test]
+    fn lines_are_read_in_the_order_of_their_times() {
+        let s = Scenario::parse(r#"{"lines": [{"t": 2, "text": "b"}, {"t": 1, "text": "a"}]}"#)
+            .unwrap();
+        let texts: Vec<&str> = s.lines.iter().map(|l| l.text.as_str()).collect();
+        assert_eq!(texts, ["a", "b"]);
     }
 }

@@ -1,6 +1,6 @@
 //! Fuzzing of everything `ilmrc` reads from outside: task and skill files, ROBO.INI
-//! robot models, world files, `.ilmb` modules, `serve` request lines and traces (with
-//! recorded inputs). Each target must never
+//! robot models, world files, `.ilmb` modules, `serve` request lines, traces (with
+//! recorded inputs), test files, scenarios and fleet files. Each target must never
 //! panic and must answer bad input with an error value.
 //!
 //! `cargo test --test fuzz` runs a fixed, seeded number of inputs per target (CI).
@@ -63,6 +63,24 @@ fn serve_requests_are_answered() {
 fn traces_and_recorded_inputs_are_read_or_refused() {
     let stats = on_compiler_stack(|| targets::traces::fuzz(Budget::from_env(20_000)));
     assert!(stats.corpus >= 10, "{stats:?}");
+}
+
+#[test]
+fn test_files_are_read_or_refused_with_their_places() {
+    let stats = on_compiler_stack(|| targets::testfiles::fuzz(Budget::from_env(1_500)));
+    assert!(stats.corpus >= 10, "{stats:?}");
+}
+
+#[test]
+fn scenarios_are_read_or_refused_with_their_line() {
+    let stats = on_compiler_stack(|| targets::scenarios::fuzz(Budget::from_env(1_000)));
+    assert!(stats.corpus >= 5, "{stats:?}");
+}
+
+#[test]
+fn fleet_files_are_read_or_refused_with_their_line() {
+    let stats = on_compiler_stack(|| targets::fleets::fuzz(Budget::from_env(20_000)));
+    assert!(stats.corpus >= 5, "{stats:?}");
 }
 
 #[test]
