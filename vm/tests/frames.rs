@@ -451,6 +451,9 @@ fn frames_run_in_one_go_as_the_tree() {
     // Frames whose visits of such a round ran as one step along a plan
     // (`Vm::plans_run`), and the programs where some did.
     let (mut planned, mut planned_programs) = (0, 0);
+    // Rounds run straight from the wheel's due slot (`Vm::slot_rounds`), and the
+    // programs where some were.
+    let (mut slot, mut slot_programs) = (0, 0);
     for seed in 0..seeds {
         let (module, budget, names) = independent_program(seed);
         let cfg = |frames| Config {
@@ -476,7 +479,14 @@ fn frames_run_in_one_go_as_the_tree() {
         assert_eq!(tree.plans_run(), 0, "the tree has no frames");
         planned += flat.plans_run();
         planned_programs += usize::from(flat.plans_run() > 0);
+        assert_eq!(tree.slot_rounds(), 0, "the tree has no frames");
+        slot += flat.slot_rounds();
+        slot_programs += usize::from(flat.slot_rounds() > 0);
     }
+    assert!(
+        slot_programs > 10 && slot > 300,
+        "{slot} rounds from the due slot in {slot_programs} programs"
+    );
     assert!(
         programs > 20 && fused > 400,
         "{fused} rounds in one go in {programs} programs"
@@ -605,4 +615,141 @@ fn frames_that_sleep_in_different_turns_keep_the_tree_order() {
             assert_eq!(values(&tree), values(&flat), "budget {budget}, tick {tick}");
         }
     }
+}
+
+/// Counting blocks as the benchmark has them (`cN=0`, `while(cN<L)`, `cN=cN+1`,
+/// `wait(w)`), each on a variable of its own, of several bounds and wait times:
+/// rounds run straight from the wheel's due slot (`Vm::slot_rounds`), with the
+/// new alarms written back into the due slot's buffer for the first tick they
+/// fall on and set one by one for the others, and a loop that ends sending its
+/// tick back to the queue. Tree against frames with the trace off, small budgets
+/// in a third of the programs: the same variables, `activity`, `live` and
+/// `live_statements` after every tick.
+fn counting_program(seed: u64) -> (ilmr_vm::Module, u32, Vec<String>) {
+    let mut rng = Rng(seed.wrapping_mul(0x9e37_79b9_7f4a_7c15) | 1);
+    let mut a = Asm::new();
+    let mut blocks = Vec::new();
+    let mut names = Vec::new();
+    let count = 1 + rng.below(8);
+    for i in 0..count {
+        let c = format!("c{i}");
+        let bound = (1 + rng.below(6)) as f64;
+        let wait = [0.01, 0.01, 0.02, 0.03][rng.below(4) as usize];
+        let mut code = Vec::new();
+        if rng.below(4) == 0 {
+            code.push(a.wait(&format!("wait(0.02) #{i}"), 0.02));
+        }
+        code.push(a.assign(&format!("{c}=0 #{i}"), &c, &[X::N(0.0)]));
+        code.push(a.while_(
+            &format!("while({c}<{bound}) #{i}"),
+            &[X::V(&c), X::N(bound), X::Op(ExprOp::Lt)],
+            None,
+            |a| {
+                vec![
+                    a.assign(
+                        &format!("{c}={c}+1 #{i}"),
+                        &c,
+                        &[X::V(&c), X::N(1.0), X::Op(ExprOp::Add)],
+                    ),
+                    a.wait(&format!("wait({wait}) #{i}"), wait),
+                ]
+            },
+        ));
+        if i > 0 {
+            a.blank();
+        }
+        blocks.push(a.block(code));
+        names.push(c);
+    }
+    let budget = match rng.below(3) {
+        0 => 2 + rng.below(40) as u32,
+        _ => 200_000,
+    };
+    (a.task(&blocks), budget, names)
+}
+
+#[test]
+fn counting_blocks_run_from_the_due_slot_as_the_tree() {
+    let seeds: u64 = env_or("FRAMES_SEEDS", 150);
+    let (mut slot, mut programs) = (0, 0);
+    for seed in 0..seeds {
+        let (module, budget, names) = counting_program(seed);
+        let cfg = |frames| Config {
+            budget_ops: budget,
+            frames,
+            trace: TraceLevel::Off,
+            ..config()
+        };
+        let mut tree = vm(module.clone(), robot(), cfg(false));
+        let mut flat = vm(module, robot(), cfg(true));
+        let what = |v: &common::TestVm| state(v, &names);
+        for tick in 0..60 {
+            if tree.finished() && flat.finished() {
+                break;
+            }
+            tree.tick();
+            flat.tick();
+            assert_eq!(what(&tree), what(&flat), "seed {seed}, tick {tick}");
+        }
+        slot += flat.slot_rounds();
+        programs += usize::from(flat.slot_rounds() > 0);
+    }
+    assert!(
+        programs > seeds as usize / 2 && slot > 2 * seeds,
+        "{slot} rounds from the due slot in {programs} programs"
+    );
+}
+
+#[test]
+fn frames_whose_variables_overlap_keep_the_tree_order() {
+    // The second block's variables start below the first's (`a` is declared before
+    // `b`) and its check reads `b`, which the first block (counting `b` to 100)
+    // writes right after its wait, in its first visit of a tick: in the tree's
+    // order the second check comes a turn later and sees b=5, so `a` stops at 5.
+    // A look ahead that found the second check true (b=4) before the first frame
+    // ran would count `a` to 6. The frames' variables do not lie one above the
+    // other along the due alarms, so neither the queue's round nor the due slot's
+    // runs them in one go (once the second has ended, the first alone does).
+    let program = || {
+        let mut a = Asm::new();
+        a.var("a", ilmr_stdlib::VarKind::Number);
+        a.var("b", ilmr_stdlib::VarKind::Number);
+        let count = |a: &mut Asm, var: &str, tag: &str, wait_first: bool| {
+            let step = format!("{var}={var}+1 #{tag}");
+            let bound = if wait_first { 100.0 } else { 5.0 };
+            vec![a.while_(
+                &format!("while(b<{bound}) #{tag}"),
+                &[X::V("b"), X::N(bound), X::Op(ExprOp::Lt)],
+                None,
+                |a| {
+                    let step = a.assign(&step, var, &[X::V(var), X::N(1.0), X::Op(ExprOp::Add)]);
+                    let wait = a.wait(&format!("wait(0.01) #{tag}"), 0.01);
+                    match wait_first {
+                        true => vec![wait, step],
+                        false => vec![step, wait],
+                    }
+                },
+            )]
+        };
+        let first = count(&mut a, "b", "1", true);
+        let b1 = a.block(first);
+        a.blank();
+        let second = count(&mut a, "a", "2", false);
+        let b2 = a.block(second);
+        a.task(&[b1, b2])
+    };
+    let cfg = |frames| Config {
+        frames,
+        trace: TraceLevel::Off,
+        ..config()
+    };
+    let mut tree = vm(program(), robot(), cfg(false));
+    let mut flat = vm(program(), robot(), cfg(true));
+    let values = |v: &common::TestVm| ["a", "b"].map(|n| v.var(n).map(|r| r.value));
+    for tick in 0..20 {
+        tree.tick();
+        flat.tick();
+        assert_eq!(values(&tree), values(&flat), "tick {tick}");
+    }
+    assert_eq!(tree.var("a").map(|r| r.value), Some(5.0));
 }

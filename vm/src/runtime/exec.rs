@@ -124,7 +124,7 @@ impl<H: Hal, C: Clock> Vm<H, C> {
     /// Runs ready nodes in FIFO order until the queue is empty or the budget is spent.
     pub(super) fn run_ready(&mut self) {
         self.ops_left = self.cfg.budget_ops;
-        if self.run_round() {
+        if self.run_deferred() || self.run_round() {
             return;
         }
         while let Some(entry) = self.ready.pop_front().map(Ready::from) {

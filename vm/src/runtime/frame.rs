@@ -33,6 +33,8 @@ use super::vars::{FieldMask, How, NONE};
 use super::watch::Cmp;
 use crate::bytecode::{BlockId, ExprId, ExprOp, Module, Op, StmtId};
 
+mod slot;
+
 /// Loops a frame can hold open at once (a loop in the block, a loop in its body).
 /// A block nested deeper keeps the tree.
 pub(crate) const MAX_LOOPS: usize = 2;
@@ -496,6 +498,10 @@ pub(crate) struct Frames {
     pub quick: Vec<Quick>,
     /// Per pc, the way to the next sleep with every check true ([`Plan`]).
     plans: Vec<Plan>,
+    /// Per pc, its program's [`Ctx::span`]: a fact of the relative quick forms,
+    /// which the blocks sharing a program share, so a round need not read each
+    /// block's `Ctx`.
+    spans: Vec<u32>,
     /// Per block: the pc its frame starts at, or NONE when it keeps the tree.
     entry: Vec<u32>,
     /// Per block: where its ids start.
@@ -624,6 +630,7 @@ impl Frames {
                 self.quick.extend(quick.iter().map(|q| q.map(|v| v, at(e))));
                 for pc in e as usize..self.quick.len() {
                     self.plans.push(Plan::of(&self.quick, pc));
+                    self.spans.push(ctx.span);
                 }
                 self.shapes.entry(hash).or_default().push(e);
                 e
@@ -1205,43 +1212,20 @@ impl<H: Hal, C: Clock> Vm<H, C> {
         let Kind::Frame(f) = &mut node.kind else {
             return false;
         };
-        let Some(plan) = frames.plans.get(f.pc as usize) else {
-            return false;
+        let along = Along {
+            frames,
+            vars,
+            timers,
+            ops_left,
+            end_code,
+            tick: *tick,
+            live,
+            classes,
+            sleepers,
         };
-        let Some(&Quick::Sleep { ticks, .. }) = frames.quick.get(plan.sleep as usize) else {
-            return false;
-        };
-        if plan.sleep == 0 {
+        if !along.go(f, NodeRef { idx, epoch }) {
             return false;
         }
-        // The round's budget covers its ops: charged at once, as one by one.
-        *ops_left = ops_left.saturating_sub(plan.ops);
-        if plan.ends {
-            *end_code = None;
-        }
-        for s in plan.steps {
-            match frames.quick.get(s as usize) {
-                Some(&Quick::SetVK {
-                    var,
-                    src,
-                    field,
-                    op,
-                    k,
-                    ..
-                }) => {
-                    let v = op.apply(vars.field(var_at(src, f.base), field), k);
-                    vars.assign(var_at(var, f.base), v);
-                }
-                Some(&Quick::SetK { var, k, .. }) => {
-                    vars.assign(var_at(var, f.base), k);
-                }
-                _ => break,
-            }
-        }
-        f.pc = plan.sleep + 1;
-        let due = tick.saturating_add(u64::from(ticks));
-        fall_asleep(f, NodeRef { idx, epoch }, due, classes, sleepers, timers);
-        move_counts(plan.moved, live, classes);
         *plans_run += 1;
         true
     }
@@ -1577,6 +1561,81 @@ impl Plan {
             pc += 1;
         }
         none
+    }
+}
+
+/// What running a frame along its [`Plan`] touches, borrowed apart from the VM, so
+/// that a round run from the ready queue ([`Vm::run_plan`]) and one run straight
+/// from the wheel's due slot (`slot.rs`) take the one way.
+pub(super) struct Along<'a> {
+    pub frames: &'a Frames,
+    pub vars: &'a mut super::vars::Vars,
+    pub timers: &'a mut super::timers::Timers,
+    pub ops_left: &'a mut u32,
+    pub end_code: &'a mut Option<super::safety::Code>,
+    pub tick: u64,
+    pub live: &'a mut usize,
+    pub classes: &'a mut [usize; Class::COUNT],
+    pub sleepers: &'a mut usize,
+}
+
+impl Along<'_> {
+    /// Frame `f` (node `node`), awake, run along its pc's plan as one step: what
+    /// [`Vm::run_quick`] with `FUSE` does along that way (the same ops charged,
+    /// writes made, counts moved, alarm set), without dispatching each form.
+    /// Returns false, having done nothing, where the pc has no plan that ends in a
+    /// sleep.
+    #[inline(always)]
+    pub fn go(self, f: &mut FrameState, node: NodeRef) -> bool {
+        let Along {
+            frames,
+            vars,
+            timers,
+            ops_left,
+            end_code,
+            tick,
+            live,
+            classes,
+            sleepers,
+        } = self;
+        let Some(plan) = frames.plans.get(f.pc as usize) else {
+            return false;
+        };
+        let Some(&Quick::Sleep { ticks, .. }) = frames.quick.get(plan.sleep as usize) else {
+            return false;
+        };
+        if plan.sleep == 0 {
+            return false;
+        }
+        // The round's budget covers its ops: charged at once, as one by one.
+        *ops_left = ops_left.saturating_sub(plan.ops);
+        if plan.ends {
+            *end_code = None;
+        }
+        for s in plan.steps {
+            match frames.quick.get(s as usize) {
+                Some(&Quick::SetVK {
+                    var,
+                    src,
+                    field,
+                    op,
+                    k,
+                    ..
+                }) => {
+                    let v = op.apply(vars.field(var_at(src, f.base), field), k);
+                    vars.assign(var_at(var, f.base), v);
+                }
+                Some(&Quick::SetK { var, k, .. }) => {
+                    vars.assign(var_at(var, f.base), k);
+                }
+                _ => break,
+            }
+        }
+        f.pc = plan.sleep + 1;
+        let due = tick.saturating_add(u64::from(ticks));
+        fall_asleep(f, node, due, classes, sleepers, timers);
+        move_counts(plan.moved, live, classes);
+        true
     }
 }
 

@@ -110,6 +110,12 @@ pub struct Vm<H: Hal, C: Clock> {
     plans_run: u64,
     /// Per ready entry of a round run in one go, one bit: its frame's plan holds.
     round_planned: Vec<u64>,
+    /// This tick's due alarms, not yet woken: `fire_timers` leaves them for
+    /// `run_ready` when nothing between the two can look at a frame
+    /// (`Vm::defer_alarms`), so that a round can run straight from them.
+    deferred: Option<Vec<timers::Alarm>>,
+    /// Rounds run straight from the wheel's due slot (`Vm::run_slot_round`).
+    slot_rounds: u64,
     supervisor: safety::supervisor::Supervisor,
     /// The robot's static map, asked for once at the start.
     known_map: Option<KnownMap>,
@@ -207,6 +213,8 @@ impl<H: Hal, C: Clock> Vm<H, C> {
             rounds_fused: 0,
             plans_run: 0,
             round_planned: Vec::new(),
+            deferred: None,
+            slot_rounds: 0,
             supervisor: Default::default(),
             known_map,
             map_from_estimate: ilmr_hal::Pose::default(),
@@ -360,6 +368,12 @@ impl<H: Hal, C: Clock> Vm<H, C> {
     /// break whose pattern no live statement can hold looks at none.
     pub fn break_looks(&self) -> u64 {
         self.break_looks
+    }
+
+    /// Rounds run in one go straight from the timer wheel's due slot, without
+    /// the ready queue (`Vm::run_slot_round` in `frame/slot.rs`).
+    pub fn slot_rounds(&self) -> u64 {
+        self.slot_rounds
     }
 
     /// Live nodes: commands, guards, loops, calls and blocks.
@@ -546,7 +560,31 @@ impl<H: Hal, C: Clock> Vm<H, C> {
 
     fn fire_timers(&mut self) {
         let due = self.timers.due(self.tick);
-        for a in &due {
+        if !due.is_empty() && self.defer_alarms() {
+            self.deferred = Some(due);
+            return;
+        }
+        self.wake_alarms(&due);
+        self.timers.done(due);
+    }
+
+    /// Whether this tick's due alarms may wait for `run_ready` to wake them: with
+    /// the trace off, nothing queued, and nothing that `step_motion`, `step_active`
+    /// or `step_followers` could run (no movement, no stepped command, no follower),
+    /// so that no node ends, no variable is written and nothing is queued between
+    /// the two, and nothing can tell frames still asleep from frames woken.
+    fn defer_alarms(&self) -> bool {
+        !self.tracing()
+            && self.cfg.frames
+            && self.ready.is_empty()
+            && self.motion.head.is_none()
+            && self.active.is_empty()
+            && self.followers.is_empty()
+    }
+
+    /// Wakes alarms `due` in order: what `fire_timers` does with a tick's alarms.
+    fn wake_alarms(&mut self, due: &[timers::Alarm]) {
+        for a in due {
             if self.wake_frame(a) {
                 continue;
             }
@@ -555,7 +593,24 @@ impl<H: Hal, C: Clock> Vm<H, C> {
                 self.enqueue(a.node.idx);
             }
         }
+    }
+
+    /// The alarms `fire_timers` left (`Vm::defer_alarms`): a round run straight
+    /// from them if it can be (`Vm::run_slot_round`); otherwise woken now, their
+    /// entries before anything queued since, where waking them in `fire_timers`
+    /// would have put them. Returns true when the round ran and nothing is left.
+    fn run_deferred(&mut self) -> bool {
+        let Some(due) = self.deferred.take() else {
+            return false;
+        };
+        let Err(due) = self.run_slot_round(due) else {
+            return true;
+        };
+        let since = self.ready.len();
+        self.wake_alarms(&due);
+        self.ready.rotate_left(since);
         self.timers.done(due);
+        false
     }
 
     fn step_followers(&mut self) {

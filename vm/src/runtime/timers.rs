@@ -86,6 +86,24 @@ impl Timers {
         }
     }
 
+    /// Whether a timer for `due` would go to an empty slot: a round that sets its
+    /// alarms for `due` in order may then write them into a buffer of its own and
+    /// hand it over with [`Timers::adopt`], which is what setting them one by one
+    /// leaves.
+    #[inline]
+    pub(crate) fn empty_slot(&self, due: u64) -> bool {
+        due < self.horizon && self.wheel[(due % SLOTS) as usize].is_empty()
+    }
+
+    /// Makes `alarms` the timers due at `due`, whose slot [`Timers::empty_slot`]
+    /// found empty and which nothing has set since; the slot's own buffer, empty,
+    /// goes to the spares.
+    pub(crate) fn adopt(&mut self, due: u64, alarms: Vec<Alarm>) {
+        debug_assert!(self.empty_slot(due));
+        let old = std::mem::replace(&mut self.wheel[(due % SLOTS) as usize], alarms);
+        self.done(old);
+    }
+
     fn slot(&mut self, due: u64) -> &mut Vec<Alarm> {
         let slot = &mut self.wheel[(due % SLOTS) as usize];
         if slot.capacity() == 0

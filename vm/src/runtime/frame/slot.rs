@@ -1,0 +1,413 @@
+//! A round run straight from the timer wheel's due slot. When a tick's ready queue
+//! would hold nothing but the frames its alarms wake, the alarms are that queue in
+//! its order: `Vm::run_round` would find every entry pushed by `fire_timers`, read
+//! it in its look ahead and pop it again, looking at the frame's node each time.
+//! Here the round reads the due alarms twice, once to show it is safe (the
+//! conditions of `Vm::run_round`, and those of `Vm::wake_frame` for each alarm) and
+//! once to wake and run each frame, with no queue entry made. What it leaves is
+//! what waking the alarms and running the queue would leave.
+//!
+//! Both passes take the frames of one pc (a million counting blocks share one)
+//! as a batch, as Lua runs one function's code for every coroutine: what the pc's
+//! plan needs (its checks, its writes, its sleep) is read once per run of equal
+//! pcs, not once per frame. Where every woken frame runs along a plan, the new
+//! alarms for the first tick they set are written back into the due slot's own
+//! buffer, each over an alarm already read, and the buffer becomes that tick's
+//! slot: what setting them one by one into the empty slot would leave.
+
+use ilmr_hal::Hal;
+use ilmr_stdlib::Field;
+
+use super::super::Vm;
+use super::super::clock::Clock;
+use super::super::nodes::{Kind, NodeRef};
+use super::super::timers::Alarm;
+use super::super::vars::NONE;
+use super::super::watch::Cmp;
+use super::{Arith, FrameState, Moved, PLAN_STEPS, Quick, trace_ahead};
+
+/// A variable of a pc's plan, for the frames at it: `var_at(id, base)` as
+/// `(base & mask) + id`, the mark read once per pc.
+#[derive(Clone, Copy)]
+struct Slot {
+    mask: u32,
+    id: u32,
+}
+
+impl Slot {
+    fn of(id: u32) -> Slot {
+        Slot {
+            mask: (id >> 31).wrapping_sub(1),
+            id: id & !super::ABSOLUTE,
+        }
+    }
+
+    #[inline(always)]
+    fn at(self, base: u32) -> u32 {
+        (base & self.mask).wrapping_add(self.id)
+    }
+}
+
+/// What the look ahead needs of a pc, read once for the frames at it.
+struct Ahead {
+    pc: u32,
+    span: u32,
+    /// The plan's visits; 0 where the pc has none.
+    visits: u32,
+    ops: u32,
+    /// The plan ends in a sleep, so a frame is run along it as one step.
+    runs: bool,
+    checks: [(Slot, Field, Cmp, f64); 2],
+    nchecks: usize,
+    writes: [Slot; 2],
+    nwrites: usize,
+}
+
+impl Ahead {
+    /// None where a frame at `pc` is not woken by `Vm::wake_frame` (its sleep
+    /// binds a variable) or names variables below its base.
+    fn of(frames: &super::Frames, pc: u32) -> Option<Ahead> {
+        let unbound = pc
+            .checked_sub(1)
+            .and_then(|p| frames.quick.get(p as usize))
+            .is_some_and(|w| matches!(w, Quick::Sleep { .. }));
+        let span = *frames.spans.get(pc as usize)?;
+        if !unbound || span == NONE {
+            return None;
+        }
+        let plan = frames.plans.get(pc as usize).copied().unwrap_or_default();
+        let mut checks = [(Slot::of(0), Field::Value, Cmp::Truthy, 1.0); 2];
+        let mut nchecks = 0;
+        for c in plan.checks {
+            if let Some(&Quick::CheckVK {
+                src, field, cmp, k, ..
+            }) = frames.quick.get(c as usize)
+            {
+                checks[nchecks] = (Slot::of(src), field, cmp, k);
+                nchecks += 1;
+            } else {
+                break;
+            }
+        }
+        let mut writes = [Slot::of(0); 2];
+        let mut nwrites = 0;
+        for w in plan.writes {
+            if w == NONE {
+                break;
+            }
+            writes[nwrites] = Slot::of(w);
+            nwrites += 1;
+        }
+        let runs = plan.sleep != 0
+            && matches!(
+                frames.quick.get(plan.sleep as usize),
+                Some(Quick::Sleep { .. })
+            );
+        Some(Ahead {
+            pc,
+            span,
+            visits: u32::from(plan.visits),
+            ops: plan.ops,
+            runs,
+            checks,
+            nchecks,
+            writes,
+            nwrites,
+        })
+    }
+}
+
+/// A write of a plan: `var = src.field op k`, or `var = k` (`src` None).
+#[derive(Clone, Copy)]
+struct Write {
+    var: Slot,
+    src: Option<(Slot, Field, Arith)>,
+    k: f64,
+}
+
+/// What the run needs of a pc whose frames go along its plan, read once for them.
+struct Run {
+    pc: u32,
+    ops: u32,
+    ends: bool,
+    moved: Moved,
+    sleep: u32,
+    ticks: u32,
+    steps: [Write; PLAN_STEPS],
+    nsteps: usize,
+}
+
+impl Run {
+    fn of(frames: &super::Frames, pc: u32) -> Run {
+        let plan = frames.plans[pc as usize];
+        let Some(&Quick::Sleep { ticks, .. }) = frames.quick.get(plan.sleep as usize) else {
+            unreachable!("the look ahead saw a plan that ends in a sleep");
+        };
+        let none = Write {
+            var: Slot::of(0),
+            src: None,
+            k: 0.0,
+        };
+        let mut steps = [none; PLAN_STEPS];
+        let mut nsteps = 0;
+        for s in plan.steps {
+            steps[nsteps] = match frames.quick.get(s as usize) {
+                Some(&Quick::SetVK {
+                    var,
+                    src,
+                    field,
+                    op,
+                    k,
+                    ..
+                }) => Write {
+                    var: Slot::of(var),
+                    src: Some((Slot::of(src), field, op)),
+                    k,
+                },
+                Some(&Quick::SetK { var, k, .. }) => Write {
+                    var: Slot::of(var),
+                    src: None,
+                    k,
+                },
+                _ => break,
+            };
+            nsteps += 1;
+        }
+        Run {
+            pc,
+            ops: plan.ops,
+            ends: plan.ends,
+            moved: plan.moved,
+            sleep: plan.sleep,
+            ticks,
+            steps,
+            nsteps,
+        }
+    }
+}
+
+/// What the look ahead found of the round: its ops, whether any frame takes its
+/// quick forms, and whether any frame wakes at all.
+struct Look {
+    ops: u64,
+    quick: bool,
+    woken: bool,
+}
+
+impl<H: Hal, C: Clock> Vm<H, C> {
+    /// Runs this tick's round straight from its due alarms `due`, each woken
+    /// frame's visits one after the other, as `Vm::run_round` runs a queue of the
+    /// entries waking them would have pushed. Gives `due` back, having done
+    /// nothing, unless, with nothing queued, every alarm is stale or wakes a frame
+    /// as `Vm::wake_frame` would and those frames meet `Vm::run_round`'s conditions
+    /// (each reaches its next sleep on quick forms, the variables each names lie
+    /// above the last one's and nothing hears them, the visits do not fall along
+    /// the alarms, the budget covers every op).
+    pub(in crate::runtime) fn run_slot_round(
+        &mut self,
+        mut due: Vec<Alarm>,
+    ) -> Result<(), Vec<Alarm>> {
+        if self.tracing() || !self.ready.is_empty() {
+            return Err(due);
+        }
+        let look = self.look_at_slot(&mut due);
+        let Some(look) = look.filter(|l| l.ops <= u64::from(self.ops_left)) else {
+            return Err(due);
+        };
+        if look.woken {
+            // What waking them spends (`end_sleep`'s end code).
+            self.end_code = None;
+            self.rounds_fused += 1;
+            self.slot_rounds += 1;
+        }
+        if look.quick {
+            for a in &due {
+                self.wake_in_round(a.node);
+                let Kind::Frame(f) = &self.nodes.all[a.node.idx as usize].kind else {
+                    continue;
+                };
+                // What the look ahead found: the frames before this one wrote
+                // their own variables only, so it finds it again.
+                let along = self
+                    .frames
+                    .foresee(&self.vars, f)
+                    .is_some_and(|(_, _, along)| along);
+                if !(along && self.run_plan(a.node.idx)) {
+                    self.run_quick::<true>(a.node.idx);
+                }
+            }
+            self.timers.done(due);
+        } else {
+            self.run_slot_along(due);
+        }
+        Ok(())
+    }
+
+    /// The look ahead over the due alarms: None where the round cannot be run
+    /// from the slot. Stale alarms, which neither way wakes, are taken out of
+    /// `due` as it goes, so that what it leaves are the frames to wake, in order.
+    fn look_at_slot(&self, due: &mut Vec<Alarm>) -> Option<Look> {
+        let (mut ops, mut visits, mut free) = (0u64, 0u32, 0u32);
+        let mut look = Look {
+            ops: 0,
+            quick: false,
+            woken: false,
+        };
+        let mut at: Option<Ahead> = None;
+        let mut kept = 0;
+        for i in 0..due.len() {
+            let a = due[i];
+            let Some(n) = self.nodes.all.get(a.node.idx as usize) else {
+                continue;
+            };
+            if n.epoch != a.node.epoch {
+                continue;
+            }
+            let f = match &n.kind {
+                Kind::Frame(f) => f,
+                Kind::Free => continue,
+                // A block asleep in place: the general wake-up takes it.
+                _ => return None,
+            };
+            if !f.asleep || f.nap != a.nap {
+                continue;
+            }
+            if n.queued || f.parked {
+                return None;
+            }
+            if at.as_ref().is_none_or(|h| h.pc != f.pc) {
+                at = Some(Ahead::of(&self.frames, f.pc)?);
+            }
+            let Some(ahead) = &at else {
+                continue;
+            };
+            if f.base < free {
+                return None;
+            }
+            free = f.base.saturating_add(ahead.span);
+            let (v, o, quick) = self.foresee_at(ahead, f)?;
+            if v < visits {
+                return None;
+            }
+            visits = v;
+            ops += u64::from(o);
+            look.quick |= quick;
+            due[kept] = a;
+            kept += 1;
+        }
+        due.truncate(kept);
+        look.woken = kept > 0;
+        look.ops = ops;
+        Some(look)
+    }
+
+    /// `Frames::foresee` for frame `f` at `ahead`'s pc, with the plan's checks and
+    /// writes read once for the pc: visits, ops and how the run takes the frame.
+    #[inline(always)]
+    fn foresee_at(&self, ahead: &Ahead, f: &FrameState) -> Option<(u32, u32, bool)> {
+        let holds = ahead.visits != 0
+            && ahead.checks[..ahead.nchecks]
+                .iter()
+                .all(|&(src, field, cmp, k)| cmp.holds(self.vars.field(src.at(f.base), field), k));
+        if !holds {
+            let (v, o) = trace_ahead(&self.frames, &self.vars, f)?;
+            return Some((v, o, true));
+        }
+        for w in &ahead.writes[..ahead.nwrites] {
+            if !self.vars.quiet(w.at(f.base)) {
+                return None;
+            }
+        }
+        Some((ahead.visits, ahead.ops, !ahead.runs))
+    }
+
+    /// Frame `r`, asleep and due, woken as `Vm::wake_frame` wakes it, its node not
+    /// queued: the round takes it at once.
+    fn wake_in_round(&mut self, r: NodeRef) {
+        if let Kind::Frame(f) = &mut self.nodes.all[r.idx as usize].kind {
+            f.asleep = false;
+            let sleep = &mut self.nodes.classes[super::Class::Sleep as usize];
+            *sleep = sleep.saturating_sub(1);
+            self.nodes.sleepers = self.nodes.sleepers.saturating_sub(1);
+        }
+    }
+
+    /// The run of a round whose woken frames all go along their plans: each is
+    /// woken and run as `Along::go` runs it, with the plan read once per run of
+    /// frames at one pc. A frame wakes and sleeps again within the step, so the
+    /// sleep counts, which its own sleep holds at one at least, are left as they
+    /// are. The alarms for the first tick set, if its slot is empty, are written
+    /// over the alarms already read and the buffer handed to the wheel.
+    fn run_slot_along(&mut self, mut due: Vec<Alarm>) {
+        let Vm {
+            nodes,
+            vars,
+            timers,
+            frames,
+            ops_left,
+            end_code,
+            tick,
+            plans_run,
+            ..
+        } = self;
+        let super::super::nodes::Nodes {
+            all, live, classes, ..
+        } = nodes;
+        // Where new alarms go in place: the tick, decided at the first alarm set
+        // (None: set one by one), and how many are written.
+        let mut into: Option<u64> = None;
+        let mut kept = 0usize;
+        let mut run: Option<Run> = None;
+        let tick = *tick;
+        for i in 0..due.len() {
+            let a = due[i];
+            let Some(Kind::Frame(f)) = all.get_mut(a.node.idx as usize).map(|n| &mut n.kind) else {
+                continue;
+            };
+            if run.as_ref().is_none_or(|r| r.pc != f.pc) {
+                let r = Run::of(frames, f.pc);
+                if r.ends {
+                    *end_code = None;
+                }
+                if i == 0 {
+                    let at = tick.saturating_add(u64::from(r.ticks));
+                    into = timers.empty_slot(at).then_some(at);
+                }
+                run = Some(r);
+            }
+            let Some(r) = &run else {
+                continue;
+            };
+            *ops_left = ops_left.saturating_sub(r.ops);
+            for w in &r.steps[..r.nsteps] {
+                let v = match w.src {
+                    Some((src, field, op)) => op.apply(vars.field(src.at(f.base), field), w.k),
+                    None => w.k,
+                };
+                vars.assign(w.var.at(f.base), v);
+            }
+            f.pc = r.sleep + 1;
+            f.nap = f.nap.wrapping_add(1);
+            let alarm = Alarm {
+                node: a.node,
+                nap: f.nap,
+            };
+            let at = tick.saturating_add(u64::from(r.ticks));
+            if Some(at) == into {
+                due[kept] = alarm;
+                kept += 1;
+            } else {
+                timers.set(at, alarm);
+            }
+            super::move_counts(r.moved, live, classes);
+        }
+        *plans_run += due.len() as u64;
+        match into {
+            Some(at) if kept > 0 => {
+                due.truncate(kept);
+                timers.adopt(at, due);
+            }
+            _ => timers.done(due),
+        }
+    }
+}
