@@ -175,12 +175,17 @@ pub fn ini_dictionary() -> Vec<String> {
             .iter()
             .map(|p| p.name.to_string()),
     );
-    words.extend(NUMBERS.iter().map(|w| w.to_string()));
-    words.extend(
-        ["\n", " ", "\t", "\r\n", "ä", "\u{0}"]
-            .iter()
-            .map(|w| w.to_string()),
-    );
+    with_numbers_and_spacing(words)
+}
+
+/// Line breaks, blanks and characters no format here gives a meaning to, for every
+/// dictionary of a line-based text format.
+pub const SPACING: &[&str] = &["\n", " ", "\t", "\r\n", "ä", "\u{0}"];
+
+/// A text format's own `words`, then [`NUMBERS`] and [`SPACING`]: what every reader of
+/// text must take.
+pub fn with_numbers_and_spacing(mut words: Vec<String>) -> Vec<String> {
+    words.extend(NUMBERS.iter().chain(SPACING).map(|w| w.to_string()));
     words
 }
 

@@ -69,7 +69,7 @@ fn toml_blocks(markdown: &str) -> Vec<String> {
 
 /// The format's keys and values.
 pub fn dictionary() -> Vec<String> {
-    let mut words: Vec<String> = [
+    let words: Vec<String> = [
         "[[robot]]",
         "[robot]",
         "name = ",
@@ -106,13 +106,7 @@ pub fn dictionary() -> Vec<String> {
     .iter()
     .map(|w| w.to_string())
     .collect();
-    words.extend(mutate::NUMBERS.iter().map(|w| w.to_string()));
-    words.extend(
-        ["\n", " ", "\t", "\r\n", "ä", "\u{0}"]
-            .iter()
-            .map(|w| w.to_string()),
-    );
-    words
+    mutate::with_numbers_and_spacing(words)
 }
 
 /// The target, shared by this loop and the AFL++ binary (`fuzz/src/bin/fleet.rs`).

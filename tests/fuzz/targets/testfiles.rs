@@ -119,13 +119,7 @@ pub fn dictionary() -> Vec<String> {
         .iter()
         .map(|w| w.to_string()),
     );
-    words.extend(mutate::NUMBERS.iter().map(|w| w.to_string()));
-    words.extend(
-        ["\n", " ", "\t", "\r\n", "ä", "\u{0}"]
-            .iter()
-            .map(|w| w.to_string()),
-    );
-    words
+    mutate::with_numbers_and_spacing(words)
 }
 
 /// The target, shared by this loop and the AFL++ binary (`fuzz/src/bin/testfile.rs`).

@@ -26,7 +26,7 @@ pub fn seeds() -> Vec<Vec<u8>> {
 
 /// Keys, tables and values of the world format.
 pub fn dictionary() -> Vec<String> {
-    let mut words: Vec<String> = [
+    let words: Vec<String> = [
         "[[wall]]",
         "[[door]]",
         "[[obstacle]]",
@@ -69,13 +69,7 @@ pub fn dictionary() -> Vec<String> {
     .iter()
     .map(|w| w.to_string())
     .collect();
-    words.extend(mutate::NUMBERS.iter().map(|w| w.to_string()));
-    words.extend(
-        ["\n", " ", "\t", "\r\n", "ä", "\u{0}"]
-            .iter()
-            .map(|w| w.to_string()),
-    );
-    words
+    mutate::with_numbers_and_spacing(words)
 }
 
 /// The target, shared by this loop and the AFL++ binary (`fuzz/src/bin/world.rs`).
