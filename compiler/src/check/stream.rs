@@ -11,11 +11,12 @@
 //! (`owners::Tally`). The diagnostics are those of the whole-tree check, in the same
 //! order: whatever this path cannot reproduce exactly makes it give the file back
 //! (`None`), and [`super::analyze_given`] checks as before. It gives up on a task with
-//! a skill header, a diagnostic of the parser, a `break(pattern)` or a statement that
-//! never ends in any file (W0701/W0702 and W0904 search the whole program), a loop that
-//! may starve (W0902 weighs it by the whole program's variables), a call inside a
-//! skill that W0905 resolved by name otherwise than the skill's check did, or as many
-//! diagnostics as the limit (past it, which are kept depends on the order they come).
+//! a skill header, a task file given after a skill file, a diagnostic of the parser, a
+//! `break(pattern)` or a statement that never ends in any file (W0701/W0702 and W0904
+//! search the whole program), a loop that may starve (W0902 weighs it by the whole
+//! program's variables), a call inside a skill that W0905 resolved by name otherwise
+//! than the skill's check did, or as many diagnostics as the limit (past it, which are
+//! kept depends on the order they come).
 
 use super::*;
 
@@ -71,9 +72,12 @@ pub(super) fn analyze<'s>(
         }
         files.push(entry);
     }
+    // A task file after a skill file would be walked whole: the usual check does that.
+    let task_after = |f: &FileEntry| f.tree.kind == FileKind::Task && !f.library;
     if files
         .iter()
         .any(|f| f.break_patterns || f.seen.never_ending)
+        || files[lead..].iter().any(task_after)
     {
         return None;
     }
@@ -129,26 +133,6 @@ pub(super) fn analyze<'s>(
     for (entry, (binds, seen)) in files.iter_mut().zip(found) {
         entry.binds = binds;
         entry.seen = seen;
-    }
-    // Task files after the streamed ones, as the whole-tree check walks them.
-    for (i, entry) in files.iter().enumerate().skip(lead) {
-        if entry.tree.kind != FileKind::Task || entry.library {
-            continue;
-        }
-        let vars = Vars::with_capacity(entry.binds).with_detail(detail);
-        let mut unit = Unit::new(FileId(i as u32), None, None, vars);
-        Walker::new(
-            model,
-            &constants,
-            &names,
-            &skills,
-            &mut unit,
-            &mut diagnostics,
-            detail,
-            &mut specials,
-        )
-        .blocks(&entry.tree.blocks);
-        units.push(unit);
     }
     let special_blocks = check_skills(
         &files,
