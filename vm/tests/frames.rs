@@ -54,6 +54,35 @@ fn state<N: AsRef<str>>(
     )
 }
 
+/// `module` run with the trace off on the tree and on frames for up to `ticks` ticks,
+/// the two asserted to agree on [`state`] after every tick.
+fn tree_and_frames_off(
+    module: ilmr_vm::Module,
+    budget: u32,
+    names: &[String],
+    ticks: u32,
+    seed: u64,
+) -> (common::TestVm, common::TestVm) {
+    let cfg = |frames| Config {
+        budget_ops: budget,
+        frames,
+        trace: TraceLevel::Off,
+        ..config()
+    };
+    let mut tree = vm(module.clone(), robot(), cfg(false));
+    let mut flat = vm(module, robot(), cfg(true));
+    let what = |v: &common::TestVm| state(v, names);
+    for tick in 0..ticks {
+        if tree.finished() && flat.finished() {
+            break;
+        }
+        tree.tick();
+        flat.tick();
+        assert_eq!(what(&tree), what(&flat), "seed {seed}, tick {tick}");
+    }
+    (tree, flat)
+}
+
 /// A number from the environment (`FRAMES_SEEDS`, `FRAMES_FROM`), to run more seeds
 /// or one.
 fn env_or(name: &str, default: u64) -> u64 {
@@ -456,23 +485,7 @@ fn frames_run_in_one_go_as_the_tree() {
     let (mut slot, mut slot_programs) = (0, 0);
     for seed in 0..seeds {
         let (module, budget, names) = independent_program(seed);
-        let cfg = |frames| Config {
-            budget_ops: budget,
-            frames,
-            trace: TraceLevel::Off,
-            ..config()
-        };
-        let mut tree = vm(module.clone(), robot(), cfg(false));
-        let mut flat = vm(module, robot(), cfg(true));
-        let what = |v: &common::TestVm| state(v, &names);
-        for tick in 0..200 {
-            if tree.finished() && flat.finished() {
-                break;
-            }
-            tree.tick();
-            flat.tick();
-            assert_eq!(what(&tree), what(&flat), "seed {seed}, tick {tick}");
-        }
+        let (tree, flat) = tree_and_frames_off(module, budget, &names, 200, seed);
         assert_eq!(tree.rounds_fused(), 0, "the tree has no frames");
         fused += flat.rounds_fused();
         programs += usize::from(flat.rounds_fused() > 0);
@@ -674,23 +687,7 @@ fn counting_blocks_run_from_the_due_slot_as_the_tree() {
     let (mut slot, mut programs) = (0, 0);
     for seed in 0..seeds {
         let (module, budget, names) = counting_program(seed);
-        let cfg = |frames| Config {
-            budget_ops: budget,
-            frames,
-            trace: TraceLevel::Off,
-            ..config()
-        };
-        let mut tree = vm(module.clone(), robot(), cfg(false));
-        let mut flat = vm(module, robot(), cfg(true));
-        let what = |v: &common::TestVm| state(v, &names);
-        for tick in 0..60 {
-            if tree.finished() && flat.finished() {
-                break;
-            }
-            tree.tick();
-            flat.tick();
-            assert_eq!(what(&tree), what(&flat), "seed {seed}, tick {tick}");
-        }
+        let (_, flat) = tree_and_frames_off(module, budget, &names, 60, seed);
         slot += flat.slot_rounds();
         programs += usize::from(flat.slot_rounds() > 0);
     }
