@@ -1,12 +1,11 @@
 //! What `--robot`, `--model`, `--world` and `--start` name: the backend, the robot model
 //! the task is checked against, and for a simulated robot its world and start pose.
 
-use ilmr_hal::Limits;
 use ilmr_model::RobotModel;
 use ilmr_sim::{RobotKind, SimProfile, SimRobot};
 
 use super::backend::{AnyRobot, NoRobot, Ros2, Simulated};
-use super::scenario::Scenario;
+use super::scenario::{Scenario, scripted_limits};
 use crate::ros2::Ros2Args;
 
 pub use ilmr_testfile::place::{Backend, LoadedWorld};
@@ -107,7 +106,9 @@ pub fn open(setup: &Setup, scenario: &Scenario, seed: u64) -> Result<AnyRobot, S
             }
             Ok(AnyRobot::new(NoRobot))
         }
-        Backend::Scripted => Ok(AnyRobot::new(scenario.robot(limits(&setup.model))?)),
+        Backend::Scripted => Ok(AnyRobot::new(
+            scenario.robot(scripted_limits(&setup.model))?,
+        )),
         Backend::Ros2 => {
             if scenario.scripts_the_world() {
                 return Err(
@@ -153,17 +154,6 @@ pub fn open(setup: &Setup, scenario: &Scenario, seed: u64) -> Result<AnyRobot, S
             })?;
             Ok(AnyRobot::new(Simulated::new(robot)))
         }
-    }
-}
-
-/// The scripted robot moves within the model's limits.
-fn limits(model: &RobotModel) -> Limits {
-    Limits {
-        acceleration: model.max_acceleration(),
-        deceleration: model.max_deceleration(),
-        curvature_rate: model.curinc(),
-        max_curvature: model.max_curvature(),
-        max_speed: model.max_speed(),
     }
 }
 

@@ -95,6 +95,18 @@ pub struct Line {
     pub text: String,
 }
 
+/// The bounds a scripted robot of `model` moves within: the model's own, as
+/// `ilmrc run --robot scripted` drives it.
+pub fn scripted_limits(model: &ilmr_model::RobotModel) -> Limits {
+    Limits {
+        acceleration: model.max_acceleration(),
+        deceleration: model.max_deceleration(),
+        curvature_rate: model.curinc(),
+        max_curvature: model.max_curvature(),
+        max_speed: model.max_speed(),
+    }
+}
+
 impl Scenario {
     pub fn load(path: &std::path::Path) -> Result<Scenario, String> {
         let text = ilmr_files::read_text(path, ilmr_files::Kind::Scenario)

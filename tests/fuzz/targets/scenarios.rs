@@ -5,10 +5,9 @@
 //! `ilmrc run --robot scripted` does. A refusal names its line and is short.
 
 use ilmr_compiler::lower::{LineOptions, lower_line_into};
-use ilmr_hal::Limits;
 use ilmr_model::RobotModel;
 use ilmr_testfile::problem::MAX_MESSAGE;
-use ilmr_testfile::scenario::Scenario;
+use ilmr_testfile::scenario::{Scenario, scripted_limits};
 use ilmr_vm::{Config, SimClock, TraceLevel, Vm};
 
 use super::corpus::{self, ROBOTS};
@@ -73,7 +72,7 @@ pub fn feed(input: &[u8]) {
     );
     for robot in ROBOTS {
         let model = corpus::model(robot);
-        match scenario.robot(limits(&model)) {
+        match scenario.robot(scripted_limits(&model)) {
             Ok(scripted) => drive(&scenario, scripted, robot, &model),
             Err(e) => short(&e),
         }
@@ -107,17 +106,6 @@ fn finite(s: &Scenario) {
     numbers.extend(s.paths.values().flatten().flat_map(|&(x, y)| [x, y]));
     numbers.extend(s.lines.iter().map(|l| l.t));
     assert!(numbers.iter().all(|n| n.is_finite()), "{s:?}");
-}
-
-/// As `ilmrc run` bounds a scripted robot (src/run/setup.rs).
-fn limits(model: &RobotModel) -> Limits {
-    Limits {
-        acceleration: model.max_acceleration(),
-        deceleration: model.max_deceleration(),
-        curvature_rate: model.curinc(),
-        max_curvature: model.max_curvature(),
-        max_speed: model.max_speed(),
-    }
 }
 
 fn drive(scenario: &Scenario, scripted: ilmr_hal::ScriptedRobot, robot: &str, model: &RobotModel) {
