@@ -103,7 +103,11 @@ pub fn run(module: Module, model: &RobotModel, line: Option<&str>) {
             vm.tick();
         }
     }
-    // Every event renders to one JSON line: what the trace file and `serve` send.
+    trace_is_json(&mut vm);
+}
+
+/// Every event renders to one JSON line: what the trace file and `serve` send.
+pub fn trace_is_json(vm: &mut Vm<ScriptedRobot, SimClock>) {
     let events = vm.take_events();
     let trace = ilmr_vm::to_jsonl(vm.module(), &events);
     for line in trace.lines() {

@@ -126,13 +126,7 @@ fn drive(scenario: &Scenario, scripted: ilmr_hal::ScriptedRobot, robot: &str, mo
         }
         vm.tick();
     }
-    let events = vm.take_events();
-    let trace = ilmr_vm::to_jsonl(vm.module(), &events);
-    for line in trace.lines() {
-        if let Err(e) = serde_json::from_str::<serde_json::Value>(line) {
-            panic!("a trace line is not JSON ({e}): {line}");
-        }
-    }
+    crate::pipeline::trace_is_json(&mut vm);
 }
 
 fn mutation(base: &[u8], rng: &mut Rng, corpus: &[Vec<u8>], words: &[String]) -> Vec<u8> {
