@@ -225,6 +225,17 @@ pub fn read_text(path: &Path, kind: Kind) -> Result<String, ReadError> {
     })
 }
 
+/// 1-based line of a byte offset of `text` (past the end: its last line), for readers
+/// that name the line of what they refuse.
+pub fn line_of(text: &str, offset: usize) -> usize {
+    let end = offset.min(text.len());
+    text.as_bytes()[..end]
+        .iter()
+        .filter(|&&b| b == b'\n')
+        .count()
+        + 1
+}
+
 /// Where the byte after `valid` (UTF-8 text) stands: 1-based line, and column in
 /// characters.
 pub fn line_column(valid: &[u8]) -> (usize, usize) {

@@ -11,6 +11,7 @@ use std::fmt;
 use std::ops::Range;
 use std::path::{Path, PathBuf};
 
+use ilmr_files::line_of;
 use ilmr_testfile::place::ROS2_ROBOT;
 use serde::Deserialize;
 use toml::Spanned;
@@ -213,16 +214,6 @@ pub fn parse(text: &str, base: &Path) -> Result<Vec<Member>, Error> {
         });
     }
     Ok(members)
-}
-
-/// 1-based line of a byte offset.
-fn line_of(text: &str, offset: usize) -> usize {
-    let end = offset.min(text.len());
-    text.as_bytes()[..end]
-        .iter()
-        .filter(|&&b| b == b'\n')
-        .count()
-        + 1
 }
 
 /// A name a planner types: letters, digits and `_`, starting with a letter, so that it

@@ -26,15 +26,7 @@ impl fmt::Display for WorldError {
 
 impl std::error::Error for WorldError {}
 
-/// 1-based line of a byte offset.
-pub(crate) fn line_of(text: &str, offset: usize) -> usize {
-    let end = offset.min(text.len());
-    text.as_bytes()[..end]
-        .iter()
-        .filter(|&&b| b == b'\n')
-        .count()
-        + 1
-}
+pub(crate) use ilmr_files::line_of;
 
 /// The line on which `key` is set inside the entry whose header starts at
 /// `entry_start`, or the header's own line when the key is not written there
