@@ -67,6 +67,14 @@ fn main() {
     let elapsed = start.elapsed();
     let live = vm.live();
     assert!(live >= n, "{live} live nodes for {n} blocks");
+    // A step is only a step if it counted: every block has added one per tick, the two
+    // untimed ticks included, so the figure below divides by work that was done.
+    let mut counters = 0;
+    for (name, var) in vm.globals() {
+        assert_eq!(var.value, ticks as f64 + 2.0, "{name} after {ticks} ticks");
+        counters += 1;
+    }
+    assert_eq!(counters, n, "one counter per block");
     let steps = ticks as f64 * n as f64;
     let wall = elapsed.as_secs_f64() * 1e9 / steps;
     // The time on the CPU, the clock `tools/blocks.lua` reads (`os.clock`): on a

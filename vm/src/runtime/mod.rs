@@ -451,6 +451,14 @@ impl<H: Hal, C: Clock> Vm<H, C> {
         self.module.find_global(name).map(|v| self.vars.get(v.0))
     }
 
+    /// Every global variable by name with its record, in the module's order: a walk
+    /// over all of them without a lookup by name each.
+    pub fn globals(&self) -> impl Iterator<Item = (&str, VarRecord)> + '_ {
+        (0u32..)
+            .zip(&self.module.globals)
+            .map(|(id, g)| (g.name.as_str(), self.vars.get(id)))
+    }
+
     pub fn events(&self) -> &[Event] {
         &self.events
     }
