@@ -427,7 +427,19 @@ impl Engine {
         else {
             return Vec::new();
         };
-        semantic::tokens(&self.program, file, &doc.index)
+        let whole = Span::new(0, doc.text.len());
+        semantic::tokens(&self.program, file, &doc.index, whole)
+    }
+
+    /// The semantic tokens of the lines an editor shows: on a file of a million
+    /// tokens, what it can colour at once without waiting for all of them.
+    pub fn semantic_tokens_in(&self, uri: &Uri, range: Range) -> Vec<SemanticToken> {
+        let (Some(doc), Some(file)) = (self.workspace.get(uri), self.program.file_id(uri.as_str()))
+        else {
+            return Vec::new();
+        };
+        let within = doc.index.span(&doc.text, range);
+        semantic::tokens(&self.program, file, &doc.index, within)
     }
 
     /// `ilmrc fmt`'s text as one edit; `None` when the file has syntax errors.

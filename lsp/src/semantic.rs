@@ -2,7 +2,7 @@
 //! checker's resolutions tell commands, skills, variables, grammar keywords, model
 //! names and paths apart, which no TextMate grammar can.
 
-use std::collections::{BTreeMap, HashSet};
+use std::collections::HashSet;
 
 use ilmr_compiler::Span;
 use ilmr_compiler::check::Resolved;
@@ -59,10 +59,19 @@ pub fn legend() -> SemanticTokensLegend {
     }
 }
 
-pub fn tokens(program: &Program, file: FileId, index: &LineIndex) -> Vec<SemanticToken> {
+/// The tokens of `file` that lie within `within` (the whole file for
+/// `semanticTokens/full`, the lines an editor shows for `semanticTokens/range`).
+pub fn tokens(
+    program: &Program,
+    file: FileId,
+    index: &LineIndex,
+    within: Span,
+) -> Vec<SemanticToken> {
     let text = program.text(file);
-    // By start offset: a name the checker resolved replaces what the lexer saw there.
-    let mut marks: BTreeMap<u32, (Span, Kind, u32)> = BTreeMap::new();
+    let mut marks = Marks {
+        all: Vec::new(),
+        within,
+    };
     let lexed = lex(text);
     for (token, span) in &lexed.tokens {
         let kind = match token {
@@ -76,10 +85,10 @@ pub fn tokens(program: &Program, file: FileId, index: &LineIndex) -> Vec<Semanti
             | Token::Highest => Kind::Keyword,
             Token::Break => {
                 let word = Span::new(span.start as usize, span.start as usize + 5);
-                marks.insert(word.start, (word, Kind::Keyword, 0));
+                marks.put(word, Kind::Keyword, 0);
                 let p = ilmr_compiler::lexer::break_pattern(text, *span);
                 if let Some(inner) = p.inner.filter(|s| !s.is_empty()) {
-                    marks.insert(inner.start, (inner, Kind::String, 0));
+                    marks.put(inner, Kind::String, 0);
                 }
                 continue;
             }
@@ -98,10 +107,10 @@ pub fn tokens(program: &Program, file: FileId, index: &LineIndex) -> Vec<Semanti
             | Token::Slash => Kind::Operator,
             _ => continue,
         };
-        marks.insert(span.start, (*span, kind, 0));
+        marks.put(*span, kind, 0);
     }
     for c in &lexed.comments {
-        marks.insert(c.start, (*c, Kind::Comment, 0));
+        marks.put(*c, Kind::Comment, 0);
     }
     for unit in program.units_of(file) {
         // A set, not a search per reference: a name bound on every line of a long file
@@ -125,14 +134,45 @@ pub fn tokens(program: &Program, file: FileId, index: &LineIndex) -> Vec<Semanti
                 Resolved::Model => (Kind::Property, READONLY),
                 Resolved::Path => (Kind::Namespace, 0),
             };
-            marks.insert(span.start, (span, kind, mods));
+            marks.put(span, kind, mods);
         }
     }
     for skill in &program.tree(file).skills {
         let span = skill.name.span;
-        marks.insert(span.start, (span, Kind::Method, DECLARATION));
+        marks.put(span, Kind::Method, DECLARATION);
     }
-    encode(marks.into_values(), text, index)
+    encode(marks.in_order(), text, index)
+}
+
+/// What each span of the file is, as the lexer and then the checker saw it.
+struct Marks {
+    all: Vec<(Span, Kind, u32)>,
+    within: Span,
+}
+
+impl Marks {
+    fn put(&mut self, span: Span, kind: Kind, mods: u32) {
+        if span.start >= self.within.start && span.end <= self.within.end {
+            self.all.push((span, kind, mods));
+        }
+    }
+
+    /// By start offset, the last put at each start: a name the checker resolved
+    /// replaces what the lexer saw there. A sorted vector rather than an ordered map,
+    /// which costs an allocation per token where a file has millions.
+    fn in_order(mut self) -> impl Iterator<Item = (Span, Kind, u32)> {
+        // Stable, so marks at one start stay in the order they were put.
+        self.all.sort_by_key(|(span, ..)| span.start);
+        let mut all = self.all.into_iter().peekable();
+        std::iter::from_fn(move || {
+            loop {
+                let mark = all.next()?;
+                if all.peek().is_none_or(|next| next.0.start != mark.0.start) {
+                    return Some(mark);
+                }
+            }
+        })
+    }
 }
 
 fn encode(

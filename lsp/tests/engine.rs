@@ -3,7 +3,7 @@
 
 use ilmr_lsp::{Engine, Settings};
 use tower_lsp_server::ls_types::{
-    CompletionItem, CompletionTextEdit, Position, TextDocumentContentChangeEvent, Uri,
+    CompletionItem, CompletionTextEdit, Position, Range, TextDocumentContentChangeEvent, Uri,
 };
 
 const TASK: &str = "file:///ws/task.ilmr";
@@ -416,6 +416,15 @@ fn semantic_tokens_tell_names_apart() {
             (1, 0, 5, 0),
         ]
     );
+    // The second line alone, as an editor asks for the lines it shows: the same
+    // tokens, the first still counted from the file's start.
+    let second = Range::new(Position::new(1, 0), Position::new(2, 0));
+    let shown: Vec<(u32, u32, u32, u32)> = engine
+        .semantic_tokens_in(&u, second)
+        .iter()
+        .map(|t| (t.delta_line, t.delta_start, t.length, t.token_type))
+        .collect();
+    assert_eq!(shown, [(1, 0, 2, 0), (0, 3, 5, 3)]);
 }
 
 /// The compiler's analysis, but for a program holding `CHECKER_BUG`, where it fails as a
