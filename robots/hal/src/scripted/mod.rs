@@ -7,6 +7,8 @@ mod script;
 pub use kinematics::Limits;
 pub use script::{Call, OpMatch, OpOutcome, Stream};
 
+use std::collections::HashMap;
+
 use ilmr_geometry::wrap_angle;
 use kinematics::Kinematics;
 use script::{OpRule, Periodic, Script, Sighting, TimedReading, TimedScan};
@@ -43,6 +45,9 @@ pub struct ScriptedRobot {
     /// The scans due so far: the latest is the one before.
     next_scan: usize,
     devices: Vec<DeviceReading>,
+    /// Each device's place in `devices` by its lower-cased name: a script of many
+    /// devices would otherwise search them all for each reading.
+    device_at: HashMap<String, usize>,
     ops: Vec<RunningOp>,
     actuator_log: Vec<(String, f64)>,
     locmode: Option<String>,
@@ -66,6 +71,7 @@ impl ScriptedRobot {
             next_reading: 0,
             next_scan: 0,
             devices: Vec::new(),
+            device_at: HashMap::new(),
             ops: Vec::new(),
             actuator_log: Vec::new(),
             locmode: None,
@@ -280,16 +286,16 @@ impl ScriptedRobot {
             if r.t > self.t + 1e-9 {
                 break;
             }
-            match self
-                .devices
-                .iter_mut()
-                .find(|d| d.name.eq_ignore_ascii_case(&r.device))
-            {
-                Some(d) => d.value = r.value,
-                None => self.devices.push(DeviceReading {
-                    name: r.device.clone(),
-                    value: r.value,
-                }),
+            let key = r.device.to_ascii_lowercase();
+            match self.device_at.get(&key) {
+                Some(&at) => self.devices[at].value = r.value,
+                None => {
+                    self.device_at.insert(key, self.devices.len());
+                    self.devices.push(DeviceReading {
+                        name: r.device.clone(),
+                        value: r.value,
+                    });
+                }
             }
             self.next_reading += 1;
         }
@@ -347,10 +353,9 @@ impl Hal for ScriptedRobot {
         out.curvature = self.kin.curvature;
         out.devices.clone_from(&self.devices);
         out.battery = self
-            .devices
-            .iter()
-            .find(|d| d.name.eq_ignore_ascii_case("battery"))
-            .and_then(|d| d.value);
+            .device_at
+            .get("battery")
+            .and_then(|&at| self.devices[at].value);
         self.catch_up_scans();
         let latest_scan = self.latest_scan();
         match (latest_scan, out.scan.as_mut()) {
@@ -548,6 +553,26 @@ mod tests {
         assert_eq!(run_to(&mut robot, 0.2).battery, Some(25.0));
         assert_eq!(run_to(&mut robot, 0.6).battery, Some(24.0));
         assert_eq!(run_to(&mut robot, 1.0).battery, Some(22.0), "the later tie");
+    }
+
+    #[test]
+    fn a_device_is_one_whatever_the_letter_case_among_many() {
+        let mut robot = ScriptedRobot::new(Limits::default())
+            .reading(0.0, "Battery", Some(25.0))
+            .reading(0.5, "BATTERY", Some(24.0));
+        for i in 0..10_000 {
+            robot = robot.reading(0.0, &format!("sonar{i}"), Some(f64::from(i)));
+        }
+        robot = robot.reading(0.5, "SONAR9999", None);
+        let s = run_to(&mut robot, 0.2);
+        assert_eq!(s.battery, Some(25.0));
+        assert_eq!(s.devices.len(), 10_001);
+        assert_eq!(s.devices[0].name, "Battery", "named as first read");
+        let s = run_to(&mut robot, 0.6);
+        assert_eq!(s.battery, Some(24.0));
+        assert_eq!(s.devices.len(), 10_001);
+        assert_eq!(s.devices[10_000].value, None);
+        assert_eq!(s.devices[9_999].value, Some(9_998.0));
     }
 
     #[test]
