@@ -178,16 +178,9 @@ impl Hits {
         self.next = scan.time + self.every;
         // The beams were cast from this tick's true pose: the robot steps in lockstep
         // with the VM.
-        let p = sim.true_pose();
-        let o = p.to_world(&scan.mount);
-        for (i, &r) in scan.ranges.iter().enumerate() {
-            if r <= 0.0 || r >= scan.max_range {
-                continue;
-            }
-            let a = p.h + scan.bearing(i);
-            let (x, y) = (o.x + r * a.cos(), o.y + r * a.sin());
+        for hit in scan.world_hits(sim.true_pose()) {
             self.cells
-                .insert(((x / CELL).round() as i64, (y / CELL).round() as i64));
+                .insert(((hit.x / CELL).round() as i64, (hit.y / CELL).round() as i64));
         }
     }
 

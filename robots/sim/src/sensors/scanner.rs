@@ -43,6 +43,15 @@ impl Scan {
     pub fn local_point(&self, index: usize) -> Point2<f64> {
         self.mount + Vector2::from_angle(self.bearing(index)) * self.ranges[index]
     }
+
+    /// The points the beams hit, in the world frame, for a robot that stood at
+    /// `robot` when the scan was taken (its true pose: the beams were cast from it).
+    /// A range of 0 is the scanner's own housing, not a point of the world.
+    pub fn world_hits(&self, robot: Pose) -> impl Iterator<Item = Point2<f64>> + '_ {
+        (0..self.ranges.len())
+            .filter(|&i| self.returned(i) && self.ranges[i] > 0.0)
+            .map(move |i| robot.to_world(&self.local_point(i)))
+    }
 }
 
 /// Noise-free ranges from the scanner on a robot at `robot`.
