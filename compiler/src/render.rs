@@ -149,6 +149,51 @@ pub fn human(diagnostics: &[Diagnostic], files: &[RenderFile<'_>], style: Style)
     out
 }
 
+/// A report on one span of a file that is not a program (a test file): what it says.
+pub struct Single<'a> {
+    pub severity: Severity,
+    pub code: &'a str,
+    pub message: &'a str,
+    pub span: crate::Span,
+    pub label: &'a str,
+    pub help: Option<&'a str>,
+}
+
+/// One report against `file`, its long lines cut and its texts shortened as [`human`]
+/// does a program's: the rule for what people are shown of a long line is this one.
+pub fn single(file: &RenderFile<'_>, r: &Single<'_>, style: Style) -> String {
+    let shown = Shown::new(file.text, std::iter::once(r.span));
+    let range = shown.offset(r.span.start)..shown.offset(r.span.end);
+    let (kind, color) = match r.severity {
+        Severity::Error => (ReportKind::Error, Color::Red),
+        Severity::Warning => (ReportKind::Warning, Color::Yellow),
+    };
+    let path = file.path.to_string();
+    let mut report = Report::build(kind, (path.clone(), range.clone()))
+        .with_config(style.config())
+        .with_code(r.code)
+        .with_message(short(r.message))
+        .with_label(
+            Label::new((path.clone(), range))
+                .with_message(short(r.label))
+                .with_color(color),
+        );
+    if let Some(help) = r.help {
+        report = report.with_help(short(help));
+    }
+    let mut out = Vec::new();
+    // Writing into a Vec cannot fail.
+    let _ = report
+        .finish()
+        .write((path, ariadne::Source::from(shown.text.as_str())), &mut out);
+    let mut out = String::from_utf8_lossy(&out).into_owned();
+    if !shown.cuts.is_empty() {
+        let lines = (LineIndex::new(file.text), LineIndex::new(&shown.text));
+        true_column(&mut out, file, &shown, &lines, r.span.start);
+    }
+    out
+}
+
 /// Puts the true column of `at` back in a report's `path:line:column` header when a
 /// cut before it on its line moved it in the shown text.
 fn true_column(
