@@ -70,7 +70,8 @@ fn main() {
     // A step is only a step if it counted: every block has added one per tick, the two
     // untimed ticks included, so the figure below divides by work that was done.
     let mut counters = 0;
-    for (name, var) in vm.globals() {
+    for (global, var) in vm.globals() {
+        let name = &global.name;
         assert_eq!(var.value, ticks as f64 + 2.0, "{name} after {ticks} ticks");
         counters += 1;
     }

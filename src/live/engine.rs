@@ -489,15 +489,13 @@ impl Engine {
                 text: s.text.clone(),
             })
             .collect();
-        let vars = module
-            .globals
-            .iter()
-            .filter_map(|g| {
-                self.vm.var(&g.name).map(|record| VarState {
-                    name: g.name.clone(),
-                    kind: g.kind,
-                    record,
-                })
+        let vars = self
+            .vm
+            .globals()
+            .map(|(g, record)| VarState {
+                name: g.name.clone(),
+                kind: g.kind,
+                record,
             })
             .collect();
         let skills = module

@@ -23,7 +23,7 @@ use std::collections::{BTreeMap, VecDeque};
 use ilmr_hal::{Hal, KnownMap, Snapshot};
 
 use crate::bytecode::limits::EXPR_STACK;
-use crate::bytecode::{BlockId, Fragment, Module, ModuleBuilder, ModuleError, StmtId};
+use crate::bytecode::{BlockId, Fragment, Global, Module, ModuleBuilder, ModuleError, StmtId};
 use activity::{Activity, REST_SPEED};
 use clock::Clock;
 use config::{Config, TraceLevel};
@@ -451,12 +451,12 @@ impl<H: Hal, C: Clock> Vm<H, C> {
         self.module.find_global(name).map(|v| self.vars.get(v.0))
     }
 
-    /// Every global variable by name with its record, in the module's order: a walk
-    /// over all of them without a lookup by name each.
-    pub fn globals(&self) -> impl Iterator<Item = (&str, VarRecord)> + '_ {
+    /// Every global variable with its record, in the module's order: a walk over all
+    /// of them without a lookup by name each, which [`Vm::var`] makes.
+    pub fn globals(&self) -> impl Iterator<Item = (&Global, VarRecord)> + '_ {
         (0u32..)
             .zip(&self.module.globals)
-            .map(|(id, g)| (g.name.as_str(), self.vars.get(id)))
+            .map(|(id, g)| (g, self.vars.get(id)))
     }
 
     pub fn events(&self) -> &[Event] {
