@@ -20,6 +20,12 @@
 
 use super::*;
 
+/// The top-level blocks each pass meets in turn before the next pass: enough that a
+/// pass's code stays in the instruction cache from block to block, few enough that
+/// the batch's tree stays in the data cache for the next pass (the 1x corpus's blocks
+/// take about 2 KB each).
+const BATCH: usize = 32;
+
 /// The analysis of `sources`, or `None` where the whole-tree check must do it.
 pub(super) fn analyze<'s>(
     sources: &'s [Source],
@@ -102,30 +108,52 @@ pub(super) fn analyze<'s>(
         let vars = Vars::with_capacity(lines).with_detail(detail);
         let mut unit = Unit::new(file, None, None, vars);
         let mut index = 0;
-        let parsed = parser::parse_streamed(text, file, |block| {
-            let mut walker = Walker::new(
-                model,
-                &constants,
-                &names,
-                &skills,
-                &mut unit,
-                &mut diagnostics,
-                detail,
-                &mut specials,
-            );
-            walker.buf = std::mem::take(&mut buf);
-            walker.spare = std::mem::take(&mut spare);
-            walker.blocks(std::slice::from_ref(&block));
-            buf = std::mem::take(&mut walker.buf);
-            spare = std::mem::take(&mut walker.spare);
-            if !frozen.block(file, &block, &skills) {
-                return false;
+        let mut batch: Vec<(Block<'s>, bool)> = Vec::with_capacity(BATCH);
+        // Each pass in turn over a batch of blocks, then the batch dropped: the passes
+        // in turn over each block ran through more code than the instruction cache
+        // holds, for every block (docs/performance.md, session 15). Every pass still
+        // meets the blocks in order, and only the walk reports as it goes.
+        let mut run = |batch: &mut Vec<(Block<'s>, bool)>| {
+            for (block, _) in batch.iter() {
+                let mut walker = Walker::new(
+                    model,
+                    &constants,
+                    &names,
+                    &skills,
+                    &mut unit,
+                    &mut diagnostics,
+                    detail,
+                    &mut specials,
+                );
+                walker.buf = std::mem::take(&mut buf);
+                walker.spare = std::mem::take(&mut spare);
+                walker.blocks(std::slice::from_ref(block));
+                buf = std::mem::take(&mut walker.buf);
+                spare = std::mem::take(&mut walker.spare);
             }
-            paths.block(file, &block);
-            owners.stream_block(file, index, &block, &mut unit.targets);
-            index += 1;
+            for (block, _) in batch.iter() {
+                if !frozen.block(file, block, &skills) {
+                    return false;
+                }
+            }
+            // W0903's scan finds nothing in a block the builder saw no path call in.
+            for (block, _) in batch.iter().filter(|(_, paths_seen)| *paths_seen) {
+                paths.block(file, block);
+            }
+            for (block, _) in batch.iter() {
+                owners.stream_block(file, index, block, &mut unit.targets);
+                index += 1;
+            }
+            batch.clear();
             !diagnostics.near_limit()
+        };
+        let parsed = parser::parse_streamed(text, file, |block, paths_seen| {
+            batch.push((block, paths_seen));
+            batch.len() < BATCH || run(&mut batch)
         })?;
+        if !run(&mut batch) {
+            return None;
+        }
         found.push((parsed.binds, parsed.seen));
         units.push(unit);
     }
