@@ -22,9 +22,11 @@ use super::*;
 
 /// The top-level blocks each pass meets in turn before the next pass: enough that a
 /// pass's code stays in the instruction cache from block to block, few enough that
-/// the batch's tree stays in the data cache for the next pass (the 1x corpus's blocks
-/// take about 2 KB each).
-const BATCH: usize = 32;
+/// the batch's tree (the corpus's blocks take about 1.5 KB each: 120 MB for the 10x
+/// corpus's 83,340 in session 13) stays in the second-level cache for the next pass.
+/// 32, 128 and 512 measured alike (docs/performance.md, session 15); 8 gave back half
+/// the gain.
+const BATCH: usize = 128;
 
 /// The analysis of `sources`, or `None` where the whole-tree check must do it.
 pub(super) fn analyze<'s>(
