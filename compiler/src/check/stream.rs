@@ -111,6 +111,11 @@ pub(super) fn analyze<'s>(
         let mut unit = Unit::new(file, None, None, vars);
         let mut index = 0;
         let mut batch: Vec<(Block<'s>, bool)> = Vec::with_capacity(BATCH);
+        // Each skill the task calls, at one of its calls. The walk's targets of skill
+        // calls are W0905's for the batch only (each call's own statement); past the
+        // stream only which skills are called matters (the library skills checked),
+        // and a table of every call grew with the task (833,000 at 100x).
+        let mut called: FxHashMap<SkillId, Span> = FxHashMap::default();
         // Each pass in turn over a batch of blocks, then the batch dropped: the passes
         // in turn over each block ran through more code than the instruction cache
         // holds, for every block (docs/performance.md, session 15). Every pass still
@@ -146,6 +151,11 @@ pub(super) fn analyze<'s>(
                 owners.stream_block(file, index, block, &mut unit.targets);
                 index += 1;
             }
+            for (at, target) in unit.targets.drain() {
+                if let Target::Skill(id) = target {
+                    called.entry(id).or_insert(at);
+                }
+            }
             batch.clear();
             !diagnostics.near_limit()
         };
@@ -156,6 +166,8 @@ pub(super) fn analyze<'s>(
         if !run(&mut batch) {
             return None;
         }
+        unit.targets
+            .extend(called.into_iter().map(|(id, at)| (at, Target::Skill(id))));
         found.push((parsed.binds, parsed.seen));
         units.push(unit);
     }
