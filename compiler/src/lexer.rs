@@ -150,8 +150,42 @@ pub fn break_pattern(source: &str, span: Span) -> BreakPattern {
 
 /// The value of a `Number` token's text.
 pub fn number(text: &str) -> f64 {
-    // The token's pattern is digits with at most one point: always a valid f64.
-    text.parse().unwrap_or(0.0)
+    short_number(text).unwrap_or_else(|| {
+        // The token's pattern is digits with at most one point: always a valid f64.
+        text.parse().unwrap_or(0.0)
+    })
+}
+
+/// The value of a number of at most 15 digits, exactly as `str::parse` gives it,
+/// without the general parser (4.4 M instructions on the 1x corpus's 33,000 numbers):
+/// its digits make an integer below 2^53 and its point a power of ten below 10^16,
+/// both exact as f64, and the division of two exact f64 is rounded once, correctly
+/// (Clinger's fast path, which the standard parser takes for these too).
+fn short_number(text: &str) -> Option<f64> {
+    const POWERS: [f64; 16] = [
+        1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15,
+    ];
+    if text.len() > 16 {
+        return None;
+    }
+    let mut mantissa = 0u64;
+    let mut digits = 0;
+    let mut point = None;
+    for (i, b) in text.bytes().enumerate() {
+        match b {
+            b'0'..=b'9' => {
+                mantissa = mantissa * 10 + u64::from(b - b'0');
+                digits += 1;
+            }
+            b'.' if point.is_none() => point = Some(i),
+            _ => return None,
+        }
+    }
+    if digits == 0 || digits > 15 {
+        return None;
+    }
+    let decimals = point.map_or(0, |p| text.len() - p - 1);
+    Some(mantissa as f64 / POWERS[decimals])
 }
 
 impl fmt::Display for Token {
@@ -245,6 +279,52 @@ impl Iterator for Tokens<'_> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn short_numbers_are_what_the_standard_parser_reads() {
+        let mut fixed = vec![
+            "0",
+            "0.",
+            ".5",
+            "0.3",
+            "3",
+            "90",
+            "0.1",
+            "2.675",
+            "123456789012345",
+            "12345678901234.5",
+            ".000000000000001",
+            "999999999999999",
+            "1234567890123456",
+            "9007199254740993",
+            "0.30000000000000004",
+            "00000000000000001",
+        ];
+        let mut random = Vec::new();
+        let mut x = 0x2545_f491_4f6c_dd1du64;
+        for _ in 0..200_000 {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            let len = 1 + (x % 17) as usize;
+            let mut t: String = (0..len)
+                .map(|i| char::from(b'0' + ((x >> (i * 3 % 60)) % 10) as u8))
+                .collect();
+            if x & (1 << 62) != 0 {
+                t.insert((x >> 40) as usize % (len + 1), '.');
+            }
+            random.push(t);
+        }
+        fixed.extend(random.iter().map(String::as_str));
+        let mut short = 0;
+        for t in fixed {
+            let parsed: f64 = t.parse().unwrap();
+            assert_eq!(number(t).to_bits(), parsed.to_bits(), "{t}");
+            short += usize::from(short_number(t).is_some());
+        }
+        // Most of them took the short path, so the comparison above tested it.
+        assert!(short > 100_000, "{short}");
+    }
 
     fn kinds(src: &str) -> Vec<Token> {
         lex(src).tokens.into_iter().map(|(t, _)| t).collect()

@@ -121,7 +121,11 @@ fn the_corpus_is_checked_block_by_block() {
         "speed(0.7)",
         "n7 = 1\nwhile(n7 < 2)\nspeed(0.2)\nwait(1)\nendwhile",
         "\nspeed(0.4)\n",
+        // A library skill is checked only where called: the streamed check keeps
+        // which skills the task calls, not every call.
+        "faulty",
     ];
+    let skills = format!("{}faulty:\nspeeed(0.1)\n\n", corpus.skills);
     let damaged = |starving: bool| -> String {
         let mut lines: Vec<String> = corpus
             .task
@@ -145,7 +149,7 @@ fn the_corpus_is_checked_block_by_block() {
     for starving in [false, true] {
         let sources = [
             Source::new("task.ilmr", damaged(starving)),
-            Source::library("skills.ilms", corpus.skills.clone()),
+            Source::library("skills.ilms", skills.clone()),
         ];
         let n = assert_same(&sources, "moro");
         assert!(n > 30, "{n} diagnostics");
@@ -156,6 +160,12 @@ fn the_corpus_is_checked_block_by_block() {
             assert!(codes.contains(&code), "no {code} among {codes:?}");
         }
         assert_eq!(codes.contains(&"W0902"), starving);
+        assert!(
+            lean.diagnostics
+                .iter()
+                .any(|d| d.code.as_str() == "E0301" && d.file.0 == 1),
+            "the called library skill was not checked"
+        );
     }
 }
 

@@ -123,22 +123,21 @@ impl Vars {
     }
 
     pub fn bind(&mut self, name: &str, kind: VarKind, file: FileId, span: Span) -> VarId {
-        let id = match self.find(name) {
-            Some(id) => id,
-            None => {
-                let id = VarId(self.vars.len() as u32);
-                self.index
-                    .insert(super::constants::key(name, &mut self.key), id);
-                self.vars.push(Var {
-                    spelling: name.to_string(),
-                    kind,
-                    defs: smallvec![(file, span)],
-                    uses: Places::new(),
-                });
-                self.bound.push(true);
-                return id;
-            }
-        };
+        // One probe of the index finds the variable or makes room for it: a lookup and
+        // then an insertion hashed and probed a new name twice (25,000 of them in the
+        // 1x corpus).
+        let next = VarId(self.vars.len() as u32);
+        let id = *self.index.get_or_insert_named(name, &mut self.key, || next);
+        if id == next {
+            self.vars.push(Var {
+                spelling: name.to_string(),
+                kind,
+                defs: smallvec![(file, span)],
+                uses: Places::new(),
+            });
+            self.bound.push(true);
+            return id;
+        }
         let var = &mut self.vars[id.0 as usize];
         var.kind = kind;
         if !self.first_only || var.defs.is_empty() {

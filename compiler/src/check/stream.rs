@@ -20,6 +20,14 @@
 
 use super::*;
 
+/// The top-level blocks each pass meets in turn before the next pass: enough that a
+/// pass's code stays in the instruction cache from block to block, few enough that
+/// the batch's tree (the corpus's blocks take about 1.5 KB each: 120 MB for the 10x
+/// corpus's 83,340 in session 13) stays in the second-level cache for the next pass.
+/// 32, 128 and 512 measured alike (docs/performance.md, session 15); 8 gave back half
+/// the gain.
+const BATCH: usize = 128;
+
 /// The analysis of `sources`, or `None` where the whole-tree check must do it.
 pub(super) fn analyze<'s>(
     sources: &'s [Source],
@@ -102,30 +110,64 @@ pub(super) fn analyze<'s>(
         let vars = Vars::with_capacity(lines).with_detail(detail);
         let mut unit = Unit::new(file, None, None, vars);
         let mut index = 0;
-        let parsed = parser::parse_streamed(text, file, |block| {
-            let mut walker = Walker::new(
-                model,
-                &constants,
-                &names,
-                &skills,
-                &mut unit,
-                &mut diagnostics,
-                detail,
-                &mut specials,
-            );
-            walker.buf = std::mem::take(&mut buf);
-            walker.spare = std::mem::take(&mut spare);
-            walker.blocks(std::slice::from_ref(&block));
-            buf = std::mem::take(&mut walker.buf);
-            spare = std::mem::take(&mut walker.spare);
-            if !frozen.block(file, &block, &skills) {
-                return false;
+        let mut batch: Vec<(Block<'s>, bool)> = Vec::with_capacity(BATCH);
+        // Each skill the task calls, at one of its calls. The walk's targets of skill
+        // calls are W0905's for the batch only (each call's own statement); past the
+        // stream only which skills are called matters (the library skills checked),
+        // and a table of every call grew with the task (833,000 at 100x).
+        let mut called: FxHashMap<SkillId, Span> = FxHashMap::default();
+        // Each pass in turn over a batch of blocks, then the batch dropped: the passes
+        // in turn over each block ran through more code than the instruction cache
+        // holds, for every block (docs/performance.md, session 15). Every pass still
+        // meets the blocks in order, and only the walk reports as it goes.
+        let mut run = |batch: &mut Vec<(Block<'s>, bool)>| {
+            for (block, _) in batch.iter() {
+                let mut walker = Walker::new(
+                    model,
+                    &constants,
+                    &names,
+                    &skills,
+                    &mut unit,
+                    &mut diagnostics,
+                    detail,
+                    &mut specials,
+                );
+                walker.buf = std::mem::take(&mut buf);
+                walker.spare = std::mem::take(&mut spare);
+                walker.blocks(std::slice::from_ref(block));
+                buf = std::mem::take(&mut walker.buf);
+                spare = std::mem::take(&mut walker.spare);
             }
-            paths.block(file, &block);
-            owners.stream_block(file, index, &block, &mut unit.targets);
-            index += 1;
+            for (block, _) in batch.iter() {
+                if !frozen.block(file, block, &skills) {
+                    return false;
+                }
+            }
+            // W0903's scan finds nothing in a block the builder saw no path call in.
+            for (block, _) in batch.iter().filter(|(_, paths_seen)| *paths_seen) {
+                paths.block(file, block);
+            }
+            for (block, _) in batch.iter() {
+                owners.stream_block(file, index, block, &mut unit.targets);
+                index += 1;
+            }
+            for (at, target) in unit.targets.drain() {
+                if let Target::Skill(id) = target {
+                    called.entry(id).or_insert(at);
+                }
+            }
+            batch.clear();
             !diagnostics.near_limit()
+        };
+        let parsed = parser::parse_streamed(text, file, |block, paths_seen| {
+            batch.push((block, paths_seen));
+            batch.len() < BATCH || run(&mut batch)
         })?;
+        if !run(&mut batch) {
+            return None;
+        }
+        unit.targets
+            .extend(called.into_iter().map(|(id, at)| (at, Target::Skill(id))));
         found.push((parsed.binds, parsed.seen));
         units.push(unit);
     }

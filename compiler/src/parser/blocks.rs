@@ -127,6 +127,9 @@ pub struct Builder<'s> {
     pub seen: Seen,
     /// Commands that never end by themselves (`Ends::Never`, `Ends::NeverBare`).
     never: Vec<Command>,
+    /// A call of `record`, `createpath` or `followpath` since the finished blocks were
+    /// last taken ([`Builder::take_paths`]).
+    paths: bool,
 }
 
 /// Statements a pass after the walk needs, noted by the block builder (`Parsed::seen`).
@@ -159,6 +162,7 @@ impl<'s> Builder<'s> {
             binds: 0,
             seen: Seen::default(),
             never: Command::never_ending().collect(),
+            paths: false,
         }
     }
 
@@ -235,6 +239,13 @@ impl<'s> Builder<'s> {
         self.parts.blocks.drain(..)
     }
 
+    /// Whether a block finished since the last call may make or follow a path: W0903's
+    /// scan of a streamed block (`check/paths.rs`) is skipped when none does. True for
+    /// every block taken at once when one of them does.
+    pub fn take_paths(&mut self) -> bool {
+        std::mem::take(&mut self.paths)
+    }
+
     /// Whether the file so far is one a streamed parse gives up on: not a plain task
     /// (a skill header), structure reported, or a statement that never ends (W0904
     /// reads the whole program for what may end it).
@@ -277,7 +288,11 @@ impl<'s> Builder<'s> {
                 );
                 self.binds += usize::from(binds);
                 if let StmtKind::Call { bind, call } = &kind {
-                    self.seen.follows_path |= call.name.is(Command::FollowPath.name());
+                    let follows = call.name.is(Command::FollowPath.name());
+                    self.seen.follows_path |= follows;
+                    self.paths |= follows
+                        || call.name.is(Command::Record.name())
+                        || call.name.is(Command::CreatePath.name());
                     self.seen.never_ending |=
                         bind.is_some() && self.never.iter().any(|c| call.name.is(c.name()));
                 }

@@ -40,7 +40,7 @@ pub struct Parsed<'s> {
 /// grammar's price only where it is unusual. Tokens are read a line at a time into one
 /// reused buffer; the file's tokens are never held at once.
 pub fn parse<'s>(source: &'s str, file: FileId) -> Parsed<'s> {
-    read(source, file, None::<fn(Block<'s>) -> bool>)
+    read(source, file, None::<fn(Block<'s>, bool) -> bool>)
         .expect("a parse that streams nothing is never given up")
 }
 
@@ -49,16 +49,18 @@ pub fn parse<'s>(source: &'s str, file: FileId) -> Parsed<'s> {
 /// kept in the tree, so a large task is never held whole. `None` as soon as the file
 /// is anything but a task without diagnostics, breaks with patterns or statements that
 /// never end (what the checker's passes after the walk need the whole tree for), or
-/// when `sink` returns false: the caller then parses and checks it as usual.
+/// when `sink` returns false: the caller then parses and checks it as usual. With each
+/// block `sink` is told whether it may call `record`, `createpath` or `followpath`
+/// (false: it calls none of them).
 pub fn parse_streamed<'s>(
     source: &'s str,
     file: FileId,
-    sink: impl FnMut(Block<'s>) -> bool,
+    sink: impl FnMut(Block<'s>, bool) -> bool,
 ) -> Option<Parsed<'s>> {
     read(source, file, Some(sink))
 }
 
-fn read<'s, F: FnMut(Block<'s>) -> bool>(
+fn read<'s, F: FnMut(Block<'s>, bool) -> bool>(
     source: &'s str,
     file: FileId,
     sink: Option<F>,
@@ -163,19 +165,23 @@ fn read<'s, F: FnMut(Block<'s>) -> bool>(
             {
                 return None;
             }
+            let paths = out.builder.take_paths();
             for block in out.builder.ready() {
-                if !sink(block) {
+                if !sink(block, paths) {
                     return None;
                 }
             }
         }
     }
     let Emit {
-        builder, unclosed, ..
+        mut builder,
+        unclosed,
+        ..
     } = out;
     let binds = builder.binds;
     let seen = builder.seen;
     let refused = builder.refuses_streaming();
+    let builder_paths = builder.take_paths();
     let (mut tree, structure) = builder.finish(tokens.comments);
     if let Some(mut sink) = sink {
         if refused
@@ -188,8 +194,9 @@ fn read<'s, F: FnMut(Block<'s>) -> bool>(
         {
             return None;
         }
+        let paths = builder_paths;
         for block in std::mem::take(&mut tree.blocks) {
-            if !sink(block) {
+            if !sink(block, paths) {
                 return None;
             }
         }
