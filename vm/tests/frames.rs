@@ -689,20 +689,30 @@ fn counting_program(seed: u64, shared: bool) -> (ilmr_vm::Module, u32, Vec<Strin
     };
     // In a third of the programs a block of the tree guards one of the counters
     // (`if(cJ>K)`): a frame that writes a variable something hears is not run
-    // in one go, by the look ahead or by the one pass's batches.
+    // in one go, by the look ahead or by the one pass's batches. The guard moves
+    // another counter on by 2, so that frames at one pc reach their bound on
+    // different ticks.
     if rng.below(3) == 0 {
         let j = rng.below(count);
         let k = rng.below(4) as f64;
         let c = format!("c{j}");
+        let m = format!("c{}", rng.below(count));
         let guard = a.if_(
             &format!("if({c}>{k}) #g"),
             &[X::V(&c), X::N(k), X::Op(ExprOp::Gt)],
             |a| {
-                vec![a.assign(
-                    "d=d+10 #g",
-                    "d",
-                    &[X::V("d"), X::N(10.0), X::Op(ExprOp::Add)],
-                )]
+                vec![
+                    a.assign(
+                        "d=d+10 #g",
+                        "d",
+                        &[X::V("d"), X::N(10.0), X::Op(ExprOp::Add)],
+                    ),
+                    a.assign(
+                        &format!("{m}={m}+2 #g"),
+                        &m,
+                        &[X::V(&m), X::N(2.0), X::Op(ExprOp::Add)],
+                    ),
+                ]
             },
         );
         a.blank();

@@ -205,6 +205,9 @@ struct Kernel {
     moved: Moved,
 }
 
+/// A length of [`Kernel::batch_of`] read from the plan.
+const ANY: usize = usize::MAX;
+
 /// A write of a [`Kernel`]: the variable written, what it reads (variable,
 /// its status rather than its value, operator), the constant.
 type KStep = (Slot, Option<(Slot, bool, Arith)>, f64);
@@ -258,6 +261,35 @@ impl Kernel {
     fn batch(
         &self,
         due: &mut [Alarm],
+        i: usize,
+        kept: &mut usize,
+        all: &mut [Node],
+        dense: (&mut [Core], u32),
+        free: &mut u32,
+        ops_left: &mut u32,
+        log: &mut Vec<f64>,
+        live: &mut usize,
+        classes: &mut [usize; Class::COUNT],
+    ) -> usize {
+        // A loop of one check and one write (`while(c<100)`, `c=c+1`, `wait`, the
+        // common loop) with its lengths known, so that the per-frame loops over
+        // the checks and writes unroll; any other plan, the lengths read.
+        match (self.nchecks, self.nwrites, self.nsteps) {
+            (1, 1, 1) => self
+                .batch_of::<1, 1, 1>(due, i, kept, all, dense, free, ops_left, log, live, classes),
+            _ => self.batch_of::<ANY, ANY, ANY>(
+                due, i, kept, all, dense, free, ops_left, log, live, classes,
+            ),
+        }
+    }
+
+    /// [`Kernel::batch`] for plans of `C` checks, `W` variables written and `S`
+    /// writes ([`ANY`]: as many as the plan has).
+    #[inline(always)]
+    #[allow(clippy::too_many_arguments)]
+    fn batch_of<const C: usize, const W: usize, const S: usize>(
+        &self,
+        due: &mut [Alarm],
         mut i: usize,
         kept: &mut usize,
         all: &mut [Node],
@@ -268,6 +300,11 @@ impl Kernel {
         live: &mut usize,
         classes: &mut [usize; Class::COUNT],
     ) -> usize {
+        let (nchecks, nwrites, nsteps) = (
+            if C == ANY { self.nchecks } else { C },
+            if W == ANY { self.nwrites } else { W },
+            if S == ANY { self.nsteps } else { S },
+        );
         let read = |cores: &[Core], v: u32, status: bool| {
             cores
                 .get(v as usize)
@@ -301,12 +338,12 @@ impl Kernel {
             if *ops_left < self.ops {
                 return i;
             }
-            for &(src, status, cmp, k) in &self.checks[..self.nchecks] {
+            for &(src, status, cmp, k) in &self.checks[..nchecks] {
                 if !cmp.holds(read(cores, src.at(base), status), k) {
                     return i;
                 }
             }
-            for w in &self.writes[..self.nwrites] {
+            for w in &self.writes[..nwrites] {
                 let plain = cores
                     .get(w.at(base) as usize)
                     .is_some_and(|c| c.status.to_bits() == 1.0f64.to_bits());
@@ -316,7 +353,7 @@ impl Kernel {
             }
             *free = base.saturating_add(self.span);
             *ops_left -= self.ops;
-            for &(var, src, k) in &self.steps[..self.nsteps] {
+            for &(var, src, k) in &self.steps[..nsteps] {
                 let v = match src {
                     Some((src, status, op)) => op.apply(read(cores, src.at(base), status), k),
                     None => k,
