@@ -305,12 +305,15 @@ impl Kernel {
             if W == ANY { self.nwrites } else { W },
             if S == ANY { self.nsteps } else { S },
         );
+        // In locals for the loop, written back once: stores through the
+        // references each frame cost as much as a check.
+        let (mut free_at, mut ops, mut kept_at) = (*free, *ops_left, *kept);
         let read = |cores: &[Core], v: u32, status: bool| {
             cores
                 .get(v as usize)
                 .map_or(0.0, |c| if status { c.status } else { c.value })
         };
-        while let Some(&a) = due.get(i) {
+        'frames: while let Some(&a) = due.get(i) {
             let Some(n) = all.get_mut(a.node.idx as usize) else {
                 i += 1;
                 continue;
@@ -325,22 +328,22 @@ impl Kernel {
                     i += 1;
                     continue;
                 }
-                _ => return i,
+                _ => break 'frames,
             };
             if !f.asleep || f.nap != a.nap {
                 i += 1;
                 continue;
             }
             let base = f.base;
-            if n.queued || f.parked || f.pc != self.pc || base < *free || base < floor {
-                return i;
+            if n.queued || f.parked || f.pc != self.pc || base < free_at || base < floor {
+                break 'frames;
             }
-            if *ops_left < self.ops {
-                return i;
+            if ops < self.ops {
+                break 'frames;
             }
             for &(src, status, cmp, k) in &self.checks[..nchecks] {
                 if !cmp.holds(read(cores, src.at(base), status), k) {
-                    return i;
+                    break 'frames;
                 }
             }
             for w in &self.writes[..nwrites] {
@@ -348,11 +351,11 @@ impl Kernel {
                     .get(w.at(base) as usize)
                     .is_some_and(|c| c.status.to_bits() == 1.0f64.to_bits());
                 if !plain {
-                    return i;
+                    break 'frames;
                 }
             }
-            *free = base.saturating_add(self.span);
-            *ops_left -= self.ops;
+            free_at = base.saturating_add(self.span);
+            ops -= self.ops;
             for &(var, src, k) in &self.steps[..nsteps] {
                 let v = match src {
                     Some((src, status, op)) => op.apply(read(cores, src.at(base), status), k),
@@ -367,14 +370,15 @@ impl Kernel {
             }
             f.pc = self.next_pc;
             f.nap = f.nap.wrapping_add(1);
-            due[*kept] = Alarm {
+            due[kept_at] = Alarm {
                 node: a.node,
                 nap: f.nap,
             };
-            *kept += 1;
+            kept_at += 1;
             super::move_counts(self.moved, live, classes);
             i += 1;
         }
+        (*free, *ops_left, *kept) = (free_at, ops, kept_at);
         i
     }
 }
