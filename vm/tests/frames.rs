@@ -638,18 +638,27 @@ fn frames_that_sleep_in_different_turns_keep_the_tree_order() {
 /// tick back to the queue. Tree against frames with the trace off, small budgets
 /// in a third of the programs: the same variables, `activity`, `live` and
 /// `live_statements` after every tick.
-fn counting_program(seed: u64) -> (ilmr_vm::Module, u32, Vec<String>) {
+///
+/// `shared`: every block of the first one's bound and wait, so that many frames
+/// sit at one pc (the one pass's batches).
+fn counting_program(seed: u64, shared: bool) -> (ilmr_vm::Module, u32, Vec<String>) {
     let mut rng = Rng(seed.wrapping_mul(0x9e37_79b9_7f4a_7c15) | 1);
     let mut a = Asm::new();
     let mut blocks = Vec::new();
     let mut names = Vec::new();
     let count = 1 + rng.below(8);
+    let mut first = None;
     for i in 0..count {
         let c = format!("c{i}");
         let bound = (1 + rng.below(6)) as f64;
         let wait = [0.01, 0.01, 0.02, 0.03][rng.below(4) as usize];
+        let (bound, wait) = match first {
+            Some(bw) if shared => bw,
+            _ => (bound, wait),
+        };
+        first = first.or(Some((bound, wait)));
         let mut code = Vec::new();
-        if rng.below(4) == 0 {
+        if rng.below(4) == 0 && !shared {
             code.push(a.wait(&format!("wait(0.02) #{i}"), 0.02));
         }
         code.push(a.assign(&format!("{c}=0 #{i}"), &c, &[X::N(0.0)]));
@@ -678,6 +687,38 @@ fn counting_program(seed: u64) -> (ilmr_vm::Module, u32, Vec<String>) {
         0 => 2 + rng.below(40) as u32,
         _ => 200_000,
     };
+    // In a third of the programs a block of the tree guards one of the counters
+    // (`if(cJ>K)`): a frame that writes a variable something hears is not run
+    // in one go, by the look ahead or by the one pass's batches. The guard moves
+    // another counter on by 2, so that frames at one pc reach their bound on
+    // different ticks.
+    if rng.below(3) == 0 {
+        let j = rng.below(count);
+        let k = rng.below(4) as f64;
+        let c = format!("c{j}");
+        let m = format!("c{}", rng.below(count));
+        let guard = a.if_(
+            &format!("if({c}>{k}) #g"),
+            &[X::V(&c), X::N(k), X::Op(ExprOp::Gt)],
+            |a| {
+                vec![
+                    a.assign(
+                        "d=d+10 #g",
+                        "d",
+                        &[X::V("d"), X::N(10.0), X::Op(ExprOp::Add)],
+                    ),
+                    a.assign(
+                        &format!("{m}={m}+2 #g"),
+                        &m,
+                        &[X::V(&m), X::N(2.0), X::Op(ExprOp::Add)],
+                    ),
+                ]
+            },
+        );
+        a.blank();
+        blocks.push(a.block(vec![guard]));
+        names.push("d".to_string());
+    }
     (a.task(&blocks), budget, names)
 }
 
@@ -686,7 +727,7 @@ fn counting_blocks_run_from_the_due_slot_as_the_tree() {
     let seeds: u64 = env_or("FRAMES_SEEDS", 150);
     let (mut slot, mut programs) = (0, 0);
     for seed in 0..seeds {
-        let (module, budget, names) = counting_program(seed);
+        let (module, budget, names) = counting_program(seed, false);
         let (_, flat) = tree_and_frames_off(module, budget, &names, 60, seed);
         slot += flat.slot_rounds();
         programs += usize::from(flat.slot_rounds() > 0);
@@ -694,6 +735,31 @@ fn counting_blocks_run_from_the_due_slot_as_the_tree() {
     assert!(
         programs > seeds as usize / 2 && slot > 2 * seeds,
         "{slot} rounds from the due slot in {programs} programs"
+    );
+}
+
+#[test]
+fn counting_blocks_run_in_one_pass_or_taken_back_as_the_tree() {
+    // The due slot's round in one pass (`Vm::slot_once`), where every woken frame
+    // goes along its plan to one tick; where a later frame cannot (a loop that
+    // ends, a wait of another length, a budget too small), what the frames before
+    // it did taken back (`Vm::slot_undone`) and the round run by the look ahead.
+    // Half the programs' blocks share one shape, so that frames at one pc run in
+    // batches. Tree against frames after every tick, as above.
+    let seeds: u64 = env_or("FRAMES_SEEDS", 150);
+    let (mut once, mut undone, mut both) = (0, 0, 0);
+    for seed in 0..seeds {
+        for shared in [false, true] {
+            let (module, budget, names) = counting_program(seed, shared);
+            let (_, flat) = tree_and_frames_off(module, budget, &names, 60, seed);
+            once += flat.slot_once();
+            undone += flat.slot_undone();
+            both += usize::from(flat.slot_once() > 0 && flat.slot_undone() > 0);
+        }
+    }
+    assert!(
+        once > seeds && undone > seeds / 4 && both > seeds as usize / 10,
+        "{once} rounds in one pass, {undone} taken back, {both} programs with both"
     );
 }
 

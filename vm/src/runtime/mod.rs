@@ -116,6 +116,15 @@ pub struct Vm<H: Hal, C: Clock> {
     deferred: Option<Vec<timers::Alarm>>,
     /// Rounds run straight from the wheel's due slot (`Vm::run_slot_round`).
     slot_rounds: u64,
+    /// Of those, rounds run in one pass over the alarms (`Vm::run_slot_once`).
+    slot_once: u64,
+    /// Rounds that pass ran in part and took back (`Vm::run_slot_once`).
+    slot_undone: u64,
+    /// The values a round run in one pass overwrote, in order, to write back if a
+    /// later frame shows the round cannot be run so (`Vm::run_slot_once`).
+    slot_log: Vec<f64>,
+    /// Where such a round's runs of frames at one pc begin: (alarm index, pc).
+    slot_runs: Vec<(u32, u32)>,
     supervisor: safety::supervisor::Supervisor,
     /// The robot's static map, asked for once at the start.
     known_map: Option<KnownMap>,
@@ -215,6 +224,10 @@ impl<H: Hal, C: Clock> Vm<H, C> {
             round_planned: Vec::new(),
             deferred: None,
             slot_rounds: 0,
+            slot_once: 0,
+            slot_undone: 0,
+            slot_log: Vec::new(),
+            slot_runs: Vec::new(),
             supervisor: Default::default(),
             known_map,
             map_from_estimate: ilmr_hal::Pose::default(),
@@ -376,6 +389,18 @@ impl<H: Hal, C: Clock> Vm<H, C> {
         self.slot_rounds
     }
 
+    /// Of [`Vm::slot_rounds`], the rounds run in one pass over the alarms
+    /// (`Vm::run_slot_once` in `frame/slot.rs`).
+    pub fn slot_once(&self) -> u64 {
+        self.slot_once
+    }
+
+    /// Rounds the one pass over the alarms began, found it could not finish and
+    /// took back, for the look ahead to take (`Vm::run_slot_once`).
+    pub fn slot_undone(&self) -> u64 {
+        self.slot_undone
+    }
+
     /// Live nodes: commands, guards, loops, calls and blocks.
     pub fn live(&self) -> usize {
         (self.nodes.live + self.nodes.sleepers).saturating_sub(1)
@@ -400,7 +425,9 @@ impl<H: Hal, C: Clock> Vm<H, C> {
             (
                 "ready queue",
                 self.ready.capacity() * size_of::<exec::Packed>()
-                    + self.round_planned.capacity() * size_of::<u64>(),
+                    + self.round_planned.capacity() * size_of::<u64>()
+                    + self.slot_log.capacity() * size_of::<f64>()
+                    + self.slot_runs.capacity() * size_of::<(u32, u32)>(),
             ),
             ("timers", self.timers.footprint()),
             (

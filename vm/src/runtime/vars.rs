@@ -70,9 +70,9 @@ impl FieldMask {
 /// What every variable holds, kept dense: the two fields an assignment writes (a
 /// counter's whole state), 16 bytes a variable.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
-struct Core {
-    status: f64,
-    value: f64,
+pub(crate) struct Core {
+    pub status: f64,
+    pub value: f64,
 }
 
 /// The fields of a pose or a distance (`x`, `y`, `h`, `dist`), in [`Vars::places`]:
@@ -426,6 +426,44 @@ impl Vars {
             *h = None;
         }
         FieldMask(mask)
+    }
+
+    /// Every variable's status and value, for a loop over many frames that reads
+    /// and writes them in place, and the first variable from which on nothing is
+    /// heard and no command's end is kept (past the subscription lists and the
+    /// ends): at or above it [`Vars::quiet`] holds, and an assignment of a status
+    /// already 1 writes the value alone ([`Vars::plain`]).
+    #[inline]
+    pub fn dense(&mut self) -> (&mut [Core], u32) {
+        let floor = self.heads.len().max(self.hows.len());
+        (&mut self.cores, u32::try_from(floor).unwrap_or(u32::MAX))
+    }
+
+    /// An assignment of `v` would write its value and nothing else: `v` exists, its
+    /// status is already 1 and no command's end is kept for it. A round that may
+    /// have to take its writes back ([`Vars::swap_value`]) writes only such.
+    #[inline]
+    pub fn plain(&self, v: u32) -> bool {
+        self.cores
+            .get(v as usize)
+            .is_some_and(|c| c.status.to_bits() == 1.0f64.to_bits())
+            && self.hows.get(v as usize).is_none_or(|h| h.is_none())
+    }
+
+    /// Writes `value` into `v`'s value and returns the old one: for a
+    /// [`Vars::plain`] variable what [`Vars::assign`] does, and, with the old value
+    /// written back, also what undoes it.
+    #[inline]
+    pub fn swap_value(&mut self, v: u32, value: f64) -> f64 {
+        debug_assert!(
+            self.cores
+                .get(v as usize)
+                .is_some_and(|c| c.status.to_bits() == 1.0f64.to_bits())
+        );
+        match self.cores.get_mut(v as usize) {
+            Some(c) => std::mem::replace(&mut c.value, value),
+            None => 0.0,
+        }
     }
 
     pub fn set_how(&mut self, v: u32, how: Option<How>) {

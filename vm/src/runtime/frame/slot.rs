@@ -20,9 +20,9 @@ use ilmr_stdlib::Field;
 
 use super::super::Vm;
 use super::super::clock::Clock;
-use super::super::nodes::{Kind, NodeRef};
+use super::super::nodes::{Class, Kind, Node, NodeRef};
 use super::super::timers::Alarm;
-use super::super::vars::NONE;
+use super::super::vars::{Core, NONE};
 use super::super::watch::Cmp;
 use super::{Arith, FrameState, Moved, PLAN_STEPS, Quick, trace_ahead};
 
@@ -186,6 +186,203 @@ impl Run {
     }
 }
 
+/// A pc's plan as [`Vm::run_slot_once`] runs a batch of frames at it: checks and
+/// writes on variables' status and value only (every quick form's field but a
+/// pose's), so that a frame's step reads the dense records directly, with no
+/// `match` on a field or a lookup of who hears a variable.
+struct Kernel {
+    pc: u32,
+    span: u32,
+    ops: u32,
+    /// (variable, reads its status rather than its value, comparison, constant).
+    checks: [(Slot, bool, Cmp, f64); 2],
+    nchecks: usize,
+    writes: [Slot; 2],
+    nwrites: usize,
+    steps: [KStep; PLAN_STEPS],
+    nsteps: usize,
+    next_pc: u32,
+    moved: Moved,
+}
+
+/// A length of [`Kernel::batch_of`] read from the plan.
+const ANY: usize = usize::MAX;
+
+/// A write of a [`Kernel`]: the variable written, what it reads (variable,
+/// its status rather than its value, operator), the constant.
+type KStep = (Slot, Option<(Slot, bool, Arith)>, f64);
+
+/// Reads `field` of a dense record: None for a field the kernel does not take.
+fn dense_field(field: Field) -> Option<bool> {
+    match field {
+        Field::Value => Some(false),
+        Field::Status => Some(true),
+        _ => None,
+    }
+}
+
+impl Kernel {
+    fn of(ahead: &Ahead, run: &Run) -> Option<Kernel> {
+        let mut checks = [(Slot::of(0), false, Cmp::Truthy, 0.0); 2];
+        for (c, &(src, field, cmp, k)) in checks.iter_mut().zip(&ahead.checks[..ahead.nchecks]) {
+            *c = (src, dense_field(field)?, cmp, k);
+        }
+        let mut steps = [(Slot::of(0), None, 0.0); PLAN_STEPS];
+        for (s, w) in steps.iter_mut().zip(&run.steps[..run.nsteps]) {
+            let src = match w.src {
+                Some((src, field, op)) => Some((src, dense_field(field)?, op)),
+                None => None,
+            };
+            *s = (w.var, src, w.k);
+        }
+        Some(Kernel {
+            pc: ahead.pc,
+            span: ahead.span,
+            ops: run.ops,
+            checks,
+            nchecks: ahead.nchecks,
+            writes: ahead.writes,
+            nwrites: ahead.nwrites,
+            steps,
+            nsteps: run.nsteps,
+            next_pc: run.sleep + 1,
+            moved: run.moved,
+        })
+    }
+
+    /// Runs the frames of `due` from `i` on while each is at this pc and meets
+    /// the one pass's conditions on its own (above `free` and `floor`, the
+    /// budget enough, the checks true, the variables it writes of status 1),
+    /// as the general step of [`Vm::run_slot_once`] would run it; skips stale
+    /// alarms. Returns the index of the first alarm it leaves to that step.
+    /// Its own function so that the slices, borrowed apart, stay in registers.
+    #[inline(never)]
+    #[allow(clippy::too_many_arguments)]
+    fn batch(
+        &self,
+        due: &mut [Alarm],
+        i: usize,
+        kept: &mut usize,
+        all: &mut [Node],
+        dense: (&mut [Core], u32),
+        free: &mut u32,
+        ops_left: &mut u32,
+        log: &mut Vec<f64>,
+        live: &mut usize,
+        classes: &mut [usize; Class::COUNT],
+    ) -> usize {
+        // A loop of one check and one write (`while(c<100)`, `c=c+1`, `wait`, the
+        // common loop) with its lengths known, so that the per-frame loops over
+        // the checks and writes unroll; any other plan, the lengths read.
+        match (self.nchecks, self.nwrites, self.nsteps) {
+            (1, 1, 1) => self
+                .batch_of::<1, 1, 1>(due, i, kept, all, dense, free, ops_left, log, live, classes),
+            _ => self.batch_of::<ANY, ANY, ANY>(
+                due, i, kept, all, dense, free, ops_left, log, live, classes,
+            ),
+        }
+    }
+
+    /// [`Kernel::batch`] for plans of `C` checks, `W` variables written and `S`
+    /// writes ([`ANY`]: as many as the plan has).
+    #[inline(always)]
+    #[allow(clippy::too_many_arguments)]
+    fn batch_of<const C: usize, const W: usize, const S: usize>(
+        &self,
+        due: &mut [Alarm],
+        mut i: usize,
+        kept: &mut usize,
+        all: &mut [Node],
+        (cores, floor): (&mut [Core], u32),
+        free: &mut u32,
+        ops_left: &mut u32,
+        log: &mut Vec<f64>,
+        live: &mut usize,
+        classes: &mut [usize; Class::COUNT],
+    ) -> usize {
+        let (nchecks, nwrites, nsteps) = (
+            if C == ANY { self.nchecks } else { C },
+            if W == ANY { self.nwrites } else { W },
+            if S == ANY { self.nsteps } else { S },
+        );
+        // In locals for the loop, written back once: stores through the
+        // references each frame cost as much as a check.
+        let (mut free_at, mut ops, mut kept_at) = (*free, *ops_left, *kept);
+        let read = |cores: &[Core], v: u32, status: bool| {
+            cores
+                .get(v as usize)
+                .map_or(0.0, |c| if status { c.status } else { c.value })
+        };
+        'frames: while let Some(&a) = due.get(i) {
+            let Some(n) = all.get_mut(a.node.idx as usize) else {
+                i += 1;
+                continue;
+            };
+            if n.epoch != a.node.epoch {
+                i += 1;
+                continue;
+            }
+            let f = match &mut n.kind {
+                Kind::Frame(f) => f,
+                Kind::Free => {
+                    i += 1;
+                    continue;
+                }
+                _ => break 'frames,
+            };
+            if !f.asleep || f.nap != a.nap {
+                i += 1;
+                continue;
+            }
+            let base = f.base;
+            if n.queued || f.parked || f.pc != self.pc || base < free_at || base < floor {
+                break 'frames;
+            }
+            if ops < self.ops {
+                break 'frames;
+            }
+            for &(src, status, cmp, k) in &self.checks[..nchecks] {
+                if !cmp.holds(read(cores, src.at(base), status), k) {
+                    break 'frames;
+                }
+            }
+            for w in &self.writes[..nwrites] {
+                let plain = cores
+                    .get(w.at(base) as usize)
+                    .is_some_and(|c| c.status.to_bits() == 1.0f64.to_bits());
+                if !plain {
+                    break 'frames;
+                }
+            }
+            free_at = base.saturating_add(self.span);
+            ops -= self.ops;
+            for &(var, src, k) in &self.steps[..nsteps] {
+                let v = match src {
+                    Some((src, status, op)) => op.apply(read(cores, src.at(base), status), k),
+                    None => k,
+                };
+                // In range: every step writes one of `writes`, found above.
+                let old = match cores.get_mut(var.at(base) as usize) {
+                    Some(c) => std::mem::replace(&mut c.value, v),
+                    None => 0.0,
+                };
+                log.push(old);
+            }
+            f.pc = self.next_pc;
+            f.nap = f.nap.wrapping_add(1);
+            due[kept_at] = Alarm {
+                node: a.node,
+                nap: f.nap,
+            };
+            kept_at += 1;
+            super::move_counts(self.moved, live, classes);
+            i += 1;
+        }
+        (*free, *ops_left, *kept) = (free_at, ops, kept_at);
+        i
+    }
+}
+
 /// What the look ahead found of the round: its ops, whether any frame takes its
 /// quick forms, and whether any frame wakes at all.
 struct Look {
@@ -209,6 +406,9 @@ impl<H: Hal, C: Clock> Vm<H, C> {
     ) -> Result<(), Vec<Alarm>> {
         if self.tracing() || !self.ready.is_empty() {
             return Err(due);
+        }
+        if self.run_slot_once(&mut due) {
+            return Ok(());
         }
         let look = self.look_at_slot(&mut due);
         let Some(look) = look.filter(|l| l.ops <= u64::from(self.ops_left)) else {
@@ -241,6 +441,199 @@ impl<H: Hal, C: Clock> Vm<H, C> {
             self.run_slot_along(due);
         }
         Ok(())
+    }
+
+    /// The round of [`Vm::run_slot_along`] in one pass over the due alarms `due`,
+    /// without the look ahead: each frame is shown to meet the look ahead's
+    /// conditions and run along its plan at once, the values it overwrites kept in
+    /// `slot_log`. It asks a little more than the look ahead, so that what it did
+    /// can be taken back exactly: every woken frame goes along a plan ending in a
+    /// sleep, all of them to one tick whose slot was empty (their alarms written
+    /// over the ones read), and each variable written is [`Vars::plain`] (an
+    /// assignment writes its value only). Where a frame shows the round cannot be
+    /// run so, everything done is undone in reverse (values, pcs, naps, alarms,
+    /// counts, budget) and `due` is left as the alarms it held, less stale ones,
+    /// for the look ahead to take: returns false. Frames before it wrote only
+    /// their own variables, which lie below its own, so it reads and hears what it
+    /// would have after the look ahead, and each check sees what it would.
+    ///
+    /// [`Vars::plain`]: super::super::vars::Vars::plain
+    fn run_slot_once(&mut self, due: &mut Vec<Alarm>) -> bool {
+        let Vm {
+            nodes,
+            vars,
+            timers,
+            frames,
+            ops_left,
+            end_code,
+            tick,
+            slot_log,
+            slot_runs,
+            ..
+        } = self;
+        let super::super::nodes::Nodes {
+            all, live, classes, ..
+        } = nodes;
+        let saved = (*ops_left, *end_code, *live, *classes);
+        slot_log.clear();
+        slot_runs.clear();
+        let tick = *tick;
+        let (mut visits, mut free) = (0u32, 0u32);
+        // The tick every new alarm is for, decided at the first run of frames.
+        let mut into: Option<u64> = None;
+        let mut kept = 0usize;
+        let mut at: Option<(Ahead, Run, Option<Kernel>)> = None;
+        let mut failed = None;
+        slot_log.reserve(due.len());
+        let mut i = 0;
+        while i < due.len() {
+            // The frames at the current pc in a batch, where its plan is a
+            // kernel's; the general step below takes the alarm it stops at.
+            if let Some((_, _, Some(kernel))) = &at {
+                i = kernel.batch(
+                    due,
+                    i,
+                    &mut kept,
+                    all,
+                    vars.dense(),
+                    &mut free,
+                    ops_left,
+                    slot_log,
+                    live,
+                    classes,
+                );
+                if i >= due.len() {
+                    break;
+                }
+            }
+            let a = due[i];
+            i += 1;
+            let Some(n) = all.get_mut(a.node.idx as usize) else {
+                continue;
+            };
+            if n.epoch != a.node.epoch {
+                continue;
+            }
+            let f = match &mut n.kind {
+                Kind::Frame(f) => f,
+                Kind::Free => continue,
+                _ => {
+                    failed = Some(i - 1);
+                    break;
+                }
+            };
+            if !f.asleep || f.nap != a.nap {
+                continue;
+            }
+            if n.queued || f.parked {
+                failed = Some(i - 1);
+                break;
+            }
+            if at.as_ref().is_none_or(|(h, _, _)| h.pc != f.pc) {
+                let Some(ahead) = Ahead::of(frames, f.pc).filter(|h| h.runs && h.visits != 0)
+                else {
+                    failed = Some(i - 1);
+                    break;
+                };
+                let run = Run::of(frames, f.pc);
+                let due_at = tick.saturating_add(u64::from(run.ticks));
+                match into {
+                    None if timers.empty_slot(due_at) => into = Some(due_at),
+                    Some(t) if t == due_at => {}
+                    _ => {
+                        failed = Some(i - 1);
+                        break;
+                    }
+                }
+                if run.ends {
+                    *end_code = None;
+                }
+                slot_runs.push((kept as u32, f.pc));
+                let kernel = Kernel::of(&ahead, &run);
+                at = Some((ahead, run, kernel));
+            }
+            let Some((ahead, run, _)) = &at else {
+                continue;
+            };
+            // The look ahead's conditions: variables above the last frame's,
+            // visits in the queue's order, the checks true, the writes unheard
+            // (and plain, to be taken back), the budget enough.
+            let base = f.base;
+            let holds = base >= free
+                && ahead.visits >= visits
+                && *ops_left >= run.ops
+                && ahead.checks[..ahead.nchecks]
+                    .iter()
+                    .all(|&(src, field, cmp, k)| cmp.holds(vars.field(src.at(base), field), k))
+                && ahead.writes[..ahead.nwrites].iter().all(|w| {
+                    let v = w.at(base);
+                    vars.quiet(v) && vars.plain(v)
+                });
+            if !holds {
+                failed = Some(i - 1);
+                break;
+            }
+            free = base.saturating_add(ahead.span);
+            visits = ahead.visits;
+            *ops_left -= run.ops;
+            for w in &run.steps[..run.nsteps] {
+                let v = match w.src {
+                    Some((src, field, op)) => op.apply(vars.field(src.at(base), field), w.k),
+                    None => w.k,
+                };
+                slot_log.push(vars.swap_value(w.var.at(base), v));
+            }
+            f.pc = run.sleep + 1;
+            f.nap = f.nap.wrapping_add(1);
+            due[kept] = Alarm {
+                node: a.node,
+                nap: f.nap,
+            };
+            kept += 1;
+            super::move_counts(run.moved, live, classes);
+        }
+        if let Some(i) = failed {
+            // Back to where the round began, latest first.
+            for k in (0..kept).rev() {
+                let r = slot_runs.partition_point(|&(first, _)| first as usize <= k) - 1;
+                let pc = slot_runs[r].1;
+                let run = Run::of(frames, pc);
+                let a = &mut due[k];
+                let Some(Kind::Frame(f)) = all.get_mut(a.node.idx as usize).map(|n| &mut n.kind)
+                else {
+                    unreachable!("a frame the round ran");
+                };
+                for w in run.steps[..run.nsteps].iter().rev() {
+                    let old = slot_log.pop().expect("one value per write");
+                    vars.swap_value(w.var.at(f.base), old);
+                }
+                f.pc = pc;
+                f.nap = f.nap.wrapping_sub(1);
+                a.nap = f.nap;
+            }
+            (*ops_left, *end_code, *live, *classes) = saved;
+            due.drain(kept..i);
+            self.slot_undone += u64::from(kept > 0);
+            return false;
+        }
+        if kept > 0 {
+            // What waking them spends (`end_sleep`'s end code).
+            *end_code = None;
+            self.rounds_fused += 1;
+            self.slot_rounds += 1;
+            self.slot_once += 1;
+        }
+        self.plans_run += kept as u64;
+        let due = std::mem::take(due);
+        match into {
+            Some(t) if kept > 0 => {
+                let mut due = due;
+                due.truncate(kept);
+                self.timers.adopt(t, due);
+            }
+            _ => self.timers.done(due),
+        }
+        true
     }
 
     /// The look ahead over the due alarms: None where the round cannot be run
