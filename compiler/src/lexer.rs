@@ -301,11 +301,9 @@ mod tests {
             "00000000000000001",
         ];
         let mut random = Vec::new();
-        let mut x = 0x2545_f491_4f6c_dd1du64;
+        let mut rng = ilmr_geometry::SplitMix64::new(0x2545_f491_4f6c_dd1d);
         for _ in 0..200_000 {
-            x ^= x << 13;
-            x ^= x >> 7;
-            x ^= x << 17;
+            let x = rng.next_u64();
             let len = 1 + (x % 17) as usize;
             let mut t: String = (0..len)
                 .map(|i| char::from(b'0' + ((x >> (i * 3 % 60)) % 10) as u8))
