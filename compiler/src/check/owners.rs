@@ -113,17 +113,29 @@ struct Record {
     order: u32,
 }
 
-/// What W0905 has gathered, apart from what it reads: carried from the streamed blocks
-/// of a task (`check/stream.rs`) into the check of the other files.
-pub struct Tally {
+/// What W0905 gathers as it goes, apart from what it reads: one list of fields, which
+/// the streamed blocks of a task (`check/stream.rs`) hand on to the check of the other
+/// files whole.
+#[derive(Default)]
+struct Gathered {
+    /// Moments of their own handed out so far.
     owns: u64,
+    /// What each target is called in messages.
     targets: FxHashMap<u64, String>,
     records: Vec<Record>,
     strands: u32,
     origins: u32,
+    /// Per skill: whether a call of it holds its caller, and its settings at start.
     holds: FxHashMap<u32, bool>,
     starts: FxHashMap<u32, Rc<Vec<SkillSet>>>,
+    /// Per holding skill: the waits its caller goes through (`skill_exit`).
     exits: FxHashMap<u32, Option<Rc<Vec<Step>>>>,
+}
+
+/// What the streamed blocks of a task gathered, and the calls inside skills they
+/// resolved by name (`Guess`), carried into the check of the other files.
+pub struct Tally {
+    gathered: Gathered,
     guessed: Vec<Guess>,
 }
 
@@ -144,18 +156,7 @@ pub struct Owners<'a, 's> {
     calls: FxHashMap<(u32, u32), &'a FxHashMap<Span, Target>>,
     skills: &'a Skills,
     model: &'a RobotModel,
-    /// Moments of their own handed out so far.
-    owns: u64,
-    /// What each target is called in messages.
-    targets: FxHashMap<u64, String>,
-    records: Vec<Record>,
-    strands: u32,
-    origins: u32,
-    /// Per skill: whether a call of it holds its caller, and its settings at start.
-    holds: FxHashMap<u32, bool>,
-    starts: FxHashMap<u32, Rc<Vec<SkillSet>>>,
-    /// Per holding skill: the waits its caller goes through (`skill_exit`).
-    exits: FxHashMap<u32, Option<Rc<Vec<Step>>>>,
+    gathered: Gathered,
     /// The commands that set something or hold their block: the others matter here
     /// only as not being skills.
     relevant: Vec<(&'static [u8], Command)>,
@@ -253,14 +254,7 @@ pub fn finish_owners(
             }
         }
     }
-    o.owns = tally.owns;
-    o.targets = tally.targets;
-    o.records = tally.records;
-    o.strands = tally.strands;
-    o.origins = tally.origins;
-    o.holds = tally.holds;
-    o.starts = tally.starts;
-    o.exits = tally.exits;
+    o.gathered = tally.gathered;
     for (i, entry) in files.iter().enumerate().skip(from) {
         if !entry.library {
             o.file(FileId(i as u32));
@@ -311,14 +305,7 @@ impl<'a, 's> Owners<'a, 's> {
 
     pub fn into_tally(self) -> Tally {
         Tally {
-            owns: self.owns,
-            targets: self.targets,
-            records: self.records,
-            strands: self.strands,
-            origins: self.origins,
-            holds: self.holds,
-            starts: self.starts,
-            exits: self.exits,
+            gathered: self.gathered,
             guessed: self.guessed.unwrap_or_default(),
         }
     }
@@ -361,17 +348,13 @@ impl<'a, 's> Owners<'a, 's> {
             calls,
             skills,
             model,
-            owns: 0,
-            targets: FxHashMap::default(),
-            // Room written only as settings are found: a large task's records would
-            // otherwise be copied each time they double. There are seldom more settings
-            // than statements that bind.
-            records: Vec::with_capacity(records),
-            strands: 0,
-            origins: 0,
-            holds: FxHashMap::default(),
-            starts: FxHashMap::default(),
-            exits: FxHashMap::default(),
+            gathered: Gathered {
+                // Room written only as settings are found: a large task's records would
+                // otherwise be copied each time they double. There are seldom more
+                // settings than statements that bind.
+                records: Vec::with_capacity(records),
+                ..Gathered::default()
+            },
             relevant: Command::all()
                 .filter(|c| c.spec().sets != Sets::Nothing || c.spec().holds_block)
                 .map(|c| (c.name().as_bytes(), c))
@@ -416,8 +399,8 @@ impl<'s> Owners<'_, 's> {
             Step::Guard(h) => (4, h, 0),
             // A moment of its own is never met again: numbered, not hashed.
             Step::Own => {
-                self.owns += 1;
-                (5, self.owns, 0)
+                self.gathered.owns += 1;
+                (5, self.gathered.owns, 0)
             }
         };
         mix(mix(mix(mix(parent) ^ tag) ^ a) ^ b)
@@ -465,8 +448,8 @@ impl<'s> Owners<'_, 's> {
     }
 
     fn strand(&mut self) -> u32 {
-        self.strands += 1;
-        self.strands
+        self.gathered.strands += 1;
+        self.gathered.strands
     }
 
     /// Sibling blocks: each its own strand, all starting at `key`.
@@ -586,8 +569,8 @@ impl<'s> Owners<'_, 's> {
     ) -> When {
         let spec = command.spec();
         if let Some((target, value)) = self.setting(file, command, args) {
-            let order = self.records.len() as u32;
-            self.records.push(Record {
+            let order = self.gathered.records.len() as u32;
+            self.gathered.records.push(Record {
                 target,
                 key,
                 strand,
@@ -617,20 +600,20 @@ impl<'s> Owners<'_, 's> {
     fn skill_call(&mut self, file: FileId, at: Span, id: SkillId, key: When, strand: u32) -> When {
         let sets = self.skill_start(id, &mut Vec::new());
         if !sets.is_empty() {
-            self.origins += 1;
-            let origin = self.origins;
+            self.gathered.origins += 1;
+            let origin = self.gathered.origins;
             let mut fresh = FxHashMap::default();
             for s in sets.iter() {
                 let strand = if s.strand == 0 {
                     strand
                 } else {
                     *fresh.entry(s.strand).or_insert_with(|| {
-                        self.strands += 1;
-                        self.strands
+                        self.gathered.strands += 1;
+                        self.gathered.strands
                     })
                 };
-                let order = self.records.len() as u32;
-                self.records.push(Record {
+                let order = self.gathered.records.len() as u32;
+                self.gathered.records.push(Record {
                     target: s.target,
                     key,
                     strand,
@@ -658,7 +641,7 @@ impl<'s> Owners<'_, 's> {
     /// elsewhere. `None` when one of them is a moment of its own (an `init`, a `wait`
     /// on a parameter, a chain too deep).
     fn skill_exit(&mut self, id: SkillId, open: &mut Vec<u32>) -> Option<Rc<Vec<Step>>> {
-        if let Some(e) = self.exits.get(&id.0) {
+        if let Some(e) = self.gathered.exits.get(&id.0) {
             return e.clone();
         }
         if open.contains(&id.0) || open.len() >= max_call_depth() {
@@ -705,7 +688,7 @@ impl<'s> Owners<'_, 's> {
         }
         open.pop();
         let steps = steps.map(Rc::new);
-        self.exits.insert(id.0, steps.clone());
+        self.gathered.exits.insert(id.0, steps.clone());
         steps
     }
 
@@ -730,7 +713,8 @@ impl<'s> Owners<'_, 's> {
             Sets::Nothing => return None,
             Sets::Setting { what, .. } => {
                 let target = hash_str(what);
-                self.targets
+                self.gathered
+                    .targets
                     .entry(target)
                     .or_insert_with(|| what.to_string());
                 (target, items)
@@ -748,7 +732,8 @@ impl<'s> Owners<'_, 's> {
                 let written = first.span.slice(text).trim();
                 let name = device.map_or(written, |d| d.name.as_str());
                 let target = hash_str(name) ^ DEVICE_SEED;
-                self.targets
+                self.gathered
+                    .targets
                     .entry(target)
                     .or_insert_with(|| format!("actuator `{name}`"));
                 (target, &items[1..])
@@ -776,7 +761,7 @@ impl<'s> Owners<'_, 's> {
     /// Whether a call of the skill holds its caller: its first block waits (a `wait`,
     /// an `init` or a call that holds) before it has issued its last statement.
     fn skill_holds(&mut self, id: SkillId, open: &mut Vec<u32>) -> bool {
-        if let Some(&h) = self.holds.get(&id.0) {
+        if let Some(&h) = self.gathered.holds.get(&id.0) {
             return h;
         }
         if open.contains(&id.0) || open.len() >= max_call_depth() {
@@ -808,14 +793,14 @@ impl<'s> Owners<'_, 's> {
             }
         }
         open.pop();
-        self.holds.insert(id.0, holds);
+        self.gathered.holds.insert(id.0, holds);
         holds
     }
 
     /// The settings a skill makes in the tick it is called: the statements of each of
     /// its blocks up to the first that holds, through the skills they call.
     fn skill_start(&mut self, id: SkillId, open: &mut Vec<u32>) -> Rc<Vec<SkillSet>> {
-        if let Some(s) = self.starts.get(&id.0) {
+        if let Some(s) = self.gathered.starts.get(&id.0) {
             return s.clone();
         }
         if open.contains(&id.0) || open.len() >= max_call_depth() {
@@ -891,12 +876,12 @@ impl<'s> Owners<'_, 's> {
         kept.truncate(SKILL_SETTINGS_KEPT);
         let out = Rc::new(kept.into_iter().map(|i| out[i].clone()).collect::<Vec<_>>());
         open.pop();
-        self.starts.insert(id.0, out.clone());
+        self.gathered.starts.insert(id.0, out.clone());
         out
     }
 
     fn report(&mut self, diags: &mut Kept) {
-        let mut records = std::mem::take(&mut self.records);
+        let mut records = std::mem::take(&mut self.gathered.records);
         // Only settings of a thing that more than one block sets at one moment, to
         // more than one value, can meet: most are alone (or agree, as copies of one
         // block do), and are left out before sorting.
@@ -945,7 +930,7 @@ impl<'s> Owners<'_, 's> {
     }
 
     fn diagnostic(&self, primary: &Record, others: &[&Record]) -> Diagnostic {
-        let what = &self.targets[&primary.target];
+        let what = &self.gathered.targets[&primary.target];
         let shown = |r: &Record| {
             let own = self.statement(r.via);
             if r.origin == 0 {
