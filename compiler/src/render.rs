@@ -101,10 +101,7 @@ pub fn human(diagnostics: &[Diagnostic], files: &[RenderFile<'_>], style: Style)
             let at = |o: u32| s.map_or(o as usize, |s| s.offset(o));
             at(span.start)..at(span.end)
         };
-        let (kind, color) = match d.severity() {
-            Severity::Error => (ReportKind::Error, Color::Red),
-            Severity::Warning => (ReportKind::Warning, Color::Yellow),
-        };
+        let (kind, color) = look(d.severity());
         let label = short(if d.label.is_empty() {
             &d.message
         } else {
@@ -164,10 +161,7 @@ pub struct Single<'a> {
 pub fn single(file: &RenderFile<'_>, r: &Single<'_>, style: Style) -> String {
     let shown = Shown::new(file.text, std::iter::once(r.span));
     let range = shown.offset(r.span.start)..shown.offset(r.span.end);
-    let (kind, color) = match r.severity {
-        Severity::Error => (ReportKind::Error, Color::Red),
-        Severity::Warning => (ReportKind::Warning, Color::Yellow),
-    };
+    let (kind, color) = look(r.severity);
     let path = file.path.to_string();
     let mut report = Report::build(kind, (path.clone(), range.clone()))
         .with_config(style.config())
@@ -192,6 +186,14 @@ pub fn single(file: &RenderFile<'_>, r: &Single<'_>, style: Style) -> String {
         true_column(&mut out, file, &shown, &lines, r.span.start);
     }
     out
+}
+
+/// How a report of each severity looks: its heading and its label's colour.
+fn look(severity: Severity) -> (ReportKind<'static>, Color) {
+    match severity {
+        Severity::Error => (ReportKind::Error, Color::Red),
+        Severity::Warning => (ReportKind::Warning, Color::Yellow),
+    }
 }
 
 /// Puts the true column of `at` back in a report's `path:line:column` header when a
